@@ -1,0 +1,42 @@
+// demlight: light real terrain. Thin entry point: subcommands register themselves; every
+// demlight::Error is caught here once and printed as one line.
+#include "cli/commands.h"
+#include "src/error.h"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    using namespace demlight;
+    cli::CliContext ctx;
+    for (int i = 0; i < argc; ++i) {
+        if (i) ctx.commandLine += ' ';
+        ctx.commandLine += argv[i];
+    }
+
+    CLI::App app{"demlight " DEMLIGHT_VERSION ": light real terrain from a georeferenced DEM"};
+    app.set_version_flag("--version", "demlight " DEMLIGHT_VERSION);
+    app.add_flag("-q,--quiet", ctx.quiet, "No progress output");
+    app.require_subcommand(1);
+    cli::registerInfo(app, ctx);
+    cli::registerSunpos(app, ctx);
+    cli::registerHorizon(app, ctx);
+    cli::registerSun(app, ctx);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const Cancelled&) {
+        std::cerr << "demlight: cancelled\n";
+        return 130;
+    } catch (const Error& e) {
+        std::cerr << "demlight: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "demlight: internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,68 @@
+// Raster I/O through GDAL. This folder is the only code that includes GDAL headers.
+#pragma once
+
+#include "src/grid.h"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace demlight {
+
+/// Where a raster sits on the earth: GDAL geotransform (north-up only) and CRS as WKT.
+struct GeoReference {
+    /// GDAL order: originX, pixelWidth, rotX (0), originY, rotY (0), pixelHeight (< 0 north-up).
+    std::array<double, 6> geoTransform{0, 1, 0, 0, 0, -1};
+    std::string crsWkt;
+};
+
+/// Band 1 of a raster, as float, with NaN wherever the source held its nodata value (or NaN).
+struct RasterBand {
+    Grid<float> values;
+    /// The source's nodata value, if it declared one (kept so outputs can carry it over).
+    std::optional<double> nodata;
+    GeoReference ref;
+    std::string path;
+    std::size_t nodataCount = 0;
+};
+
+/// Reads band 1 of any raster GDAL opens. Throws Error for unreadable files, rasters without a
+/// CRS, and rotated or sheared geotransforms.
+RasterBand readRasterBand(const std::string& path);
+
+/// Reads all bands of a raster as float, resampled (bilinear) onto `target`'s grid of
+/// `width` x `height`. Used for albedo and colour rasters.
+std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,
+                                             std::size_t width, std::size_t height);
+
+/// One output band: values with NaN for nodata, a description and a unit.
+struct OutputBand {
+    const Grid<float>* values = nullptr;   // Float32 bands
+    const Grid<std::uint8_t>* mask = nullptr;  // or Byte bands (used when values is null)
+    std::string description;
+    std::string unit;
+};
+
+struct WriteOptions {
+    /// GDAL driver: "GTiff" (default) or "COG".
+    std::string format = "GTiff";
+    /// Extra GDAL creation options, KEY=VALUE; they override the defaults
+    /// (TILED=YES, COMPRESS=DEFLATE, PREDICTOR=3/2, NUM_THREADS=ALL_CPUS, BIGTIFF=IF_SAFER).
+    std::vector<std::string> creationOptions;
+    /// Dataset metadata items (DEMLIGHT_* keys: command line, version, parameters).
+    std::map<std::string, std::string> metadata;
+    /// Nodata value written for NaN cells of Float32 bands (NaN by default).
+    double nodata = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success.
+/// All bands must be the same shape. Refuses to overwrite `inputPath` when given.
+void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
+                 const GeoReference& ref, const WriteOptions& options,
+                 const std::string& inputPath = {});
+
+}  // namespace demlight

@@ -1,0 +1,52 @@
+// Grid<T>: an owning, row-major 2-D array.
+//
+// Layout: element (col, row) lives at offset row * width + col; row 0 is the NORTH (top) row of a
+// north-up raster, as in GDAL. Cell-centre convention: cell (col, row) covers the pixel square
+// whose centre is at pixel coordinates (col + 0.5, row + 0.5) of the geotransform.
+#pragma once
+
+#include <cassert>
+#include <cstddef>
+#include <vector>
+
+namespace demlight {
+
+template <class T>
+class Grid {
+public:
+    Grid() = default;
+    Grid(std::size_t width, std::size_t height, T fill = T{})
+        : width_(width), height_(height), data_(width * height, fill) {}
+
+    std::size_t width() const { return width_; }
+    std::size_t height() const { return height_; }
+    std::size_t size() const { return data_.size(); }
+    bool empty() const { return data_.empty(); }
+
+    T& operator()(std::size_t col, std::size_t row) {
+        assert(col < width_ && row < height_);
+        return data_[row * width_ + col];
+    }
+    const T& operator()(std::size_t col, std::size_t row) const {
+        assert(col < width_ && row < height_);
+        return data_[row * width_ + col];
+    }
+    T* rowPtr(std::size_t row) { return data_.data() + row * width_; }
+    const T* rowPtr(std::size_t row) const { return data_.data() + row * width_; }
+
+    T* data() { return data_.data(); }
+    const T* data() const { return data_.data(); }
+    std::vector<T>& values() { return data_; }
+    const std::vector<T>& values() const { return data_; }
+
+    bool sameShape(const Grid& other) const {
+        return width_ == other.width_ && height_ == other.height_;
+    }
+
+private:
+    std::size_t width_ = 0;
+    std::size_t height_ = 0;
+    std::vector<T> data_;
+};
+
+}  // namespace demlight

@@ -1,0 +1,18 @@
+// One parallel-for abstraction (TBB underneath). Work items must be independent; results are
+// deterministic when each item writes only its own outputs.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace demlight {
+
+/// Number of worker threads to use: `requested` if > 0, else all hardware threads.
+int resolveThreadCount(int requested);
+
+/// Calls body(i) for every i in [begin, end) on up to `threads` threads (0 = all cores).
+/// `grain` is the smallest chunk handed to one thread.
+void parallelFor(std::size_t begin, std::size_t end, int threads,
+                 const std::function<void(std::size_t)>& body, std::size_t grain = 1);
+
+}  // namespace demlight
