@@ -1,0 +1,183 @@
+#include "geo/dem.h"
+
+#include "geo/gdal_session.h"
+#include "src/error.h"
+
+#include <GeographicLib/Ellipsoid.hpp>
+#include <GeographicLib/Geodesic.hpp>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace demlight {
+namespace {
+
+/// Convergence lattice spacing (cells). Gamma varies smoothly (about dLambda * sin(phi)), so
+/// bilinear interpolation between nodes 64 cells apart is accurate to far below 0.001 deg.
+constexpr std::size_t kConvergenceStepCells = 64;
+/// Latitude offset used to find the true-north direction numerically (degrees).
+constexpr double kNorthProbeDeg = 1e-4;
+
+struct TransformDeleter {
+    void operator()(OGRCoordinateTransformation* t) const {
+        OGRCoordinateTransformation::DestroyCT(t);
+    }
+};
+using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, TransformDeleter>;
+
+struct CrsPair {
+    OGRSpatialReference grid;
+    OGRSpatialReference geographic;  // the grid CRS's own geographic CRS, lon/lat order
+    TransformPtr toGeo;
+    TransformPtr fromGeo;
+};
+
+std::unique_ptr<CrsPair> makeTransforms(const std::string& wkt) {
+    auto p = std::make_unique<CrsPair>();
+    p->grid.importFromWkt(wkt.c_str());
+    p->grid.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    p->geographic.CopyGeogCSFrom(&p->grid);
+    p->geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    p->toGeo.reset(OGRCreateCoordinateTransformation(&p->grid, &p->geographic));
+    p->fromGeo.reset(OGRCreateCoordinateTransformation(&p->geographic, &p->grid));
+    if (!p->toGeo || !p->fromGeo)
+        throw Error("cannot relate the DEM's CRS to latitude/longitude (" +
+                    detail::takeGdalError() + ")");
+    return p;
+}
+
+CrsInfo describeCrs(const std::string& wkt, const std::string& path) {
+    OGRSpatialReference srs;
+    if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE)
+        throw Error("'" + path + "' has a CRS GDAL cannot interpret");
+    CrsInfo info;
+    info.name = srs.GetName() ? srs.GetName() : "unnamed";
+    info.geographic = srs.IsGeographic();
+    if (!info.geographic && !srs.IsProjected())
+        throw Error("'" + path + "' has a CRS that is neither geographic nor projected (" +
+                    info.name + ")");
+    if (!info.geographic) info.linearUnitM = srs.GetLinearUnits(nullptr);
+    OGRErr err = OGRERR_NONE;
+    info.semiMajorM = srs.GetSemiMajor(&err);
+    info.inverseFlattening = srs.GetInvFlattening(&err);
+    const char* code = srs.GetAuthorityCode(nullptr);
+    const char* authority = srs.GetAuthorityName(nullptr);
+    if (code && authority && std::string(authority) == "EPSG") {
+        info.epsg = std::atoi(code);
+    } else {
+        // No code in the file: ask PROJ for an equivalent definition it is sure of.
+        OGRSpatialReference copy(srs);
+        if (copy.AutoIdentifyEPSG() == OGRERR_NONE && copy.GetAuthorityCode(nullptr))
+            info.epsg = std::atoi(copy.GetAuthorityCode(nullptr));
+    }
+    return info;
+}
+
+/// Per-row cell sizes of a geographic grid on the CRS's ellipsoid: the arc of the parallel for
+/// the width, the geodesic along the meridian for the height.
+void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_t rows,
+                         Terrain& t) {
+    const double f = crs.inverseFlattening > 0 ? 1.0 / crs.inverseFlattening : 0.0;
+    const GeographicLib::Geodesic geodesic(crs.semiMajorM, f);
+    const GeographicLib::Ellipsoid ellipsoid(crs.semiMajorM, f);
+    const auto& gt = ref.geoTransform;
+    const double dLonRad = gt[1] * M_PI / 180.0;
+    for (std::size_t r = 0; r < rows; ++r) {
+        const double latTop = gt[3] + static_cast<double>(r) * gt[5];
+        const double latBottom = latTop + gt[5];
+        const double lat = std::clamp(0.5 * (latTop + latBottom), -90.0, 90.0);
+        double s12 = 0;
+        geodesic.Inverse(std::clamp(latBottom, -90.0, 90.0), 0.0, std::clamp(latTop, -90.0, 90.0),
+                         0.0, s12);
+        t.cellHeightM[r] = std::abs(s12);
+        t.cellWidthM[r] = ellipsoid.CircleRadius(lat) * dLonRad;
+        t.rowLatitudeDeg[r] = lat;
+    }
+}
+
+}  // namespace
+
+Dem loadDem(const std::string& path) {
+    Dem dem;
+    dem.band = readRasterBand(path);
+    const std::size_t width = dem.band.values.width();
+    const std::size_t height = dem.band.values.height();
+    if (dem.band.nodataCount == dem.band.values.size())
+        throw Error("'" + path + "' holds no heights: every cell is nodata");
+    dem.crs = describeCrs(dem.band.ref.crsWkt, path);
+
+    Terrain& t = dem.terrain;
+    t.heightsM = dem.band.values;
+    t.cellWidthM.resize(height);
+    t.cellHeightM.resize(height);
+    t.rowLatitudeDeg.resize(height);
+    t.colLongitudeDeg.resize(width);
+    const auto& gt = dem.band.ref.geoTransform;
+
+    if (dem.crs.geographic) {
+        geographicCellSizes(dem.crs, dem.band.ref, height, t);
+        for (std::size_t c = 0; c < width; ++c)
+            t.colLongitudeDeg[c] = gt[0] + (static_cast<double>(c) + 0.5) * gt[1];
+        return dem;
+    }
+
+    // Projected: cell size from the geotransform in the CRS's linear unit.
+    std::fill(t.cellWidthM.begin(), t.cellWidthM.end(), gt[1] * dem.crs.linearUnitM);
+    std::fill(t.cellHeightM.begin(), t.cellHeightM.end(), -gt[5] * dem.crs.linearUnitM);
+    auto crs = makeTransforms(dem.band.ref.crsWkt);
+    const auto toLatLon = [&](double col, double row) {
+        double lon = gt[0] + col * gt[1];
+        double lat = gt[3] + row * gt[5];
+        if (!crs->toGeo->Transform(1, &lon, &lat))
+            throw Error("cannot find latitude/longitude of cell (" + std::to_string(col) + ", " +
+                        std::to_string(row) + ") of '" + path + "'");
+        return std::pair(lat, lon);
+    };
+    const double midCol = 0.5 * static_cast<double>(width);
+    const double midRow = 0.5 * static_cast<double>(height);
+    for (std::size_t r = 0; r < height; ++r)
+        t.rowLatitudeDeg[r] = toLatLon(midCol, static_cast<double>(r) + 0.5).first;
+    for (std::size_t c = 0; c < width; ++c)
+        t.colLongitudeDeg[c] = toLatLon(static_cast<double>(c) + 0.5, midRow).second;
+
+    // Meridian convergence on a coarse lattice: the direction of true north in grid
+    // coordinates, found by stepping a little north in latitude and projecting back.
+    const std::size_t step = kConvergenceStepCells;
+    const std::size_t ni = (width - 1) / step + 2;
+    const std::size_t nj = (height - 1) / step + 2;
+    t.convergence.stepCells = step;
+    t.convergence.gammaDeg = Grid<float>(ni, nj);
+    for (std::size_t j = 0; j < nj; ++j) {
+        for (std::size_t i = 0; i < ni; ++i) {
+            const double col = static_cast<double>(std::min(i * step, width - 1)) + 0.5;
+            const double row = static_cast<double>(std::min(j * step, height - 1)) + 0.5;
+            const double x = gt[0] + col * gt[1];
+            const double y = gt[3] + row * gt[5];
+            const auto [lat, lon] = toLatLon(col, row);
+            double x2 = lon, y2 = std::min(lat + kNorthProbeDeg, 90.0);
+            if (!crs->fromGeo->Transform(1, &x2, &y2))
+                throw Error("cannot project a point near cell (" + std::to_string(col) + ", " +
+                            std::to_string(row) + ") of '" + path + "'");
+            // True north points at angle alpha clockwise from grid north; grid north therefore
+            // lies at -alpha clockwise from true north.
+            const double alphaDeg = std::atan2(x2 - x, y2 - y) * 180.0 / M_PI;
+            t.convergence.gammaDeg(i, j) = static_cast<float>(-alphaDeg);
+        }
+    }
+    return dem;
+}
+
+std::pair<double, double> cellLatLon(const Dem& dem, double col, double row) {
+    const auto& gt = dem.band.ref.geoTransform;
+    double x = gt[0] + col * gt[1];
+    double y = gt[3] + row * gt[5];
+    if (dem.crs.geographic) return {y, x};
+    auto crs = makeTransforms(dem.band.ref.crsWkt);
+    if (!crs->toGeo->Transform(1, &x, &y))
+        throw Error("cannot find latitude/longitude of a point of '" + dem.band.path + "'");
+    return {y, x};
+}
+
+}  // namespace demlight

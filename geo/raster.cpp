@@ -1,0 +1,266 @@
+#include "geo/raster.h"
+
+#include "geo/gdal_session.h"
+#include "src/error.h"
+
+#include <cpl_string.h>
+#include <gdal_priv.h>
+#include <gdalwarper.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <unistd.h>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DatasetCloser {
+    void operator()(GDALDataset* ds) const { GDALClose(GDALDataset::ToHandle(ds)); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+std::string withGdalReason(std::string message) {
+    const std::string reason = detail::takeGdalError();
+    if (!reason.empty()) message += " (" + reason + ")";
+    return message;
+}
+
+DatasetPtr openRaster(const std::string& path) {
+    detail::ensureGdal();
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
+    if (fs::is_directory(path, ec)) throw Error("cannot open '" + path + "': it is a directory");
+    DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    if (!ds)
+        throw Error(withGdalReason("cannot open '" + path + "' as a raster: GDAL does not recognise it"));
+    if (ds->GetRasterCount() < 1) throw Error("'" + path + "' has no raster bands");
+    return ds;
+}
+
+GeoReference readGeoReference(GDALDataset& ds, const std::string& path) {
+    GeoReference ref;
+    if (ds.GetGeoTransform(ref.geoTransform.data()) != CE_None)
+        throw Error("'" + path + "' has no geotransform: demlight needs a georeferenced DEM");
+    const auto& gt = ref.geoTransform;
+    if (gt[2] != 0.0 || gt[4] != 0.0)
+        throw Error("'" + path + "' has a rotated or sheared geotransform (terms " +
+                    std::to_string(gt[2]) + ", " + std::to_string(gt[4]) +
+                    "); warp it north-up first, e.g. gdalwarp in.tif out.tif");
+    if (!(gt[1] > 0.0) || !(gt[5] < 0.0))
+        throw Error("'" + path + "' is not north-up (pixel size " + std::to_string(gt[1]) + " x " +
+                    std::to_string(gt[5]) + "); warp it north-up first with gdalwarp");
+    const OGRSpatialReference* srs = ds.GetSpatialRef();
+    if (!srs || srs->IsEmpty())
+        throw Error("'" + path + "' has no coordinate reference system; assign one, e.g. "
+                    "gdal_edit.py -a_srs EPSG:XXXX '" + path + "'");
+    char* wkt = nullptr;
+    const char* options[] = {"FORMAT=WKT2_2018", nullptr};
+    srs->exportToWkt(&wkt, options);
+    ref.crsWkt = wkt ? wkt : "";
+    CPLFree(wkt);
+    return ref;
+}
+
+/// GDAL default creation options per driver; user options override by key.
+std::vector<std::string> creationOptions(const WriteOptions& options, bool floatData) {
+    std::vector<std::string> defaults;
+    if (options.format == "COG") {
+        defaults = {"COMPRESS=DEFLATE", floatData ? "PREDICTOR=YES" : "PREDICTOR=NO",
+                    "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
+    } else if (options.format == "GTiff") {
+        defaults = {"TILED=YES", "COMPRESS=DEFLATE", floatData ? "PREDICTOR=3" : "PREDICTOR=2",
+                    "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
+    }
+    auto key = [](const std::string& kv) { return kv.substr(0, kv.find('=')); };
+    for (const auto& user : options.creationOptions) {
+        if (user.find('=') == std::string::npos || user.front() == '=')
+            throw Error("creation option '" + user + "' is not KEY=VALUE (-co)");
+        std::erase_if(defaults, [&](const std::string& d) {
+            return strcasecmp(key(d).c_str(), key(user).c_str()) == 0;
+        });
+        defaults.push_back(user);
+    }
+    return defaults;
+}
+
+}  // namespace
+
+RasterBand readRasterBand(const std::string& path) {
+    DatasetPtr ds = openRaster(path);
+    RasterBand out;
+    out.path = path;
+    out.ref = readGeoReference(*ds, path);
+
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    const auto width = static_cast<std::size_t>(ds->GetRasterXSize());
+    const auto height = static_cast<std::size_t>(ds->GetRasterYSize());
+    out.values = Grid<float>(width, height);
+    if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height),
+                       out.values.data(), static_cast<int>(width), static_cast<int>(height),
+                       GDT_Float32, 0, 0) != CE_None)
+        throw Error(withGdalReason("cannot read the heights of '" + path + "'"));
+
+    int hasNodata = 0;
+    const double nodata = band->GetNoDataValue(&hasNodata);
+    if (hasNodata) out.nodata = nodata;
+    // Compare in float: integer nodata (-32768, 65535) converts exactly; a Float32 nodata such
+    // as -3.4e38 must be compared after the same rounding the values went through.
+    const float nodataF = hasNodata ? static_cast<float>(nodata) : 0.0f;
+    const bool nodataIsNan = hasNodata && std::isnan(nodata);
+    for (float& v : out.values.values()) {
+        if (std::isnan(v) || (hasNodata && !nodataIsNan && v == nodataF)) {
+            v = std::numeric_limits<float>::quiet_NaN();
+            ++out.nodataCount;
+        } else if (!std::isfinite(v)) {
+            v = std::numeric_limits<float>::quiet_NaN();  // +-inf heights are treated as nodata
+            ++out.nodataCount;
+        }
+    }
+    return out;
+}
+
+std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,
+                                             std::size_t width, std::size_t height) {
+    DatasetPtr src = openRaster(path);
+    const GeoReference srcRef = readGeoReference(*src, path);
+    const int bands = src->GetRasterCount();
+
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    DatasetPtr dst(mem->Create("", static_cast<int>(width), static_cast<int>(height), bands,
+                               GDT_Float32, nullptr));
+    std::array<double, 6> gt = target.geoTransform;
+    dst->SetGeoTransform(gt.data());
+    OGRSpatialReference dstSrs;
+    dstSrs.importFromWkt(target.crsWkt.c_str());
+    dst->SetSpatialRef(&dstSrs);
+    for (int b = 1; b <= bands; ++b) {
+        dst->GetRasterBand(b)->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
+        dst->GetRasterBand(b)->Fill(std::numeric_limits<double>::quiet_NaN());
+    }
+    if (GDALReprojectImage(GDALDataset::ToHandle(src.get()), srcRef.crsWkt.c_str(),
+                           GDALDataset::ToHandle(dst.get()), target.crsWkt.c_str(),
+                           GRA_Bilinear, 0.0, 0.125, nullptr, nullptr, nullptr) != CE_None)
+        throw Error(withGdalReason("cannot resample '" + path + "' onto the DEM grid"));
+
+    std::vector<Grid<float>> out;
+    for (int b = 1; b <= bands; ++b) {
+        Grid<float> g(width, height);
+        if (dst->GetRasterBand(b)->RasterIO(GF_Read, 0, 0, static_cast<int>(width),
+                                            static_cast<int>(height), g.data(),
+                                            static_cast<int>(width), static_cast<int>(height),
+                                            GDT_Float32, 0, 0) != CE_None)
+            throw Error(withGdalReason("cannot resample '" + path + "'"));
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
+void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
+                 const GeoReference& ref, const WriteOptions& options,
+                 const std::string& inputPath) {
+    detail::ensureGdal();
+    if (bands.empty()) throw Error("nothing to write to '" + path + "'");
+    if (options.format != "GTiff" && options.format != "COG")
+        throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
+
+    std::error_code ec;
+    if (!inputPath.empty() && fs::exists(path, ec) &&
+        fs::equivalent(fs::path(path), fs::path(inputPath), ec))
+        throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
+    const fs::path parent = fs::absolute(fs::path(path)).parent_path();
+    if (!fs::is_directory(parent, ec))
+        throw Error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
+    if (fs::is_directory(path, ec)) throw Error("cannot write '" + path + "': it is a directory");
+
+    // Every band is stored in one data type (TIFF needs that): Byte only if all are masks.
+    const bool allMasks = std::all_of(bands.begin(), bands.end(),
+                                      [](const OutputBand& b) { return b.values == nullptr; });
+    const GDALDataType type = allMasks ? GDT_Byte : GDT_Float32;
+    const auto shapeOf = [](const OutputBand& b) {
+        return b.values ? std::pair(b.values->width(), b.values->height())
+                        : std::pair(b.mask->width(), b.mask->height());
+    };
+    const auto [width, height] = shapeOf(bands.front());
+    for (const auto& b : bands) {
+        if (!b.values && !b.mask) throw Error("internal: output band '" + b.description + "' is empty");
+        if (shapeOf(b) != std::pair(width, height))
+            throw Error("internal: output bands of '" + path + "' differ in size");
+    }
+
+    // Build the dataset in memory, then copy it out with the target driver.
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    DatasetPtr ds(mem->Create("", static_cast<int>(width), static_cast<int>(height),
+                              static_cast<int>(bands.size()), type, nullptr));
+    std::array<double, 6> gt = ref.geoTransform;
+    ds->SetGeoTransform(gt.data());
+    OGRSpatialReference srs;
+    if (!ref.crsWkt.empty() && srs.importFromWkt(ref.crsWkt.c_str()) == OGRERR_NONE)
+        ds->SetSpatialRef(&srs);
+    for (const auto& [key, value] : options.metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
+
+    std::vector<float> buffer;
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        const OutputBand& b = bands[i];
+        GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
+        out->SetDescription(b.description.c_str());
+        if (!b.unit.empty()) out->SetUnitType(b.unit.c_str());
+        CPLErr err;
+        if (type == GDT_Byte) {
+            err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
+                                const_cast<std::uint8_t*>(b.mask->data()), static_cast<int>(width),
+                                static_cast<int>(height), GDT_Byte, 0, 0);
+        } else {
+            out->SetNoDataValue(options.nodata);
+            if (b.values) {
+                buffer.assign(b.values->values().begin(), b.values->values().end());
+            } else {
+                buffer.assign(b.mask->values().begin(), b.mask->values().end());
+            }
+            if (!std::isnan(options.nodata)) {
+                const auto nodataF = static_cast<float>(options.nodata);
+                for (float& v : buffer)
+                    if (std::isnan(v)) v = nodataF;
+            }
+            err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
+                                buffer.data(), static_cast<int>(width), static_cast<int>(height),
+                                GDT_Float32, 0, 0);
+        }
+        if (err != CE_None) throw Error(withGdalReason("cannot fill band " + std::to_string(i + 1)));
+    }
+
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
+    if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
+    const std::vector<std::string> co = creationOptions(options, type == GDT_Float32);
+    CPLStringList coList;
+    for (const auto& kv : co) coList.AddString(kv.c_str());
+
+    // Write under a temporary name in the same folder and rename on success, so a failed or
+    // interrupted run never leaves a partial file at `path`.
+    const std::string tmp = (parent / ("." + fs::path(path).filename().string() + ".tmp" +
+                                       std::to_string(::getpid()))).string();
+    detail::takeGdalError();
+    GDALDataset* written = driver->CreateCopy(tmp.c_str(), ds.get(), FALSE, coList.List(),
+                                              nullptr, nullptr);
+    if (!written) {
+        fs::remove(tmp, ec);
+        throw Error(withGdalReason("cannot write '" + path + "'"));
+    }
+    GDALClose(GDALDataset::ToHandle(written));
+    const std::string closeError = detail::takeGdalError();
+    if (!closeError.empty()) {
+        fs::remove(tmp, ec);
+        throw Error("cannot write '" + path + "' (" + closeError + ")");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error("cannot write '" + path + "': rename failed (" + ec.message() + ")");
+    }
+}
+
+}  // namespace demlight
