@@ -160,6 +160,42 @@ std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoR
     return out;
 }
 
+RasterSummary inspectRaster(const std::string& path) {
+    DatasetPtr ds = openRaster(path);
+    RasterSummary s;
+    s.driver = ds->GetDriver() ? ds->GetDriver()->GetDescription() : "";
+    s.width = static_cast<std::size_t>(ds->GetRasterXSize());
+    s.height = static_cast<std::size_t>(ds->GetRasterYSize());
+    ds->GetGeoTransform(s.ref.geoTransform.data());
+    if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
+        char* wkt = nullptr;
+        srs->exportToWkt(&wkt);
+        s.ref.crsWkt = wkt ? wkt : "";
+        CPLFree(wkt);
+    }
+    for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+        GDALRasterBand* band = ds->GetRasterBand(b);
+        s.descriptions.emplace_back(band->GetDescription());
+        s.units.emplace_back(band->GetUnitType());
+        s.dataTypes.emplace_back(GDALGetDataTypeName(band->GetRasterDataType()));
+    }
+    int hasNodata = 0;
+    const double nodata = ds->GetRasterBand(1)->GetNoDataValue(&hasNodata);
+    if (hasNodata) s.nodata = nodata;
+    const auto readDomain = [&](const char* domain, std::map<std::string, std::string>& out) {
+        CSLConstList items = ds->GetMetadata(domain);
+        for (CSLConstList it = items; it && *it; ++it) {
+            char* key = nullptr;
+            const char* value = CPLParseNameValue(*it, &key);
+            if (key && value) out[key] = value;
+            CPLFree(key);
+        }
+    };
+    readDomain(nullptr, s.metadata);
+    readDomain("IMAGE_STRUCTURE", s.imageStructure);
+    return s;
+}
+
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath) {

@@ -65,4 +65,18 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath = {});
 
+/// What a written raster holds, for checks and reports (read back through GDAL).
+struct RasterSummary {
+    std::string driver;
+    std::size_t width = 0, height = 0;
+    GeoReference ref;
+    std::vector<std::string> descriptions;  // per band
+    std::vector<std::string> units;         // per band
+    std::vector<std::string> dataTypes;     // per band, GDAL names ("Float32")
+    std::optional<double> nodata;           // band 1
+    std::map<std::string, std::string> metadata;  // default domain
+    std::map<std::string, std::string> imageStructure;  // COMPRESSION, LAYOUT, ...
+};
+RasterSummary inspectRaster(const std::string& path);
+
 }  // namespace demlight

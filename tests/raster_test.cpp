@@ -1,0 +1,179 @@
+// Raster I/O: reading real samples (nodata kinds), refusing bad georeferencing, and a write/read
+// round trip that keeps CRS, geotransform, nodata, descriptions, units and metadata.
+#include "geo/dem.h"
+#include "geo/raster.h"
+#include "src/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSamples = DEMLIGHT_SAMPLES_DIR;
+const std::string kUtmWkt = R"(PROJCS["WGS 84 / UTM zone 11N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",-117],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1],AUTHORITY["EPSG","32611"]])";
+
+/// A fresh empty folder for one test's files.
+fs::path scratchDir(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / ("demlight_test_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::size_t countNan(const Grid<float>& g) {
+    std::size_t n = 0;
+    for (float v : g.values()) n += std::isnan(v);
+    return n;
+}
+
+TEST(ReadRaster, Int16NodataBecomesNan) {
+    // Provenance README: 4151 cells (2.7 %) of -32767 in the corners.
+    const RasterBand b = readRasterBand(kSamples + "/mount_st_helens_1980_usgs.dem");
+    EXPECT_EQ(b.values.width(), 327u);
+    EXPECT_EQ(b.values.height(), 468u);
+    ASSERT_TRUE(b.nodata.has_value());
+    EXPECT_EQ(*b.nodata, -32767.0);
+    EXPECT_EQ(b.nodataCount, 4151u);
+    EXPECT_EQ(countNan(b.values), 4151u);
+}
+
+TEST(ReadRaster, UInt16NodataDeclaredButAbsent) {
+    const RasterBand b = readRasterBand(kSamples + "/rocky_mountain_np_dem.tif");
+    ASSERT_TRUE(b.nodata.has_value());
+    EXPECT_EQ(*b.nodata, 65535.0);
+    EXPECT_EQ(b.nodataCount, 0u);
+}
+
+TEST(ReadRaster, LuxembourgBorderIsNodata) {
+    const RasterBand b = readRasterBand(kSamples + "/luxembourg_elev_terra.tif");
+    EXPECT_EQ(b.nodataCount, 3942u);  // README: 3942 cells outside the national border
+}
+
+TEST(ReadRaster, RefusesMissingFileWithItsName) {
+    try {
+        readRasterBand("/nonexistent/dem.tif");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/dem.tif"), std::string::npos);
+    }
+}
+
+TEST(ReadRaster, RefusesNonRaster) {
+    const fs::path dir = scratchDir("nonraster");
+    const fs::path p = dir / "notes.txt";
+    std::ofstream(p) << "not a raster\n";
+    EXPECT_THROW(readRasterBand(p.string()), Error);
+}
+
+TEST(WriteRaster, RoundTripKeepsGeoreferencingAndDescriptions) {
+    const fs::path dir = scratchDir("roundtrip");
+    Grid<float> a(4, 3, 1.5f);
+    a(1, 1) = std::numeric_limits<float>::quiet_NaN();
+    Grid<std::uint8_t> m(4, 3, 0);
+    m(2, 0) = 1;
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    WriteOptions opt;
+    opt.metadata["DEMLIGHT_COMMAND"] = "demlight test";
+    opt.nodata = -32768;
+    const std::string out = (dir / "out.tif").string();
+    writeRaster(out, {{&a, nullptr, "sun_visibility", "fraction"}, {nullptr, &m, "truncated", ""}},
+                ref, opt);
+
+    const RasterSummary s = inspectRaster(out);
+    EXPECT_EQ(s.driver, "GTiff");
+    EXPECT_EQ(s.width, 4u);
+    EXPECT_EQ(s.height, 3u);
+    EXPECT_EQ(s.ref.geoTransform, ref.geoTransform);
+    EXPECT_NE(s.ref.crsWkt.find("UTM zone 11N"), std::string::npos);
+    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"sun_visibility", "truncated"}));
+    EXPECT_EQ(s.units[0], "fraction");
+    ASSERT_TRUE(s.nodata.has_value());
+    EXPECT_EQ(*s.nodata, -32768.0);
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_COMMAND"), "demlight test");
+    EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "DEFLATE");
+
+    const RasterBand back = readRasterBand(out);
+    EXPECT_TRUE(std::isnan(back.values(1, 1)));
+    EXPECT_EQ(back.values(0, 0), 1.5f);
+    // No temporary file is left in the folder.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+TEST(WriteRaster, CogAndCreationOptions) {
+    const fs::path dir = scratchDir("cog");
+    Grid<float> a(300, 200, 2.0f);
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    WriteOptions opt;
+    opt.format = "COG";
+    opt.creationOptions = {"COMPRESS=LZW"};
+    const std::string out = (dir / "out.tif").string();
+    writeRaster(out, {{&a, nullptr, "x", "m"}}, ref, opt);
+    const RasterSummary s = inspectRaster(out);
+    EXPECT_EQ(s.imageStructure.at("LAYOUT"), "COG");
+    EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "LZW");
+}
+
+TEST(WriteRaster, RefusesBadTargetsWithoutLeavingFiles) {
+    const fs::path dir = scratchDir("badtarget");
+    Grid<float> a(2, 2, 0.0f);
+    GeoReference ref;
+    ref.crsWkt = kUtmWkt;
+    EXPECT_THROW(writeRaster((dir / "missing" / "out.tif").string(), {{&a, nullptr, "x", ""}}, ref, {}),
+                 Error);
+    const std::string in = (dir / "in.tif").string();
+    writeRaster(in, {{&a, nullptr, "x", ""}}, ref, {});
+    EXPECT_THROW(writeRaster(in, {{&a, nullptr, "x", ""}}, ref, {}, in), Error);
+    WriteOptions bad;
+    bad.creationOptions = {"NOEQUALS"};
+    EXPECT_THROW(writeRaster((dir / "o.tif").string(), {{&a, nullptr, "x", ""}}, ref, bad), Error);
+    EXPECT_FALSE(fs::exists(dir / "o.tif"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+TEST(ReadRaster, RefusesRotatedGeotransformAndMissingCrs) {
+    const fs::path dir = scratchDir("badgeo");
+    Grid<float> a(3, 3, 5.0f);
+    GeoReference rotated;
+    rotated.geoTransform = {0, 30, 5, 0, 5, -30};
+    rotated.crsWkt = kUtmWkt;
+    writeRaster((dir / "rot.tif").string(), {{&a, nullptr, "h", "m"}}, rotated, {});
+    try {
+        readRasterBand((dir / "rot.tif").string());
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("rotated or sheared"), std::string::npos) << e.what();
+    }
+    GeoReference noCrs;
+    noCrs.geoTransform = {0, 30, 0, 0, 0, -30};
+    writeRaster((dir / "nocrs.tif").string(), {{&a, nullptr, "h", "m"}}, noCrs, {});
+    try {
+        readRasterBand((dir / "nocrs.tif").string());
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("no coordinate reference system"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(LoadDem, RefusesAllNodata) {
+    const fs::path dir = scratchDir("allnodata");
+    Grid<float> a(3, 3, std::numeric_limits<float>::quiet_NaN());
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    writeRaster((dir / "nan.tif").string(), {{&a, nullptr, "h", "m"}}, ref, {});
+    EXPECT_THROW(loadDem((dir / "nan.tif").string()), Error);
+}
+
+}  // namespace
+}  // namespace demlight
