@@ -99,6 +99,19 @@ void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_
 
 }  // namespace
 
+class LatLonTransform {
+public:
+    explicit LatLonTransform(const std::string& wkt) : crs_(makeTransforms(wkt)) {}
+    /// Grid CRS x/y to (lat, lon); false if PROJ cannot.
+    bool apply(double x, double y, double& lat, double& lon) const {
+        lon = x, lat = y;
+        return crs_->toGeo->Transform(1, &lon, &lat);
+    }
+
+private:
+    std::unique_ptr<CrsPair> crs_;
+};
+
 Dem loadDem(const std::string& path) {
     Dem dem;
     dem.band = readRasterBand(path);
@@ -126,6 +139,7 @@ Dem loadDem(const std::string& path) {
     // Projected: cell size from the geotransform in the CRS's linear unit.
     std::fill(t.cellWidthM.begin(), t.cellWidthM.end(), gt[1] * dem.crs.linearUnitM);
     std::fill(t.cellHeightM.begin(), t.cellHeightM.end(), -gt[5] * dem.crs.linearUnitM);
+    dem.toLatLon = std::make_shared<LatLonTransform>(dem.band.ref.crsWkt);
     auto crs = makeTransforms(dem.band.ref.crsWkt);
     const auto toLatLon = [&](double col, double row) {
         double lon = gt[0] + col * gt[1];
@@ -174,10 +188,10 @@ std::pair<double, double> cellLatLon(const Dem& dem, double col, double row) {
     double x = gt[0] + col * gt[1];
     double y = gt[3] + row * gt[5];
     if (dem.crs.geographic) return {y, x};
-    auto crs = makeTransforms(dem.band.ref.crsWkt);
-    if (!crs->toGeo->Transform(1, &x, &y))
+    double lat = 0, lon = 0;
+    if (!dem.toLatLon || !dem.toLatLon->apply(x, y, lat, lon))
         throw Error("cannot find latitude/longitude of a point of '" + dem.band.path + "'");
-    return {y, x};
+    return {lat, lon};
 }
 
 }  // namespace demlight

@@ -5,6 +5,7 @@
 #include "geo/raster.h"
 #include "src/terrain.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -22,11 +23,16 @@ struct CrsInfo {
     double inverseFlattening = 298.257223563;
 };
 
+/// Converts grid coordinates of a projected DEM to latitude/longitude (opaque; GDAL inside).
+class LatLonTransform;
+
 struct Dem {
     RasterBand band;
     CrsInfo crs;
     /// Heights (the band's values) plus per-row cell sizes and convergence.
     Terrain terrain;
+    /// Set for projected DEMs; shared so Dem stays cheap to copy.
+    std::shared_ptr<const LatLonTransform> toLatLon;
 };
 
 /// Opens a DEM: reads band 1, checks the georeferencing, computes per-row metric cell sizes

@@ -1,0 +1,97 @@
+#include "cli/common.h"
+
+#include "src/error.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <unistd.h>
+
+namespace demlight::cli {
+
+namespace fs = std::filesystem;
+
+/// Input nodata values at least this large in magnitude are carried into outputs.
+constexpr double kCarriedNodataMagnitude = 10000.0;
+
+void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
+    cmd->add_option("-o,--output", o.path, "Output raster path")->required();
+    cmd->add_option("--of", o.format, "Output format: GTiff (tiled, DEFLATE) or COG")
+        ->check(CLI::IsMember({"GTiff", "COG"}, CLI::ignore_case))
+        ->transform([](std::string s) { return (s == "cog" || s == "COG") ? "COG" : "GTiff"; });
+    cmd->add_option("--co", o.creationOptions,
+                    "GDAL creation option KEY=VALUE (repeatable), e.g. --co COMPRESS=ZSTD");
+}
+
+void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
+    cmd->add_option("--max-distance", o.maxDistanceM,
+                    "Horizon search distance (metres). Default: relief / tan(2 deg), capped by the "
+                    "DEM diagonal")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--refraction", o.refraction,
+                    "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
+                    "0 = pure geometry")
+        ->check(CLI::Range(0.0, 0.99))
+        ->capture_default_str();
+    cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+}
+
+double outputNodata(const Dem& dem) {
+    if (dem.band.nodata) {
+        const double v = *dem.band.nodata;
+        if (std::isnan(v) ||
+            (std::abs(v) >= kCarriedNodataMagnitude && std::abs(v) <= 3.4028235e38))
+            return v;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+WriteOptions makeWriteOptions(const OutputOptions& out, const CliContext& ctx, const Dem& dem,
+                              const std::map<std::string, std::string>& extra) {
+    WriteOptions w;
+    w.format = out.format;
+    w.creationOptions = out.creationOptions;
+    w.nodata = outputNodata(dem);
+    w.metadata["DEMLIGHT_VERSION"] = DEMLIGHT_VERSION;
+    w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
+    w.metadata["DEMLIGHT_INPUT"] = dem.band.path;
+    for (const auto& [k, v] : extra) w.metadata[k] = v;
+    return w;
+}
+
+void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
+    std::error_code ec;
+    if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
+        throw Error("output '" + outPath + "' would overwrite the input DEM; choose another -o");
+    if (fs::is_directory(outPath, ec))
+        throw Error("cannot write '" + outPath + "': it is a directory");
+    const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
+    if (!fs::is_directory(parent, ec))
+        throw Error("cannot write '" + outPath + "': folder '" + parent.string() +
+                    "' does not exist");
+    // Probe that the folder accepts new files, so a long computation does not end in failure.
+    const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));
+    if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
+        std::fclose(f);
+        fs::remove(probe, ec);
+    } else {
+        throw Error("cannot write '" + outPath + "': folder '" + parent.string() +
+                    "' is not writable");
+    }
+}
+
+std::string formatNumber(double value) {
+    std::ostringstream s;
+    s.precision(10);
+    s << value;
+    return s.str();
+}
+
+void note(const CliContext& ctx, const std::string& line) {
+    if (!ctx.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+}  // namespace demlight::cli

@@ -1,0 +1,49 @@
+// Options and helpers shared by the raster-producing subcommands.
+#pragma once
+
+#include "cli/commands.h"
+#include "geo/dem.h"
+#include "geo/raster.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace demlight::cli {
+
+/// -o, -of, -co: where and how an output raster is written.
+struct OutputOptions {
+    std::string path;
+    std::string format = "GTiff";
+    std::vector<std::string> creationOptions;
+};
+void addOutputOptions(CLI::App* cmd, OutputOptions& o);
+
+/// Search options shared by everything that computes horizons.
+struct SearchOptions {
+    std::optional<double> maxDistanceM;
+    double refraction = 0.13;
+    int threads = 0;
+};
+void addSearchOptions(CLI::App* cmd, SearchOptions& o);
+
+/// The nodata value written for nodata cells of Float32 outputs: the input's own value when it
+/// cannot be mistaken for a result (NaN, or magnitude >= 10000, e.g. -32768, 65535, -3.4e38),
+/// otherwise NaN (an input nodata of 0 would collide with a visibility of 0).
+double outputNodata(const Dem& dem);
+
+/// Dataset metadata every output carries: version, command line, input, plus `extra`.
+WriteOptions makeWriteOptions(const OutputOptions& out, const CliContext& ctx, const Dem& dem,
+                              const std::map<std::string, std::string>& extra);
+
+/// Fails early (before any work) if the output cannot be written or would replace the input.
+void checkOutputPath(const std::string& outPath, const std::string& inputPath);
+
+/// Shortest decimal form of a number for metadata and band names ("37.5", "0.13").
+std::string formatNumber(double value);
+
+/// Prints a line to stderr unless quiet.
+void note(const CliContext& ctx, const std::string& line);
+
+}  // namespace demlight::cli
