@@ -7,6 +7,7 @@
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "lighting/horizon.h"
+#include "src/angles.h"
 #include "src/error.h"
 
 #include <chrono>
@@ -61,7 +62,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     std::vector<OutputBand> bands, masks;
     std::string azimuthList;
     for (std::size_t i = 0; i < azimuths.size(); ++i) {
-        const std::string az = formatNumber(normalizeAzimuthDeg(azimuths[i]));
+        const std::string az = formatNumber(wrapAzimuthDeg(azimuths[i]));
         bands.push_back({&maps[i].angleDeg, nullptr, "horizon_azimuth=" + az, "deg"});
         masks.push_back({nullptr, &maps[i].truncated, "truncated_azimuth=" + az, ""});
         azimuthList += (i ? "," : "") + az;

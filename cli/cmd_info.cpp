@@ -28,12 +28,7 @@ void runInfo(const InfoOptions& o) {
     const Terrain& t = dem.terrain;
     const std::size_t w = t.width(), h = t.height();
 
-    float zMin = std::numeric_limits<float>::infinity(), zMax = -zMin;
-    for (float z : t.heightsM.values()) {
-        if (std::isnan(z)) continue;
-        zMin = std::min(zMin, z);
-        zMax = std::max(zMax, z);
-    }
+    const auto [zMin, zMax] = heightRangeM(t.heightsM);
     const double relief = static_cast<double>(zMax) - static_cast<double>(zMin);
     const double nodataShare = static_cast<double>(dem.band.nodataCount) / static_cast<double>(w * h);
 

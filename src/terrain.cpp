@@ -1,6 +1,7 @@
 #include "src/terrain.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace demlight {
 
@@ -26,6 +27,16 @@ std::pair<double, double> ConvergenceField::range() const {
     if (gammaDeg.empty()) return {0.0, 0.0};
     const auto [lo, hi] = std::minmax_element(gammaDeg.values().begin(), gammaDeg.values().end());
     return {*lo, *hi};
+}
+
+std::pair<float, float> heightRangeM(const Grid<float>& heightsM) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (float z : heightsM.values()) {
+        if (std::isnan(z)) continue;
+        lo = std::min(lo, z);
+        hi = std::max(hi, z);
+    }
+    return {lo, hi};
 }
 
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM) {

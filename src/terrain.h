@@ -48,6 +48,9 @@ struct Terrain {
     bool valid(std::size_t col, std::size_t row) const { return !std::isnan(heightsM(col, row)); }
 };
 
+/// Lowest and highest valid height (metres); {+inf, -inf} when every cell is nodata.
+std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
+
 /// A flat-earth, square-cell terrain for tests: every row has the same cell size.
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM);
 
