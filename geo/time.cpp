@@ -9,6 +9,10 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
 #include <string_view>
 
 namespace demlight {
@@ -19,13 +23,19 @@ namespace {
 
 constexpr int kMaxOffsetMinutes = 18 * 60;
 
-/// Signed offset as "+05:45".
-std::string offsetText(chr::minutes offset) {
+/// Signed offset as "+05:45" ("+00:34:08" for a local mean time with seconds).
+std::string offsetText(chr::seconds offset) {
     const long long total = offset.count();
-    const long long absMin = total < 0 ? -total : total;
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%c%02lld:%02lld", total < 0 ? '-' : '+', absMin / 60, absMin % 60);
-    return buf;
+    const long long absSec = total < 0 ? -total : total;
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%c%02lld:%02lld", total < 0 ? '-' : '+', absSec / 3600,
+                  absSec / 60 % 60);
+    std::string out = buf;
+    if (absSec % 60 != 0) {
+        std::snprintf(buf, sizeof buf, ":%02lld", absSec % 60);
+        out += buf;
+    }
+    return out;
 }
 
 std::string hhmm(chr::minutes sinceMidnight) {
@@ -48,7 +58,7 @@ const date::time_zone* findZone(const std::string& name) {
 struct ParsedFields {
     int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
     long long millis = 0;  // 0..1000 (1000 after rounding .9995 up; carried when building)
-    std::optional<chr::minutes> offset;
+    std::optional<chr::seconds> offset;
 };
 
 /// A strict left-to-right scanner over the text; every failure names the text and the
@@ -123,7 +133,7 @@ ParsedFields scanInstant(const std::string& text) {
         }
         if (s.peek() == 'Z' || s.peek() == 'z') {
             s.advance();
-            f.offset = chr::minutes(0);
+            f.offset = chr::seconds(0);
         } else if (s.peek() == '+' || s.peek() == '-') {
             const int sign = s.peek() == '-' ? -1 : 1;
             s.advance();
@@ -166,8 +176,238 @@ date::local_time<chr::milliseconds> localReading(const ParsedFields& f) {
            chr::seconds(f.second) + chr::milliseconds(f.millis);
 }
 
-UtcInstant toSys(date::local_time<chr::milliseconds> local, chr::minutes offset) {
+UtcInstant toSys(date::local_time<chr::milliseconds> local, chr::seconds offset) {
     return UtcInstant{local.time_since_epoch() - offset};
+}
+
+// --- IANA zones beyond the tables: the POSIX TZ footer -------------------------------------
+//
+// TZif files list explicit transitions only up to 2037; later instants follow the POSIX TZ rule
+// in the file's footer (RFC 8536 §3.3). date/tz (3.0.1, USE_OS_TZDB) ignores that footer and
+// would keep the last offset forever (Sydney in September 2050 on daylight time), so rules
+// after the last listed transition are applied here.
+
+/// One "start" or "end" field of a POSIX TZ DST rule: Mm.w.d, Jn or n, then /time.
+struct PosixDateRule {
+    enum class Form { MonthWeekDay, JulianNoLeap, ZeroBased } form = Form::MonthWeekDay;
+    int month = 0, week = 0, weekday = 0, dayNumber = 0;
+    chr::seconds wallTime{2 * 3600};  // local wall-clock time of the switch, may be <0 or >24 h
+
+    chr::sys_days dateIn(int y) const {
+        const chr::year year{y};
+        switch (form) {
+        case Form::JulianNoLeap: {
+            const int leapShift = (year.is_leap() && dayNumber >= 60) ? 1 : 0;
+            return chr::sys_days{year / chr::January / 1} + chr::days(dayNumber - 1 + leapShift);
+        }
+        case Form::ZeroBased:
+            return chr::sys_days{year / chr::January / 1} + chr::days(dayNumber);
+        case Form::MonthWeekDay:
+        default: {
+            const chr::sys_days first{year / chr::month(static_cast<unsigned>(month)) / 1};
+            const unsigned firstWeekday = chr::weekday{first}.c_encoding();
+            chr::sys_days d = first + chr::days((weekday - static_cast<int>(firstWeekday) + 7) % 7 +
+                                                7 * (week - 1));
+            // Week 5 means the last such weekday of the month.
+            while (chr::year_month_day{d}.month() != chr::month(static_cast<unsigned>(month)))
+                d -= chr::days(7);
+            return d;
+        }
+        }
+    }
+};
+
+struct PosixTz {
+    chr::seconds stdOffset{0};  // east of UTC
+    chr::seconds dstOffset{0};
+    bool hasDst = false;
+    PosixDateRule start, end;
+
+    chr::seconds offsetAt(chr::sys_seconds t) const {
+        if (!hasDst) return stdOffset;
+        const int y = static_cast<int>(chr::year_month_day{chr::floor<chr::days>(t)}.year());
+        // Latest switch at or before t among the neighbouring years decides.
+        chr::sys_seconds latest = chr::sys_seconds::min();
+        chr::seconds offset = stdOffset;
+        for (int year = y - 1; year <= y + 1; ++year) {
+            const chr::sys_seconds dstOn = start.dateIn(year) + start.wallTime - stdOffset;
+            const chr::sys_seconds dstOff = end.dateIn(year) + end.wallTime - dstOffset;
+            if (dstOn <= t && dstOn > latest) latest = dstOn, offset = dstOffset;
+            if (dstOff <= t && dstOff > latest) latest = dstOff, offset = stdOffset;
+        }
+        return offset;
+    }
+};
+
+/// Parser of a POSIX TZ string such as "AEST-10AEDT,M10.1.0,M4.1.0/3" or "<+0545>-5:45".
+class PosixTzParser {
+public:
+    explicit PosixTzParser(std::string_view s) : s_(s) {}
+
+    std::optional<PosixTz> parse() {
+        PosixTz tz;
+        if (!skipName()) return std::nullopt;
+        const auto stdWest = clockValue(/*allowSign=*/true);
+        if (!stdWest) return std::nullopt;
+        tz.stdOffset = -*stdWest;
+        if (pos_ == s_.size()) return tz;
+        if (!skipName()) return std::nullopt;
+        tz.hasDst = true;
+        tz.dstOffset = tz.stdOffset + chr::hours(1);
+        if (pos_ < s_.size() && s_[pos_] != ',') {
+            const auto dstWest = clockValue(true);
+            if (!dstWest) return std::nullopt;
+            tz.dstOffset = -*dstWest;
+        }
+        // Without rules POSIX leaves the dates implementation-defined; tzdata always gives them.
+        if (!eat(',') || !dateRule(tz.start) || !eat(',') || !dateRule(tz.end)) return std::nullopt;
+        if (pos_ != s_.size()) return std::nullopt;
+        return tz;
+    }
+
+private:
+    bool eat(char c) {
+        if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
+        return false;
+    }
+    std::optional<int> number() {
+        int v = 0, n = 0;
+        while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_])))
+            v = v * 10 + (s_[pos_++] - '0'), ++n;
+        return n ? std::optional<int>(v) : std::nullopt;
+    }
+    bool skipName() {
+        if (eat('<')) {
+            while (pos_ < s_.size() && s_[pos_] != '>') ++pos_;
+            return eat('>');
+        }
+        const std::size_t begin = pos_;
+        while (pos_ < s_.size() && std::isalpha(static_cast<unsigned char>(s_[pos_]))) ++pos_;
+        return pos_ - begin >= 3;
+    }
+    /// [+-]hh[:mm[:ss]] as a duration (sign as written).
+    std::optional<chr::seconds> clockValue(bool allowSign) {
+        int sign = 1;
+        if (allowSign && eat('-'))
+            sign = -1;
+        else if (allowSign)
+            eat('+');
+        const auto h = number();
+        if (!h) return std::nullopt;
+        chr::seconds v = chr::hours(*h);
+        if (eat(':')) {
+            const auto m = number();
+            if (!m) return std::nullopt;
+            v += chr::minutes(*m);
+            if (eat(':')) {
+                const auto sec = number();
+                if (!sec) return std::nullopt;
+                v += chr::seconds(*sec);
+            }
+        }
+        return sign * v;
+    }
+    bool dateRule(PosixDateRule& r) {
+        if (eat('M')) {
+            r.form = PosixDateRule::Form::MonthWeekDay;
+            const auto m = number();
+            if (!m || !eat('.')) return false;
+            const auto w = number();
+            if (!w || !eat('.')) return false;
+            const auto d = number();
+            if (!d || *m < 1 || *m > 12 || *w < 1 || *w > 5 || *d > 6) return false;
+            r.month = *m, r.week = *w, r.weekday = *d;
+        } else {
+            r.form = eat('J') ? PosixDateRule::Form::JulianNoLeap : PosixDateRule::Form::ZeroBased;
+            const auto n = number();
+            if (!n || *n > 365) return false;
+            r.dayNumber = *n;
+        }
+        if (eat('/')) {
+            const auto t = clockValue(true);  // RFC 8536 allows -167..167 h
+            if (!t) return false;
+            r.wallTime = *t;
+        }
+        return true;
+    }
+
+    std::string_view s_;
+    std::size_t pos_ = 0;
+};
+
+/// The POSIX TZ footer of the zone's TZif file, if it has DST rules. Cached per zone name.
+const std::optional<PosixTz>& footerRule(const std::string& name) {
+    static std::mutex mutex;
+    static std::map<std::string, std::optional<PosixTz>> cache;
+    const std::lock_guard lock(mutex);
+    if (const auto it = cache.find(name); it != cache.end()) return it->second;
+
+    std::optional<PosixTz> rule;
+    const char* dir = std::getenv("TZDIR");
+    std::ifstream in(std::string(dir && *dir ? dir : "/usr/share/zoneinfo") + "/" + name,
+                     std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    // Version 2+ files end with "\n<POSIX TZ string>\n".
+    if (bytes.size() > 6 && bytes.compare(0, 4, "TZif") == 0 && bytes[4] >= '2' &&
+        bytes.back() == '\n') {
+        const std::size_t open = bytes.rfind('\n', bytes.size() - 2);
+        if (open != std::string::npos)
+            rule = PosixTzParser(std::string_view(bytes).substr(open + 1, bytes.size() - open - 2))
+                       .parse();
+    }
+    return cache.emplace(name, rule).first->second;
+}
+
+/// UTC offset (east) of an IANA zone at t: the tz tables, then the footer rule.
+chr::seconds ianaOffsetAt(const std::string& name, chr::sys_seconds t) {
+    const date::sys_info info = findZone(name)->get_info(t);
+    constexpr auto kOpenEnded = chr::sys_days{chr::year{9999} / 1 / 1};
+    if (info.end < kOpenEnded) return info.offset;  // a listed transition is still ahead
+    const std::optional<PosixTz>& footer = footerRule(name);
+    return (footer && footer->hasDst) ? footer->offsetAt(t) : info.offset;
+}
+
+/// How a local wall-clock reading maps to UTC in a zone.
+struct LocalResolution {
+    enum class Kind { Unique, Gap, Overlap } kind = Kind::Unique;
+    UtcInstant first;           ///< Unique/Overlap: the (earlier) instant; Gap: end of the gap
+    UtcInstant second;          ///< Overlap: the later instant
+    chr::seconds offsetBefore{0}, offsetAfter{0};  ///< Gap/Overlap: offsets around the switch
+};
+
+/// Resolves a local reading with the zone's offset function. Assumes at most one offset change
+/// within a day of the reading (true of every zone in tzdata).
+LocalResolution resolveLocal(const TimeZoneSpec& zone, date::local_time<chr::milliseconds> local) {
+    const UtcInstant asUtc{local.time_since_epoch()};
+    const auto offsetAt = [&zone](UtcInstant t) { return zone.offsetAt(t); };
+    const chr::seconds before = offsetAt(asUtc - chr::days(1));
+    const chr::seconds after = offsetAt(asUtc + chr::days(1));
+    const UtcInstant tBefore = asUtc - before, tAfter = asUtc - after;
+    const bool beforeValid = offsetAt(tBefore) == before;
+    const bool afterValid = offsetAt(tAfter) == after;
+
+    LocalResolution r;
+    r.offsetBefore = before;
+    r.offsetAfter = after;
+    if (before == after || (beforeValid != afterValid)) {
+        r.first = beforeValid ? tBefore : tAfter;
+        return r;
+    }
+    if (beforeValid) {
+        r.kind = LocalResolution::Kind::Overlap;
+        r.first = std::min(tBefore, tAfter);
+        r.second = std::max(tBefore, tAfter);
+        return r;
+    }
+    // Gap: find the switch instant by bisection; the gap ends there.
+    UtcInstant lo = asUtc - chr::days(1), hi = asUtc + chr::days(1);
+    while (hi - lo > chr::milliseconds(1)) {
+        const UtcInstant mid = lo + (hi - lo) / 2;
+        (offsetAt(mid) == before ? lo : hi) = mid;
+    }
+    r.kind = LocalResolution::Kind::Gap;
+    r.first = hi;
+    return r;
 }
 
 }  // namespace
@@ -181,8 +421,9 @@ TimeZoneSpec TimeZoneSpec::iana(const std::string& name) {
     return z;
 }
 
-TimeZoneSpec TimeZoneSpec::fixedOffset(chr::minutes offsetEastOfUtc) {
-    if (offsetEastOfUtc.count() > kMaxOffsetMinutes || offsetEastOfUtc.count() < -kMaxOffsetMinutes)
+TimeZoneSpec TimeZoneSpec::fixedOffset(chr::seconds offsetEastOfUtc) {
+    if (offsetEastOfUtc > chr::minutes(kMaxOffsetMinutes) ||
+        offsetEastOfUtc < -chr::minutes(kMaxOffsetMinutes))
         throw Error("UTC offset " + offsetText(offsetEastOfUtc) + " is beyond ±18:00");
     TimeZoneSpec z;
     z.fixedOffset_ = offsetEastOfUtc;
@@ -193,10 +434,9 @@ TimeZoneSpec TimeZoneSpec::fromName(const std::string& nameOrEmpty) {
     return nameOrEmpty.empty() ? TimeZoneSpec{} : iana(nameOrEmpty);
 }
 
-chr::minutes TimeZoneSpec::offsetAt(UtcInstant t) const {
+chr::seconds TimeZoneSpec::offsetAt(UtcInstant t) const {
     if (!isIana()) return fixedOffset_;
-    const date::sys_info info = findZone(ianaName_)->get_info(t);
-    return chr::duration_cast<chr::minutes>(info.offset);
+    return ianaOffsetAt(ianaName_, chr::floor<chr::seconds>(t));
 }
 
 std::string TimeZoneSpec::describe() const {
@@ -218,13 +458,12 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
         return {toSys(local, *f.offset), TimeZoneSpec::fixedOffset(*f.offset)};
     }
 
-    const date::time_zone* zone = findZone(tzName);
     const TimeZoneSpec spec = TimeZoneSpec::iana(tzName);
 
     if (f.offset) {
         // The offset fixes the instant; it must be one the zone actually uses then.
         const UtcInstant t = toSys(local, *f.offset);
-        const chr::minutes zoneOffset = spec.offsetAt(t);
+        const chr::seconds zoneOffset = spec.offsetAt(t);
         if (zoneOffset != *f.offset)
             throw Error("time '" + text + "' has offset " + offsetText(*f.offset) + " but " +
                         tzName + " is at " + offsetText(zoneOffset) +
@@ -232,33 +471,26 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
         return {t, spec};
     }
 
-    const date::local_info info = zone->get_info(local);
-    switch (info.result) {
-    case date::local_info::unique:
-        return {toSys(local, chr::duration_cast<chr::minutes>(info.first.offset)), spec};
-    case date::local_info::nonexistent: {
-        // The gap runs from the transition (first.end) in the old offset to the same instant in
-        // the new offset.
-        const auto before = chr::duration_cast<chr::minutes>(info.first.offset);
-        const auto after = chr::duration_cast<chr::minutes>(info.second.offset);
-        const auto gapStart = date::floor<chr::minutes>(info.first.end + before);
-        const auto gapEnd = date::floor<chr::minutes>(info.first.end + after);
-        const auto dayOf = [](auto t) { return t - date::floor<date::days>(t); };
-        throw Error("time '" + text + "' does not exist in " + tzName +
-                    ": clocks jump from " + hhmm(dayOf(gapStart)) + " to " + hhmm(dayOf(gapEnd)) +
-                    " (" + offsetText(before) + " to " + offsetText(after) +
+    const LocalResolution r = resolveLocal(spec, local);
+    const auto clockOf = [](UtcInstant t, chr::seconds offset) {
+        const auto wall = chr::floor<chr::minutes>(t + offset);
+        return hhmm(wall - chr::floor<chr::days>(wall));
+    };
+    switch (r.kind) {
+    case LocalResolution::Kind::Unique:
+        return {r.first, spec};
+    case LocalResolution::Kind::Gap:
+        throw Error("time '" + text + "' does not exist in " + tzName + ": clocks jump from " +
+                    clockOf(r.first, r.offsetBefore) + " to " + clockOf(r.first, r.offsetAfter) +
+                    " (" + offsetText(r.offsetBefore) + " to " + offsetText(r.offsetAfter) +
                     ") that day; choose a time outside the gap");
-    }
-    case date::local_info::ambiguous: {
-        const auto first = chr::duration_cast<chr::minutes>(info.first.offset);
-        const auto second = chr::duration_cast<chr::minutes>(info.second.offset);
+    case LocalResolution::Kind::Overlap:
         throw Error("time '" + text + "' is ambiguous in " + tzName +
-                    ": it happens twice as clocks fall back, at " + offsetText(first) + " and at " +
-                    offsetText(second) + "; add the offset you mean (e.g. " + text +
-                    offsetText(first) + ")");
+                    ": it happens twice as clocks fall back, at " + offsetText(r.offsetBefore) +
+                    " and at " + offsetText(r.offsetAfter) + "; add the offset you mean (e.g. " +
+                    text + offsetText(r.offsetBefore) + ")");
     }
-    }
-    throw Error("time '" + text + "': unexpected result from the time zone database");
+    throw Error("time '" + text + "': could not resolve it in " + tzName);
 }
 
 UtcInstant parseInstant(const std::string& text, const std::string& tzName) {
@@ -268,7 +500,7 @@ UtcInstant parseInstant(const std::string& text, const std::string& tzName) {
 // --- Formatting ------------------------------------------------------------------------------
 
 std::string formatInstant(UtcInstant t, const TimeZoneSpec& zone) {
-    const chr::minutes offset = zone.offsetAt(t);
+    const chr::seconds offset = zone.offsetAt(t);
     const auto local = t + offset;
     const auto day = date::floor<date::days>(local);
     const date::year_month_day ymd{day};
@@ -298,16 +530,8 @@ LocalDay localDay(chr::sys_days date, const TimeZoneSpec& zone) {
         const date::local_time<chr::milliseconds> midnight{
             chr::duration_cast<chr::milliseconds>(d.time_since_epoch())};
         if (!zone.isIana()) return toSys(midnight, zone.offsetAt(UtcInstant{}));
-        const date::local_info info = findZone(zone.ianaName())->get_info(midnight);
-        switch (info.result) {
-        case date::local_info::nonexistent:
-            // Midnight skipped: the day starts where the gap ends (the transition instant).
-            return chr::time_point_cast<chr::milliseconds>(info.first.end);
-        case date::local_info::ambiguous:  // earliest midnight
-        case date::local_info::unique:
-        default:
-            return toSys(midnight, chr::duration_cast<chr::minutes>(info.first.offset));
-        }
+        // Unique or overlap: the (earliest) midnight. Gap: the day starts where the gap ends.
+        return resolveLocal(zone, midnight).first;
     };
     return {date, startOf(date), startOf(date + chr::days(1))};
 }

@@ -34,22 +34,23 @@ public:
     TimeZoneSpec() = default;
     /// An IANA zone such as "Europe/Zurich". Throws Error naming the zone if it is unknown.
     static TimeZoneSpec iana(const std::string& name);
-    /// A fixed offset east of UTC (minutes). Throws Error if beyond ±18:00.
-    static TimeZoneSpec fixedOffset(std::chrono::minutes offsetEastOfUtc);
+    /// A fixed offset east of UTC. Throws Error if beyond ±18:00.
+    static TimeZoneSpec fixedOffset(std::chrono::seconds offsetEastOfUtc);
     /// The empty name is UTC, anything else an IANA zone (see iana()).
     static TimeZoneSpec fromName(const std::string& nameOrEmpty);
 
     bool isIana() const { return !ianaName_.empty(); }
     /// IANA zone name, or empty for a fixed offset.
     const std::string& ianaName() const { return ianaName_; }
-    /// Offset east of UTC in force at instant t (minutes).
-    std::chrono::minutes offsetAt(UtcInstant t) const;
+    /// Offset east of UTC in force at instant t. IANA zones follow the tz tables and, after
+    /// their last listed transition (2037), the zone's POSIX TZ rule, so DST continues.
+    std::chrono::seconds offsetAt(UtcInstant t) const;
     /// "Europe/Zurich", "UTC" or "UTC+05:45".
     std::string describe() const;
 
 private:
     std::string ianaName_;
-    std::chrono::minutes fixedOffset_{0};
+    std::chrono::seconds fixedOffset_{0};
 };
 
 /// An instant together with the zone it was given in (used to display results in that zone and
