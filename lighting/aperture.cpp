@@ -1,0 +1,279 @@
+#include "lighting/aperture.h"
+
+#include "lighting/sky_wedge.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace demlight {
+
+using detail::kHalfPi;
+using detail::kPi;
+
+namespace {
+
+constexpr double kDegToRad = kPi / 180.0;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+
+/// Gauss-Legendre nodes/weights on [-1, 1], 8 points (symmetric halves).
+constexpr std::array<double, 4> kGaussNodes{0.1834346424956498, 0.5255324099163290,
+                                            0.7966664774136267, 0.9602898564975363};
+constexpr std::array<double, 4> kGaussWeights{0.3626837833783620, 0.3137066458778873,
+                                              0.2223810344533745, 0.1012285362903763};
+/// Widest azimuth piece integrated by one Gauss-Legendre rule (radians): 22.5 degrees.
+constexpr double kGaussMaxWidthRad = kPi / 8.0;
+
+/// Running integrals of one cell: solid angle and the unnormalised mean direction.
+struct ApertureSums {
+    double omega = 0.0, ve = 0.0, vn = 0.0, vu = 0.0;
+};
+
+/// Adds the wedge [phi1, phi2] x [horizon, 90 deg] (clipped to the normal hemisphere).
+void addApertureSector(const detail::NormalFrame& f, double phi1, double phi2, double lower,
+                       ApertureSums& s) {
+    const double cos2Top = detail::cos2Antiderivative(kHalfPi);
+    const double sinCosTop = detail::sinCosAntiderivative(kHalfPi);
+    detail::forEachWedgePiece(f, phi1, phi2, lower, kHalfPi, [&](double a, double b,
+                                                                 detail::PieceLower kind) {
+        if (kind == detail::PieceLower::Constant) {
+            const double cos2 = cos2Top - detail::cos2Antiderivative(lower);
+            s.omega += (b - a) * (1.0 - std::sin(lower));
+            s.ve += (std::cos(a) - std::cos(b)) * cos2;
+            s.vn += (std::sin(b) - std::sin(a)) * cos2;
+            s.vu += (b - a) * (sinCosTop - detail::sinCosAntiderivative(lower));
+            return;
+        }
+        // Tangent-plane lower limit. Solid angle: integral of sin(thetaP) d psi
+        // = asin(R cos psi) (unit normal, so R^2 + N_up^2 = 1).
+        const double r = f.horizontal < detail::kFlatNormalEps ? 0.0 : f.horizontal;
+        s.omega += (b - a) - (std::asin(r * std::cos(b + f.delta)) -
+                              std::asin(r * std::cos(a + f.delta)));
+        // Direction: Gauss-Legendre in azimuth, exact in elevation.
+        const int pieces = std::max(1, static_cast<int>(std::ceil((b - a) / kGaussMaxWidthRad)));
+        const double h = (b - a) / pieces;
+        for (int p = 0; p < pieces; ++p) {
+            const double mid = a + (p + 0.5) * h;
+            for (std::size_t g = 0; g < kGaussNodes.size(); ++g) {
+                for (double sign : {-1.0, 1.0}) {
+                    const double phi = mid + sign * 0.5 * h * kGaussNodes[g];
+                    const double w = 0.5 * h * kGaussWeights[g];
+                    const double thetaP = detail::planeElevation(f, phi);
+                    const double cos2 = cos2Top - detail::cos2Antiderivative(thetaP);
+                    s.ve += w * std::sin(phi) * cos2;
+                    s.vn += w * std::cos(phi) * cos2;
+                    s.vu += w * (sinCosTop - detail::sinCosAntiderivative(thetaP));
+                }
+            }
+        }
+    });
+}
+
+
+Aperture finishAperture(const ApertureSums& s, const EnuVector& normal) {
+    Aperture a;
+    a.solidAngleSr = std::clamp(s.omega, 0.0, 2.0 * kPi);
+    a.radiusDeg = apertureRadiusDeg(a.solidAngleSr);
+    const double len = std::sqrt(s.ve * s.ve + s.vn * s.vn + s.vu * s.vu);
+    a.bentNormal = len > 0.0 ? EnuVector{s.ve / len, s.vn / len, s.vu / len} : normal;
+    return a;
+}
+
+double clampUnit(double x) { return std::clamp(x, -1.0, 1.0); }
+
+}  // namespace
+
+double apertureRadiusDeg(double solidAngleSr) {
+    // Oat & Sander Sec. 2: r_p = acos(1 - A_p / 2 pi).
+    return std::acos(clampUnit(1.0 - solidAngleSr / (2.0 * kPi))) / kDegToRad;
+}
+
+Aperture aperture(std::span<const float> horizonDeg, const EnuVector& normal) {
+    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    ApertureSums s;
+    for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
+        const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
+        addApertureSector(f, phi1, phi2, std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad,
+                          s);
+    }
+    return finishAperture(s, normal);
+}
+
+double capAreaSr(double rRad) { return 2.0 * kPi * (1.0 - std::cos(rRad)); }
+
+double capIntersectionAreaSr(double r1, double r2, double d) {
+    // Oat & Sander Sec. 3.1, after Tovchigrechko & Vakser 2001.
+    if (r1 <= 0.0 || r2 <= 0.0) return 0.0;
+    if (std::min(r1, r2) <= std::max(r1, r2) - d) return capAreaSr(std::min(r1, r2));
+    if (r1 + r2 <= d) return 0.0;
+    const double c1 = std::cos(r1), c2 = std::cos(r2), cd = std::cos(d);
+    const double s1 = std::sin(r1), s2 = std::sin(r2), sd = std::sin(d);
+    const double area =
+        2.0 * (kPi - std::acos(clampUnit((cd - c1 * c2) / (s1 * s2))) -
+               c1 * std::acos(clampUnit((c2 - cd * c1) / (sd * s1))) -
+               c2 * std::acos(clampUnit((c1 - cd * c2) / (sd * s2))));
+    return std::clamp(area, 0.0, capAreaSr(std::min(r1, r2)));
+}
+
+double capIntersectionAreaSmoothSr(double r1, double r2, double d) {
+    // Oat & Sander Sec. 3.2: smoothstep between full and no intersection.
+    if (r1 <= 0.0 || r2 <= 0.0) return 0.0;
+    const double diff = std::abs(r1 - r2);
+    const double x = std::clamp(1.0 - (d - diff) / (r1 + r2 - diff), 0.0, 1.0);
+    return capAreaSr(std::min(r1, r2)) * x * x * (3.0 - 2.0 * x);
+}
+
+namespace {
+
+EnuVector scaled(const EnuVector& v, double s) { return {v.east * s, v.north * s, v.up * s}; }
+EnuVector added(const EnuVector& a, const EnuVector& b) {
+    return {a.east + b.east, a.north + b.north, a.up + b.up};
+}
+double dotEnu(const EnuVector& a, const EnuVector& b) {
+    return a.east * b.east + a.north * b.north + a.up * b.up;
+}
+
+/// Unit tangent at `from` pointing along the great circle towards `to`; false if parallel.
+bool tangentTowards(const EnuVector& from, const EnuVector& to, EnuVector& t) {
+    t = added(to, scaled(from, -dotEnu(from, to)));
+    const double len = std::sqrt(dotEnu(t, t));
+    if (len < 1e-15) return false;
+    t = scaled(t, 1.0 / len);
+    return true;
+}
+
+}  // namespace
+
+EnuVector capIntersectionVector(const EnuVector& c1, double r1, const EnuVector& c2, double r2) {
+    if (r1 <= 0.0 || r2 <= 0.0) return {0.0, 0.0, 0.0};
+    const double cd = clampUnit(dotEnu(c1, c2));
+    const double d = std::acos(cd);
+    // Full containment: the smaller cap, integral v d(omega) = pi sin^2 r c.
+    if (std::min(r1, r2) <= std::max(r1, r2) - d) {
+        const double r = std::min(r1, r2);
+        return scaled(r1 <= r2 ? c1 : c2, kPi * std::sin(r) * std::sin(r));
+    }
+    if (r1 + r2 <= d) return {0.0, 0.0, 0.0};
+    EnuVector t1, t2;
+    if (!tangentTowards(c1, c2, t1) || !tangentTowards(c2, c1, t2)) return {0.0, 0.0, 0.0};
+    const double sd = std::sin(d);
+    const double s1 = std::sin(r1), k1 = std::cos(r1), s2 = std::sin(r2), k2 = std::cos(r2);
+    // Half-angles of the boundary arcs (the same ratios as in the area formula).
+    const double a1 = std::acos(clampUnit((k2 - cd * k1) / (sd * s1)));
+    const double a2 = std::acos(clampUnit((k1 - cd * k2) / (sd * s2)));
+    const EnuVector arc1 = added(scaled(c1, a1 * s1 * s1), scaled(t1, -s1 * k1 * std::sin(a1)));
+    const EnuVector arc2 = added(scaled(c2, a2 * s2 * s2), scaled(t2, -s2 * k2 * std::sin(a2)));
+    return added(arc1, arc2);
+}
+
+EnuVector capIntersectionCentroid(const EnuVector& light, double lightRadiusRad,
+                                  const EnuVector& ap, double apertureRadiusRad) {
+    const EnuVector m = capIntersectionVector(light, lightRadiusRad, ap, apertureRadiusRad);
+    const double len = std::sqrt(dotEnu(m, m));
+    return len > 0.0 ? scaled(m, 1.0 / len) : light;
+}
+
+EnuVector capIntersectionCentroidFast(const EnuVector& light, double lightRadiusRad,
+                                      const EnuVector& ap, double apertureRadiusRad) {
+    const double d = std::acos(clampUnit(dotEnu(light, ap)));
+    EnuVector t;
+    if (d >= lightRadiusRad + apertureRadiusRad || !tangentTowards(light, ap, t)) return light;
+    // Lens extent along the great circle, measured from the light centre towards `ap`.
+    const double t0 = std::max(-lightRadiusRad, d - apertureRadiusRad);
+    const double t1 = std::min(lightRadiusRad, d + apertureRadiusRad);
+    const double mid = 0.5 * (t0 + t1);
+    return added(scaled(light, std::cos(mid)), scaled(t, std::sin(mid)));
+}
+
+// ---- ApertureAccumulator ---------------------------------------------------------------------
+
+ApertureAccumulator::ApertureAccumulator(const Grid<float>& normalEast,
+                                         const Grid<float>& normalNorth,
+                                         const Grid<float>& normalUp, std::size_t directions,
+                                         int threads)
+    : east_(normalEast),
+      north_(normalNorth),
+      up_(normalUp),
+      directions_(directions),
+      threads_(threads),
+      added_(directions, false),
+      omega_(normalEast.width(), normalEast.height(), 0.0),
+      ve_(normalEast.width(), normalEast.height(), 0.0),
+      vn_(normalEast.width(), normalEast.height(), 0.0),
+      vu_(normalEast.width(), normalEast.height(), 0.0) {
+    if (!east_.sameShape(north_) || !east_.sameShape(up_))
+        throw Error("aperture: the east, north and up normal grids differ in size");
+    if (directions == 0) throw Error("aperture: the number of directions must be at least 1");
+}
+
+void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
+    if (index >= directions_)
+        throw Error("aperture: direction index " + std::to_string(index) + " out of range 0.." +
+                    std::to_string(directions_ - 1));
+    if (added_[index]) throw Error("aperture: direction " + std::to_string(index) + " added twice");
+    if (!horizonDeg.sameShape(east_))
+        throw Error("aperture: horizon grid size differs from the normal grids");
+    added_[index] = true;
+    const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
+    const std::size_t width = east_.width();
+    parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+        for (std::size_t col = 0; col < width; ++col) {
+            const float h = horizonDeg(col, row);
+            const float e = east_(col, row), n = north_(col, row), u = up_(col, row);
+            if (std::isnan(h) || std::isnan(e) || std::isnan(n) || std::isnan(u)) {
+                omega_(col, row) = kNaN;
+                continue;
+            }
+            ApertureSums s{omega_(col, row), ve_(col, row), vn_(col, row), vu_(col, row)};
+            addApertureSector(detail::makeNormalFrame({e, n, u}), phi1, phi2,
+                              std::clamp<double>(h, -90.0, 90.0) * kDegToRad, s);
+            omega_(col, row) = s.omega;
+            ve_(col, row) = s.ve;
+            vn_(col, row) = s.vn;
+            vu_(col, row) = s.vu;
+        }
+    });
+}
+
+ApertureMaps ApertureAccumulator::finish() const {
+    for (std::size_t i = 0; i < directions_; ++i)
+        if (!added_[i])
+            throw Error("aperture: direction " + std::to_string(i) + " of " +
+                        std::to_string(directions_) + " was never added");
+    const std::size_t w = east_.width(), ht = east_.height();
+    ApertureMaps out{Grid<float>(w, ht, kNaNf), Grid<float>(w, ht, kNaNf),
+                     Grid<float>(w, ht, kNaNf), Grid<float>(w, ht, kNaNf),
+                     Grid<float>(w, ht, kNaNf)};
+    parallelFor(0, ht, threads_, [&](std::size_t row) {
+        for (std::size_t col = 0; col < w; ++col) {
+            if (std::isnan(omega_(col, row))) continue;
+            const EnuVector normal{east_(col, row), north_(col, row), up_(col, row)};
+            const Aperture a = finishAperture(
+                {omega_(col, row), ve_(col, row), vn_(col, row), vu_(col, row)}, normal);
+            out.bentEast(col, row) = static_cast<float>(a.bentNormal.east);
+            out.bentNorth(col, row) = static_cast<float>(a.bentNormal.north);
+            out.bentUp(col, row) = static_cast<float>(a.bentNormal.up);
+            out.radiusDeg(col, row) = static_cast<float>(a.radiusDeg);
+            out.solidAngleSr(col, row) = static_cast<float>(a.solidAngleSr);
+        }
+    });
+    return out;
+}
+
+ApertureMaps computeAperture(const std::vector<const Grid<float>*>& horizonsDeg,
+                             const Grid<float>& normalEast, const Grid<float>& normalNorth,
+                             const Grid<float>& normalUp, int threads) {
+    ApertureAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size(), threads);
+    for (std::size_t i = 0; i < horizonsDeg.size(); ++i) {
+        if (!horizonsDeg[i])
+            throw Error("aperture: horizon grid " + std::to_string(i) + " is null");
+        acc.addDirection(i, *horizonsDeg[i]);
+    }
+    return acc.finish();
+}
+
+}  // namespace demlight

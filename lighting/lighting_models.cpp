@@ -1,0 +1,133 @@
+#include "lighting/lighting_models.h"
+
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+namespace demlight {
+
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+
+double dot(const EnuVector& a, const EnuVector& b) {
+    return a.east * b.east + a.north * b.north + a.up * b.up;
+}
+
+}  // namespace
+
+LightingModel parseLightingModel(std::string_view name) {
+    if (name == "horizon") return LightingModel::Horizon;
+    if (name == "aperture") return LightingModel::Aperture;
+    if (name == "aperture-smooth") return LightingModel::ApertureSmooth;
+    if (name == "hemisphere") return LightingModel::Hemisphere;
+    throw Error("unknown lighting model '" + std::string(name) +
+                "' (expected horizon, aperture, aperture-smooth or hemisphere)");
+}
+
+std::string_view lightingModelName(LightingModel model) {
+    switch (model) {
+        case LightingModel::Horizon: return "horizon";
+        case LightingModel::Aperture: return "aperture";
+        case LightingModel::ApertureSmooth: return "aperture-smooth";
+        case LightingModel::Hemisphere: return "hemisphere";
+    }
+    return "unknown";
+}
+
+ApertureLight apertureLight(const EnuVector& normal, const Aperture& ap,
+                            const EnuVector& sunDirection, const ApertureLightParams& params) {
+    // Oat & Sander Sec. 3: intersect the light cap with the aperture cap.
+    const double rl = params.sunRadiusDeg * kDegToRad;
+    const double rp = ap.radiusDeg * kDegToRad;
+    const double d = std::acos(std::clamp(dot(sunDirection, ap.bentNormal), -1.0, 1.0));
+    const double area = params.smoothIntersection ? capIntersectionAreaSmoothSr(rp, rl, d)
+                                                  : capIntersectionAreaSr(rp, rl, d);
+    const double sunArea = capAreaSr(rl);
+    ApertureLight out;
+    if (area > 0.0 && sunArea > 0.0) {
+        if (params.smoothIntersection) {
+            // Seed Sec. 3.3: area times the Lambert term at the (cheap) centroid direction.
+            const EnuVector c = capIntersectionCentroidFast(sunDirection, rl, ap.bentNormal, rp);
+            out.sun = params.sunRadiance * (area / sunArea) * std::max(0.0, dot(normal, c));
+        } else {
+            // Exact: integral over the intersection of N.v = N . (area * mean direction).
+            // Normalised by the disk's own integral at normal incidence, pi sin^2 r_l, so a
+            // fully visible sun gives exactly max(0, N.s) as in Hoffman & Mitchell Eq. 3.
+            const EnuVector m = capIntersectionVector(sunDirection, rl, ap.bentNormal, rp);
+            const double sinRl = std::sin(rl);
+            out.sun = params.sunRadiance * std::max(0.0, dot(normal, m)) /
+                      (std::numbers::pi * sinRl * sinRl);
+        }
+    }
+    // Ambient fill of the uncovered aperture (Sec. 3.3, "Ambient lighting").
+    if (ap.solidAngleSr > 0.0) {
+        const double s = std::sin(rp);
+        const double uncovered = std::clamp(1.0 - area / ap.solidAngleSr, 0.0, 1.0);
+        out.ambient = params.ambientRadiance * s * s *
+                      std::max(0.0, dot(normal, ap.bentNormal)) * uncovered;
+    }
+    return out;
+}
+
+ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                                     const Grid<float>& normalNorth, const Grid<float>& normalUp,
+                                     const EnuVector& sunDirection,
+                                     const ApertureLightParams& params, int threads) {
+    const Grid<float>& ref = aperture.radiusDeg;
+    for (const Grid<float>* g : {&aperture.bentEast, &aperture.bentNorth, &aperture.bentUp,
+                                 &aperture.solidAngleSr, &normalEast, &normalNorth, &normalUp})
+        if (!g->sameShape(ref))
+            throw Error("aperture lighting: aperture and normal grids differ in size");
+    ApertureLightMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
+                          Grid<float>(ref.width(), ref.height(), kNaNf)};
+    parallelFor(0, ref.height(), threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < ref.width(); ++col) {
+            const Aperture ap{aperture.solidAngleSr(col, row),
+                              {aperture.bentEast(col, row), aperture.bentNorth(col, row),
+                               aperture.bentUp(col, row)},
+                              aperture.radiusDeg(col, row)};
+            const EnuVector n{normalEast(col, row), normalNorth(col, row), normalUp(col, row)};
+            if (std::isnan(ap.solidAngleSr) || std::isnan(ap.radiusDeg) ||
+                std::isnan(ap.bentNormal.east) || std::isnan(ap.bentNormal.north) ||
+                std::isnan(ap.bentNormal.up) || std::isnan(n.east) || std::isnan(n.north) ||
+                std::isnan(n.up))
+                continue;
+            const ApertureLight l = apertureLight(n, ap, sunDirection, params);
+            out.sun(col, row) = static_cast<float>(l.sun);
+            out.ambient(col, row) = static_cast<float>(l.ambient);
+        }
+    });
+    return out;
+}
+
+double hemisphereLight(double normalUp, double skyRadiance, double groundRadiance) {
+    // Hargreaves 2003: blend sky and ground colour by the normal's up component.
+    const double u = std::clamp(normalUp, -1.0, 1.0);
+    return skyRadiance * 0.5 * (1.0 + u) + groundRadiance * 0.5 * (1.0 - u);
+}
+
+Grid<float> applyHemisphereLight(const Grid<float>& normalUp, const HemisphereParams& params,
+                                 const Grid<float>* albedo, int threads) {
+    if (albedo && !albedo->sameShape(normalUp))
+        throw Error("hemisphere lighting: albedo grid size differs from the DEM");
+    Grid<float> out(normalUp.width(), normalUp.height(), kNaNf);
+    parallelFor(0, normalUp.height(), threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < normalUp.width(); ++col) {
+            const double c = albedo ? (*albedo)(col, row) : params.albedo;
+            const double u = normalUp(col, row);
+            if (std::isnan(c) || std::isnan(u)) continue;
+            out(col, row) = static_cast<float>(
+                hemisphereLight(u, params.skyRadiance, c * params.groundIrradiance));
+        }
+    });
+    return out;
+}
+
+}  // namespace demlight

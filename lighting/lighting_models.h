@@ -1,0 +1,89 @@
+// Lighting models that turn per-cell geometry (normals, horizons, apertures, sky factors) into
+// normalised irradiance (irradiance / pi for unit source radiance; DESIGN.md Sec. 1): a flat,
+// unshadowed cell under a unit zenith sun, or under a unit uniform sky, gets 1.0.
+//
+//   horizon          sun visibility from the horizon angle in the sun's azimuth (Hoffman &
+//                    Mitchell Eq. 5-7) times max(0, N.s); computed by lighting/sun.h, not here
+//   aperture         Oat & Sander ambient aperture, exact cap-cap intersection
+//   aperture-smooth  the same with the smoothstep approximation of the intersection
+//   hemisphere       Hargreaves hemisphere lighting; a sky-only model, no shadows
+#pragma once
+
+#include "lighting/aperture.h"
+#include "lighting/sky.h"
+#include "src/grid.h"
+
+#include <string_view>
+
+namespace demlight {
+
+enum class LightingModel { Horizon, Aperture, ApertureSmooth, Hemisphere };
+
+/// "horizon", "aperture", "aperture-smooth" or "hemisphere"; throws Error naming the choices.
+LightingModel parseLightingModel(std::string_view name);
+/// The option spelling of a model.
+std::string_view lightingModelName(LightingModel model);
+
+// ---- Ambient aperture (Oat & Sander 2007, seed 002 Sec. 3) -----------------------------------
+
+/// Sun angular radius (degrees): half the 0.53-degree mean apparent diameter.
+inline constexpr double kSunRadiusDeg = 0.265;
+
+struct ApertureLightParams {
+    double sunRadiusDeg = kSunRadiusDeg;  ///< light cap radius (degrees); larger = softer shadows
+    double sunRadiance = 1.0;    ///< normalised: a fully visible zenith sun on flat ground gives this
+    double ambientRadiance = 1.0;  ///< uniform sky radiance used for the ambient fill
+    bool smoothIntersection = false;  ///< true: smoothstep approximation (aperture-smooth)
+};
+
+/// The two terms of the aperture model for one cell (normalised irradiance).
+struct ApertureLight {
+    double sun = 0.0;      ///< sunRadiance * integral over the intersection of N.v / (pi sin^2 r_l)
+    double ambient = 0.0;  ///< ambientRadiance * sin^2(r_p) max(0, N.V_p) * (1 - A_int / A_p)
+    double total() const { return sun + ambient; }
+};
+
+/// Direct term: the sun cap (centre sunDirection, radius sunRadiusDeg) intersected with the
+/// aperture cap (centre bent normal, radius r_p), normalised so that a fully visible sun gives
+/// max(0, N.s) exactly (Hoffman & Mitchell Eq. 3 with O = 1).
+///   aperture:        max(0, N . capIntersectionVector) / (pi sin^2 r_l) -- the intersection
+///                    centroid times its area, which is the exact Lambert integral over the
+///                    intersection while it lies above the tangent plane (pi sin^2 r_l is
+///                    that integral for the whole disk at normal incidence);
+///   aperture-smooth: smoothstep area / A_sun * max(0, N . capIntersectionCentroidFast).
+/// Ambient fill: the seed fills the part of the aperture the sun does not cover with sky
+/// light; we weight it with the exact Lambert integral of a uniform cap that does not cross
+/// the tangent plane, (1/pi) integral_cap N.v d(omega) = sin^2(r_p) N.V_p, so a flat open cell
+/// under a unit sky gets 1 - A_int / A_p ~ 1.
+ApertureLight apertureLight(const EnuVector& normal, const Aperture& aperture,
+                            const EnuVector& sunDirection, const ApertureLightParams& params);
+
+/// Grids of the two aperture terms; NaN where any input is NaN.
+struct ApertureLightMaps {
+    Grid<float> sun;
+    Grid<float> ambient;
+};
+
+/// Applies apertureLight to every cell for one sun direction (true ENU unit vector).
+ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                                     const Grid<float>& normalNorth, const Grid<float>& normalUp,
+                                     const EnuVector& sunDirection,
+                                     const ApertureLightParams& params, int threads = 0);
+
+// ---- Hemisphere lighting (Hargreaves 2003, seed 001) -----------------------------------------
+
+/// sky * (1 + N_up) / 2 + ground * (1 - N_up) / 2, normalUp in [-1, 1].
+double hemisphereLight(double normalUp, double skyRadiance, double groundRadiance);
+
+struct HemisphereParams {
+    double skyRadiance = 1.0;        ///< normalised sky radiance
+    double groundIrradiance = 1.0;   ///< light falling on the surrounding ground (normalised)
+    double albedo = 0.2;             ///< ground albedo when no albedo raster is given
+};
+
+/// Per-cell hemisphere lighting; ground radiance = albedo * groundIrradiance with the albedo
+/// from `albedo` (same size as normalUp) or params.albedo. NaN normal or albedo gives NaN.
+Grid<float> applyHemisphereLight(const Grid<float>& normalUp, const HemisphereParams& params,
+                                 const Grid<float>* albedo = nullptr, int threads = 0);
+
+}  // namespace demlight

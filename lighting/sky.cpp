@@ -1,0 +1,426 @@
+#include "lighting/sky.h"
+
+#include "lighting/sky_wedge.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace demlight {
+
+using detail::kHalfPi;
+using detail::kPi;
+
+namespace {
+
+constexpr double kDegToRad = kPi / 180.0;
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+
+double clampElevationRad(double elevationDeg) {
+    return std::clamp(elevationDeg, -90.0, 90.0) * kDegToRad;
+}
+
+/// Integral of a(phi) = N_e sin phi + N_n cos phi over [phiA, phiB].
+double integralOfA(const detail::NormalFrame& f, double phiA, double phiB) {
+    return f.east * (std::cos(phiA) - std::cos(phiB)) + f.north * (std::sin(phiB) - std::sin(phiA));
+}
+
+/// J(psi) = integral of R sin(psi) atan(k sin(psi)) d psi with k = R / N_up, in elementary
+/// form: by parts, then integral d psi / (1 + k^2 sin^2 psi) = (1/m) atan(m tan psi),
+/// m = sqrt(1 + k^2), written without the branch jump as
+/// psi + atan((m - 1) sin cos / (cos^2 + m sin^2)).
+double planeAntiderivative(const detail::NormalFrame& f, double psi) {
+    const double k = f.horizontal / f.up;
+    const double m = std::sqrt(1.0 + k * k);
+    const double mMinus1 = k * k / (m + 1.0);
+    const double s = std::sin(psi), c = std::cos(psi);
+    return -f.horizontal * c * std::atan(k * s) +
+           f.up * (mMinus1 * psi + m * std::atan(mMinus1 * s * c / (c * c + m * s * s)));
+}
+
+/// pi * K over one piece of a wedge.
+double piecePiK(const detail::NormalFrame& f, double phiA, double phiB, double lower, double upper,
+                detail::PieceLower kind) {
+    const double aInt = integralOfA(f, phiA, phiB);
+    const double width = phiB - phiA;
+    // Upper limit: integral_el^upper (a cos el + N_up sin el) cos el d el.
+    double piK = aInt * detail::cos2Antiderivative(upper) +
+                 f.up * width * detail::sinCosAntiderivative(upper);
+    if (kind == detail::PieceLower::Constant) {
+        piK -= aInt * detail::cos2Antiderivative(lower) +
+               f.up * width * detail::sinCosAntiderivative(lower);
+    } else if (f.horizontal >= detail::kFlatNormalEps) {
+        // On the tangent plane a T(thetaP) + N_up S(thetaP) = a thetaP / 2
+        // = -a atan(a / N_up) / 2, whose integral is -J / 2.
+        piK += 0.5 * (planeAntiderivative(f, phiB + f.delta) -
+                      planeAntiderivative(f, phiA + f.delta));
+    }
+    return piK;
+}
+
+double wedgeK(const detail::NormalFrame& f, double phi1, double phi2, double lower, double upper) {
+    double piK = 0.0;
+    detail::forEachWedgePiece(f, phi1, phi2, lower, upper,
+                              [&](double a, double b, detail::PieceLower kind) {
+                                  piK += piecePiK(f, a, b, lower, upper, kind);
+                              });
+    return piK / kPi;
+}
+
+
+/// Overlap of a sector (radians) with every patch, shifting patches by whole turns.
+struct PatchPiece {
+    std::size_t patch;
+    double phi1, phi2, lowerRad, upperRad;
+};
+
+std::vector<PatchPiece> sectorPatchPieces(std::size_t sector, std::size_t count,
+                                          const SkyPatches& patches) {
+    std::vector<PatchPiece> pieces;
+    const auto [s0, s1] = detail::sectorBoundsRad(sector, count);
+    for (std::size_t p = 0; p < patches.size(); ++p) {
+        const SkyPatch& patch = patches.patches[p];
+        for (int turn = -2; turn <= 2; ++turn) {
+            const double a0 = patch.azimuth0Deg * kDegToRad + 2.0 * kPi * turn;
+            const double a1 = patch.azimuth1Deg * kDegToRad + 2.0 * kPi * turn;
+            const double lo = std::max(a0, s0), hi = std::min(a1, s1);
+            if (lo < hi)
+                pieces.push_back({p, lo, hi, clampElevationRad(patch.elevation0Deg),
+                                  clampElevationRad(patch.elevation1Deg)});
+        }
+    }
+    return pieces;
+}
+
+std::string trimmed(std::string_view s) {
+    std::string out;
+    for (char c : s)
+        if (c != ' ' && c != '\t') out.push_back(c);
+    return out;
+}
+
+double parseNumber(const std::string& token, std::string_view what) {
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
+        throw Error("--patches: '" + token + "' is not a number (expected " + std::string(what) +
+                    ")");
+    return value;
+}
+
+std::string formatDeg(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void checkCellInputs(const Grid<float>& e, const Grid<float>& n, const Grid<float>& u) {
+    if (!e.sameShape(n) || !e.sameShape(u))
+        throw Error("sky: the east, north and up normal grids differ in size");
+}
+
+}  // namespace
+
+EnuVector enuFromAzimuthElevation(double azimuthDeg, double elevationDeg) {
+    const double az = azimuthDeg * kDegToRad, el = elevationDeg * kDegToRad;
+    return {std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)};
+}
+
+double svfHorizontal(std::span<const float> horizonDeg) {
+    // Dozier & Frew 1990: V_d = (1/2pi) integral cos^2 h d phi for a horizontal surface.
+    double sum = 0.0;
+    for (float h : horizonDeg) {
+        const double s = std::sin(clampElevationRad(std::max(0.0, static_cast<double>(h))));
+        sum += s * s;
+    }
+    return 1.0 - sum / static_cast<double>(horizonDeg.size());
+}
+
+double skyFraction(std::span<const float> horizonDeg) {
+    // Zaksek, Ostir & Kokalj 2011: SVF = 1 - mean sin h (unweighted solid-angle fraction).
+    double sum = 0.0;
+    for (float h : horizonDeg)
+        sum += std::sin(clampElevationRad(std::max(0.0, static_cast<double>(h))));
+    return 1.0 - sum / static_cast<double>(horizonDeg.size());
+}
+
+double skyKWedge(const EnuVector& normal, double az0Deg, double az1Deg, double horizonDeg,
+                 double bandLowDeg, double bandHighDeg) {
+    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    return wedgeK(f, az0Deg * kDegToRad, az1Deg * kDegToRad,
+                  clampElevationRad(std::max(horizonDeg, bandLowDeg)),
+                  clampElevationRad(bandHighDeg));
+}
+
+double skyK(std::span<const float> horizonDeg, const EnuVector& normal) {
+    // Stewart & Langer 1997; seed 003 Eq. 9-12, exact per sector with per-azimuth clamping.
+    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    // Horizontal tangent plane: every sector integrates to N_up cos^2 max(h, 0) / D; summing
+    // the weights before dividing keeps open flat ground at exactly 1.
+    if (f.horizontal < detail::kFlatNormalEps) return f.up * svfHorizontal(horizonDeg);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
+        const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
+        sum += wedgeK(f, phi1, phi2, clampElevationRad(horizonDeg[i]), kHalfPi);
+    }
+    return sum;
+}
+
+double skyFactor(double skyK, double albedo) {
+    // Seed 003 Eq. 8 (Stewart & Langer interreflection approximation).
+    const double k = std::clamp(skyK, 0.0, 1.0);
+    const double c = std::clamp(albedo, 0.0, 1.0);
+    if (!(k > 0.0)) return 0.0;
+    // 1 - C(1 - K) written as (1 - C) + C K: no cancellation when C -> 1 and K -> 0.
+    return std::min(1.0, k / ((1.0 - c) + c * k));
+}
+
+SkyPatches parseSkyPatches(std::string_view specIn) {
+    const std::string spec = trimmed(specIn);
+    SkyPatches result;
+    result.spec = std::string(specIn);
+    if (spec == "sky") {
+        result.patches.push_back({0.0, 360.0, -90.0, 90.0, "sky"});
+        return result;
+    }
+    // Tokens separated by ','; a token "key:value" starts a key, bare tokens continue its list.
+    int sectors = 0;
+    std::vector<double> bands;
+    std::string key;
+    std::stringstream in(spec);
+    std::string token;
+    bool any = false;
+    while (std::getline(in, token, ',')) {
+        any = true;
+        if (const auto colon = token.find(':'); colon != std::string::npos) {
+            key = token.substr(0, colon);
+            token = token.substr(colon + 1);
+            if (key == "sectors") {
+                if (sectors != 0) throw Error("--patches: 'sectors' given twice");
+                const double n = parseNumber(token, "a whole number of sectors 1..360");
+                if (n != std::floor(n) || n < 1 || n > 360)
+                    throw Error("--patches: sectors:" + token +
+                                " is not a whole number of sectors in 1..360");
+                sectors = static_cast<int>(n);
+                continue;
+            }
+            if (key == "bands") {
+                if (!bands.empty()) throw Error("--patches: 'bands' given twice");
+            } else {
+                throw Error("--patches: unknown key '" + key +
+                            "' (expected 'sky', 'sectors:N', 'bands:E0,...,90' or both "
+                            "'sectors:N,bands:E0,...,90')");
+            }
+        }
+        if (key != "bands")
+            throw Error("--patches: '" + token +
+                        "' is not part of a list (expected 'sectors:N' or 'bands:E0,...,90')");
+        bands.push_back(parseNumber(token, "an elevation band edge in degrees"));
+    }
+    if (!any || (sectors == 0 && bands.empty()))
+        throw Error("--patches: empty spec (expected 'sky', 'sectors:N', 'bands:E0,...,90' or "
+                    "'sectors:N,bands:E0,...,90')");
+    if (!bands.empty()) {
+        if (bands.size() < 2)
+            throw Error("--patches: bands need at least two edges, e.g. bands:0,90");
+        for (std::size_t i = 1; i < bands.size(); ++i)
+            if (!(bands[i] > bands[i - 1]))
+                throw Error("--patches: band edges must increase strictly (got " +
+                            formatDeg(bands[i - 1]) + " then " + formatDeg(bands[i]) + ")");
+        if (bands.front() < -90.0 || bands.front() >= 90.0)
+            throw Error("--patches: the first band edge must be in [-90, 90) degrees");
+        if (bands.back() != 90.0)
+            throw Error("--patches: the last band edge must be 90 (the zenith), got " +
+                        formatDeg(bands.back()));
+    } else {
+        bands = {-90.0, 90.0};
+    }
+    const int sectorCount = std::max(sectors, 1);
+    const double width = 360.0 / sectorCount;
+    for (int s = 0; s < sectorCount; ++s) {
+        const double az0 = sectorCount == 1 ? 0.0 : (s - 0.5) * width;
+        const double az1 = sectorCount == 1 ? 360.0 : (s + 0.5) * width;
+        for (std::size_t b = 0; b + 1 < bands.size(); ++b) {
+            // The first band reaches down to -90 so that the patches partition the sphere.
+            const double el0 = b == 0 ? -90.0 : bands[b];
+            const double el1 = bands[b + 1];
+            result.patches.push_back(
+                {az0, az1, el0, el1,
+                 "az " + formatDeg(az0) + ".." + formatDeg(az1) + " el " + formatDeg(bands[b]) +
+                     ".." + formatDeg(el1)});
+        }
+    }
+    return result;
+}
+
+void skyPatchK(std::span<const float> horizonDeg, const EnuVector& normal,
+               const SkyPatches& patches, std::span<double> out) {
+    if (out.size() != patches.size())
+        throw Error("skyPatchK: output span size differs from the number of patches");
+    std::fill(out.begin(), out.end(), 0.0);
+    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
+        const double h = clampElevationRad(horizonDeg[i]);
+        for (const PatchPiece& p : sectorPatchPieces(i, horizonDeg.size(), patches))
+            out[p.patch] += wedgeK(f, p.phi1, p.phi2, std::max(h, p.lowerRad), p.upperRad);
+    }
+}
+
+SkyReference referenceSky(const std::function<double(double azimuthDeg)>& horizonDeg,
+                          const EnuVector& normal, int azimuthSamples) {
+    if (azimuthSamples < 1) throw Error("referenceSky: azimuthSamples must be >= 1");
+    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    const double dPhi = 2.0 * kPi / azimuthSamples;
+    double piK = 0.0, sin2 = 0.0, sin1 = 0.0, omega = 0.0;
+    double ve = 0.0, vn = 0.0, vu = 0.0;
+    for (int j = 0; j < azimuthSamples; ++j) {
+        const double phi = (j + 0.5) * dPhi;
+        const double h = clampElevationRad(horizonDeg(phi / kDegToRad));
+        const double hPos = std::max(h, 0.0);
+        sin2 += std::sin(hPos) * std::sin(hPos);
+        sin1 += std::sin(hPos);
+        // Lower limit at this azimuth: the horizon or the tangent plane, whichever is higher.
+        const double lo = std::max(h, detail::planeElevation(f, phi));
+        const double sPhi = std::sin(phi), cPhi = std::cos(phi);
+        const double cos2 = detail::cos2Antiderivative(kHalfPi) - detail::cos2Antiderivative(lo);
+        const double sinCos =
+            detail::sinCosAntiderivative(kHalfPi) - detail::sinCosAntiderivative(lo);
+        piK += (f.east * sPhi + f.north * cPhi) * cos2 + f.up * sinCos;
+        omega += 1.0 - std::sin(lo);
+        ve += sPhi * cos2;
+        vn += cPhi * cos2;
+        vu += sinCos;
+    }
+    SkyReference r;
+    r.skyK = piK * dPhi / kPi;
+    r.svfHorizontal = 1.0 - sin2 / azimuthSamples;
+    r.skyFraction = 1.0 - sin1 / azimuthSamples;
+    r.solidAngleSr = omega * dPhi;
+    const double len = std::sqrt(ve * ve + vn * vn + vu * vu);
+    r.bentNormal = len > 0.0 ? EnuVector{ve / len, vn / len, vu / len} : normal;
+    return r;
+}
+
+// ---- SkyAccumulator --------------------------------------------------------------------------
+
+SkyAccumulator::SkyAccumulator(const Grid<float>& normalEast, const Grid<float>& normalNorth,
+                               const Grid<float>& normalUp, std::size_t directions,
+                               SkyPatches patches, int threads)
+    : east_(normalEast),
+      north_(normalNorth),
+      up_(normalUp),
+      directions_(directions),
+      patches_(std::move(patches)),
+      threads_(threads),
+      added_(directions, false),
+      sumK_(normalEast.width(), normalEast.height(), 0.0),
+      sumSin_(normalEast.width(), normalEast.height(), 0.0),
+      sumSin2_(normalEast.width(), normalEast.height(), 0.0) {
+    checkCellInputs(east_, north_, up_);
+    if (directions == 0) throw Error("sky: the number of directions must be at least 1");
+    for (std::size_t p = 0; p < patches_.size(); ++p)
+        sumPatch_.emplace_back(east_.width(), east_.height(), 0.0);
+}
+
+void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
+    if (index >= directions_)
+        throw Error("sky: direction index " + std::to_string(index) + " out of range 0.." +
+                    std::to_string(directions_ - 1));
+    if (added_[index])
+        throw Error("sky: direction " + std::to_string(index) + " added twice");
+    if (!horizonDeg.sameShape(east_))
+        throw Error("sky: horizon grid size differs from the normal grids");
+    added_[index] = true;
+    const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
+    const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
+    const std::size_t width = east_.width();
+    parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+        const float* h = horizonDeg.rowPtr(row);
+        const float* e = east_.rowPtr(row);
+        const float* n = north_.rowPtr(row);
+        const float* u = up_.rowPtr(row);
+        double* k = sumK_.rowPtr(row);
+        double* s1 = sumSin_.rowPtr(row);
+        double* s2 = sumSin2_.rowPtr(row);
+        for (std::size_t col = 0; col < width; ++col) {
+            // NaN inputs propagate into the sums, so nodata stays NaN.
+            const double hRad = std::isnan(h[col]) ? std::numeric_limits<double>::quiet_NaN()
+                                                   : clampElevationRad(h[col]);
+            const double sPos = std::sin(std::max(hRad, 0.0));  // NaN stays NaN
+            s1[col] += sPos;
+            s2[col] += sPos * sPos;
+            if (std::isnan(hRad) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
+                k[col] = std::numeric_limits<double>::quiet_NaN();
+                for (std::size_t p = 0; p < patches_.size(); ++p)
+                    sumPatch_[p].rowPtr(row)[col] = std::numeric_limits<double>::quiet_NaN();
+                continue;
+            }
+            const detail::NormalFrame f = detail::makeNormalFrame({e[col], n[col], u[col]});
+            if (f.horizontal >= detail::kFlatNormalEps)  // flat cells: K from the SVF sum
+                k[col] += wedgeK(f, phi1, phi2, hRad, kHalfPi);
+            for (const PatchPiece& p : pieces)
+                sumPatch_[p.patch].rowPtr(row)[col] +=
+                    wedgeK(f, p.phi1, p.phi2, std::max(hRad, p.lowerRad), p.upperRad);
+        }
+    });
+}
+
+SkyMaps SkyAccumulator::finish(double albedo) const { return finishImpl(nullptr, albedo); }
+
+SkyMaps SkyAccumulator::finish(const Grid<float>& albedo) const {
+    if (!albedo.sameShape(east_)) throw Error("sky: albedo grid size differs from the DEM");
+    return finishImpl(&albedo, 0.0);
+}
+
+SkyMaps SkyAccumulator::finishImpl(const Grid<float>* albedo, double constantAlbedo) const {
+    for (std::size_t i = 0; i < directions_; ++i)
+        if (!added_[i])
+            throw Error("sky: direction " + std::to_string(i) + " of " +
+                        std::to_string(directions_) + " was never added");
+    const std::size_t w = east_.width(), ht = east_.height();
+    SkyMaps out;
+    out.svfHorizontal = Grid<float>(w, ht, kNaNf);
+    out.skyFraction = Grid<float>(w, ht, kNaNf);
+    out.skyK = Grid<float>(w, ht, kNaNf);
+    out.skyFactor = Grid<float>(w, ht, kNaNf);
+    for (std::size_t p = 0; p < patches_.size(); ++p) out.patchK.emplace_back(w, ht, kNaNf);
+    const double d = static_cast<double>(directions_);
+    parallelFor(0, ht, threads_, [&](std::size_t row) {
+        for (std::size_t col = 0; col < w; ++col) {
+            out.svfHorizontal(col, row) = static_cast<float>(1.0 - sumSin2_(col, row) / d);
+            out.skyFraction(col, row) = static_cast<float>(1.0 - sumSin_(col, row) / d);
+            const double nu = up_(col, row);
+            const bool flat =
+                std::hypot(east_(col, row), north_(col, row)) < detail::kFlatNormalEps;
+            double k = flat ? std::max<double>(nu, kMinNormalUp) * (1.0 - sumSin2_(col, row) / d)
+                            : sumK_(col, row);
+            if (std::isnan(sumK_(col, row))) k = sumK_(col, row);
+            out.skyK(col, row) = static_cast<float>(k);
+            const double c = albedo ? (*albedo)(col, row) : constantAlbedo;
+            out.skyFactor(col, row) = std::isnan(k) || std::isnan(c)
+                                          ? kNaNf
+                                          : static_cast<float>(skyFactor(k, c));
+            for (std::size_t p = 0; p < patches_.size(); ++p)
+                out.patchK[p](col, row) = static_cast<float>(sumPatch_[p](col, row));
+        }
+    });
+    return out;
+}
+
+SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
+                   const Grid<float>& normalEast, const Grid<float>& normalNorth,
+                   const Grid<float>& normalUp, double albedo, const SkyPatches& patches,
+                   int threads) {
+    SkyAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size(), patches, threads);
+    for (std::size_t i = 0; i < horizonsDeg.size(); ++i) {
+        if (!horizonsDeg[i]) throw Error("sky: horizon grid " + std::to_string(i) + " is null");
+        acc.addDirection(i, *horizonsDeg[i]);
+    }
+    return acc.finish(albedo);
+}
+
+}  // namespace demlight

@@ -1,0 +1,102 @@
+// Internal geometry shared by sky.cpp and aperture.cpp: a "wedge" is the set of directions with
+// azimuth in [phi1, phi2] and elevation in [lower, upper], intersected with the hemisphere
+// around the normal N. Within the wedge the lower limit is max(lower, thetaP(phi)), where
+// thetaP(phi) = atan(-a(phi) / N_up), a(phi) = N_e sin phi + N_n cos phi, is the elevation of
+// the tangent plane in azimuth phi. The wedge is cut where thetaP crosses lower or upper, so
+// that on every piece the lower limit is either the constant or the plane. Angles in radians.
+#pragma once
+
+#include "lighting/sky.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <utility>
+
+namespace demlight::detail {
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kHalfPi = std::numbers::pi / 2.0;
+/// Below this horizontal normal component the tangent plane is treated as horizontal.
+inline constexpr double kFlatNormalEps = 1e-12;
+
+/// The normal in the form the wedge integrals need: a(phi) = R sin(phi + delta).
+struct NormalFrame {
+    double east, north, up;
+    double horizontal;  ///< R = |(N_e, N_n)|
+    double delta;       ///< atan2(N_n, N_e)
+};
+
+inline NormalFrame makeNormalFrame(const EnuVector& n) {
+    NormalFrame f{n.east, n.north, std::max(n.up, kMinNormalUp), 0.0, 0.0};
+    f.horizontal = std::hypot(f.east, f.north);
+    f.delta = std::atan2(f.north, f.east);
+    return f;
+}
+
+/// Tangent-plane elevation (radians) in azimuth phi (radians).
+inline double planeElevation(const NormalFrame& f, double phi) {
+    if (f.horizontal < kFlatNormalEps) return 0.0;
+    return std::atan(-(f.east * std::sin(phi) + f.north * std::cos(phi)) / f.up);
+}
+
+/// Sector i of D (D-sector convention of sky.h) spans [phi_i - w/2, phi_i + w/2], w = 2 pi / D.
+inline std::pair<double, double> sectorBoundsRad(std::size_t i, std::size_t count) {
+    const double width = 2.0 * kPi / static_cast<double>(count);
+    const double centre = width * static_cast<double>(i);
+    return {centre - 0.5 * width, centre + 0.5 * width};
+}
+
+enum class PieceLower { Constant, Plane };
+
+/// Calls piece(phiA, phiB, PieceLower) for the non-empty pieces of the wedge
+/// [phi1, phi2] x [lower, upper] (radians, phi2 - phi1 <= 2 pi, lower/upper in [-pi/2, pi/2]).
+template <class Piece>
+void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lower,
+                       double upper, Piece&& piece) {
+    if (!(lower < upper) || !(phi1 < phi2)) return;
+    if (f.horizontal < kFlatNormalEps) {
+        // Horizontal tangent plane: the clamp is the constant 0.
+        if (std::max(lower, 0.0) < upper)
+            piece(phi1, phi2, lower >= 0.0 ? PieceLower::Constant : PieceLower::Plane);
+        return;
+    }
+    // Cut points: thetaP(phi) = x  <=>  R sin(phi + delta) = -N_up tan x.
+    std::array<double, 10> cuts{};
+    std::size_t count = 0;
+    cuts[count++] = phi1;
+    for (double x : {lower, upper}) {
+        const double s = -f.up * std::tan(x) / f.horizontal;
+        if (!(std::abs(s) < 1.0)) continue;
+        const double base = std::asin(s);
+        for (double psi : {base, kPi - base}) {
+            double phi = psi - f.delta;
+            // Shift into [phi1, phi1 + 2 pi).
+            phi -= 2.0 * kPi * std::floor((phi - phi1) / (2.0 * kPi));
+            if (phi > phi1 && phi < phi2) cuts[count++] = phi;
+        }
+    }
+    cuts[count++] = phi2;
+    std::sort(cuts.begin() + 1, cuts.begin() + static_cast<std::ptrdiff_t>(count) - 1);
+    for (std::size_t i = 0; i + 1 < count; ++i) {
+        const double a = cuts[i], b = cuts[i + 1];
+        if (!(a < b)) continue;
+        const double thetaP = planeElevation(f, 0.5 * (a + b));
+        if (thetaP >= upper) continue;
+        piece(a, b, thetaP > lower ? PieceLower::Plane : PieceLower::Constant);
+    }
+}
+
+/// Antiderivatives in elevation of cos^2 and sin cos (d omega = cos(el) d el d az).
+inline double cos2Antiderivative(double theta) {
+    return theta == kHalfPi ? kPi / 4.0 : 0.5 * theta + 0.25 * std::sin(2.0 * theta);
+}
+inline double sinCosAntiderivative(double theta) {
+    if (theta == kHalfPi) return 0.5;
+    const double s = std::sin(theta);
+    return 0.5 * s * s;
+}
+
+}  // namespace demlight::detail
