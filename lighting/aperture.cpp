@@ -34,10 +34,23 @@ struct ApertureSums {
 };
 
 /// Adds the wedge [phi1, phi2] x [horizon, 90 deg] (clipped to the normal hemisphere).
-void addApertureSector(const detail::NormalFrame& f, double phi1, double phi2, double lower,
+void addApertureSector(const EnuVector& n, const detail::AzimuthRange& r, double lower,
                        ApertureSums& s) {
     const double cos2Top = detail::cos2Antiderivative(kHalfPi);
     const double sinCosTop = detail::sinCosAntiderivative(kHalfPi);
+    const double sinL = std::sin(lower), cosL = std::cos(lower);
+    if (detail::planeBelowAcross(r, n.east, n.north, n.up, sinL, cosL)) {
+        // Fast path: constant lower limit across the sector, ends' trig precomputed.
+        const double width = r.phi2 - r.phi1;
+        const double cos2 = cos2Top - (0.5 * lower + 0.5 * sinL * cosL);
+        s.omega += width * (1.0 - sinL);
+        s.ve += (r.cos1 - r.cos2) * cos2;
+        s.vn += (r.sin2 - r.sin1) * cos2;
+        s.vu += width * (sinCosTop - 0.5 * sinL * sinL);
+        return;
+    }
+    const detail::NormalFrame f = detail::makeNormalFrame(n);
+    const double phi1 = r.phi1, phi2 = r.phi2;
     detail::forEachWedgePiece(f, phi1, phi2, lower, kHalfPi, [&](double a, double b,
                                                                  detail::PieceLower kind) {
         if (kind == detail::PieceLower::Constant) {
@@ -50,9 +63,9 @@ void addApertureSector(const detail::NormalFrame& f, double phi1, double phi2, d
         }
         // Tangent-plane lower limit. Solid angle: integral of sin(thetaP) d psi
         // = asin(R cos psi) (unit normal, so R^2 + N_up^2 = 1).
-        const double r = f.horizontal < detail::kFlatNormalEps ? 0.0 : f.horizontal;
-        s.omega += (b - a) - (std::asin(r * std::cos(b + f.delta)) -
-                              std::asin(r * std::cos(a + f.delta)));
+        const double rH = f.horizontal < detail::kFlatNormalEps ? 0.0 : f.horizontal;
+        s.omega += (b - a) - (std::asin(std::min(1.0, rH * std::cos(b + f.delta))) -
+                              std::asin(std::min(1.0, rH * std::cos(a + f.delta))));
         // Direction: Gauss-Legendre in azimuth, exact in elevation.
         const int pieces = std::max(1, static_cast<int>(std::ceil((b - a) / kGaussMaxWidthRad)));
         const double h = (b - a) / pieces;
@@ -93,12 +106,12 @@ double apertureRadiusDeg(double solidAngleSr) {
 }
 
 Aperture aperture(std::span<const float> horizonDeg, const EnuVector& normal) {
-    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    const EnuVector unit = detail::unitNormal(normal);
     ApertureSums s;
     for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
         const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
-        addApertureSector(f, phi1, phi2, std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad,
-                          s);
+        addApertureSector(unit, detail::makeAzimuthRange(phi1, phi2),
+                          std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad, s);
     }
     return finishAperture(s, normal);
 }
@@ -219,6 +232,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
         throw Error("aperture: horizon grid size differs from the normal grids");
     added_[index] = true;
     const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
+    const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::size_t width = east_.width();
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         for (std::size_t col = 0; col < width; ++col) {
@@ -229,7 +243,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
                 continue;
             }
             ApertureSums s{omega_(col, row), ve_(col, row), vn_(col, row), vu_(col, row)};
-            addApertureSector(detail::makeNormalFrame({e, n, u}), phi1, phi2,
+            addApertureSector(detail::unitNormal({e, n, u}), sector,
                               std::clamp<double>(h, -90.0, 90.0) * kDegToRad, s);
             omega_(col, row) = s.omega;
             ve_(col, row) = s.ve;

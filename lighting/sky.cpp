@@ -71,11 +71,34 @@ double wedgeK(const detail::NormalFrame& f, double phi1, double phi2, double low
     return piK / kPi;
 }
 
+/// K of a wedge with the fast path: when the tangent plane stays below the lower limit across
+/// the range (the common case on real terrain), the constant-limit closed form applies
+/// directly with sines and cosines of the range ends precomputed; otherwise the general cut.
+double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lower, double sinL,
+                  double cosL, double upper) {
+    if (!(lower < upper)) return 0.0;
+    const double nu = n.up;
+    if (detail::planeBelowAcross(r, n.east, n.north, nu, sinL, cosL)) {
+        const double aInt = n.east * (r.cos1 - r.cos2) + n.north * (r.sin2 - r.sin1);
+        const double width = r.phi2 - r.phi1;
+        const double cos2 =
+            detail::cos2Antiderivative(upper) - (0.5 * lower + 0.5 * sinL * cosL);
+        const double sinCos = detail::sinCosAntiderivative(upper) - 0.5 * sinL * sinL;
+        return (aInt * cos2 + nu * width * sinCos) / kPi;
+    }
+    return wedgeK(detail::makeNormalFrame(n), r.phi1, r.phi2, lower, upper);
+}
+
+double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lower, double upper) {
+    return wedgeKFast(n, r, lower, std::sin(lower), std::cos(lower), upper);
+}
+
 
 /// Overlap of a sector (radians) with every patch, shifting patches by whole turns.
 struct PatchPiece {
     std::size_t patch;
-    double phi1, phi2, lowerRad, upperRad;
+    detail::AzimuthRange range;
+    double lowerRad, upperRad;
 };
 
 std::vector<PatchPiece> sectorPatchPieces(std::size_t sector, std::size_t count,
@@ -89,7 +112,8 @@ std::vector<PatchPiece> sectorPatchPieces(std::size_t sector, std::size_t count,
             const double a1 = patch.azimuth1Deg * kDegToRad + 2.0 * kPi * turn;
             const double lo = std::max(a0, s0), hi = std::min(a1, s1);
             if (lo < hi)
-                pieces.push_back({p, lo, hi, clampElevationRad(patch.elevation0Deg),
+                pieces.push_back({p, detail::makeAzimuthRange(lo, hi),
+                                  clampElevationRad(patch.elevation0Deg),
                                   clampElevationRad(patch.elevation1Deg)});
         }
     }
@@ -150,13 +174,14 @@ double skyFraction(std::span<const float> horizonDeg) {
 
 double skyKWedge(const EnuVector& normal, double az0Deg, double az1Deg, double horizonDeg,
                  double bandLowDeg, double bandHighDeg) {
-    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    const detail::NormalFrame f = detail::makeNormalFrame(detail::unitNormal(normal));
     return wedgeK(f, az0Deg * kDegToRad, az1Deg * kDegToRad,
                   clampElevationRad(std::max(horizonDeg, bandLowDeg)),
                   clampElevationRad(bandHighDeg));
 }
 
-double skyK(std::span<const float> horizonDeg, const EnuVector& normal) {
+double skyK(std::span<const float> horizonDeg, const EnuVector& normalIn) {
+    const EnuVector normal = detail::unitNormal(normalIn);
     // Stewart & Langer 1997; seed 003 Eq. 9-12, exact per sector with per-azimuth clamping.
     const detail::NormalFrame f = detail::makeNormalFrame(normal);
     // Horizontal tangent plane: every sector integrates to N_up cos^2 max(h, 0) / D; summing
@@ -165,7 +190,8 @@ double skyK(std::span<const float> horizonDeg, const EnuVector& normal) {
     double sum = 0.0;
     for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
         const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
-        sum += wedgeK(f, phi1, phi2, clampElevationRad(horizonDeg[i]), kHalfPi);
+        sum += wedgeKFast(normal, detail::makeAzimuthRange(phi1, phi2),
+                          clampElevationRad(horizonDeg[i]), kHalfPi);
     }
     return sum;
 }
@@ -257,23 +283,23 @@ SkyPatches parseSkyPatches(std::string_view specIn) {
     return result;
 }
 
-void skyPatchK(std::span<const float> horizonDeg, const EnuVector& normal,
+void skyPatchK(std::span<const float> horizonDeg, const EnuVector& normalIn,
                const SkyPatches& patches, std::span<double> out) {
+    const EnuVector normal = detail::unitNormal(normalIn);
     if (out.size() != patches.size())
         throw Error("skyPatchK: output span size differs from the number of patches");
     std::fill(out.begin(), out.end(), 0.0);
-    const detail::NormalFrame f = detail::makeNormalFrame(normal);
     for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
         const double h = clampElevationRad(horizonDeg[i]);
         for (const PatchPiece& p : sectorPatchPieces(i, horizonDeg.size(), patches))
-            out[p.patch] += wedgeK(f, p.phi1, p.phi2, std::max(h, p.lowerRad), p.upperRad);
+            out[p.patch] += wedgeKFast(normal, p.range, std::max(h, p.lowerRad), p.upperRad);
     }
 }
 
 SkyReference referenceSky(const std::function<double(double azimuthDeg)>& horizonDeg,
                           const EnuVector& normal, int azimuthSamples) {
     if (azimuthSamples < 1) throw Error("referenceSky: azimuthSamples must be >= 1");
-    const detail::NormalFrame f = detail::makeNormalFrame(normal);
+    const detail::NormalFrame f = detail::makeNormalFrame(detail::unitNormal(normal));
     const double dPhi = 2.0 * kPi / azimuthSamples;
     double piK = 0.0, sin2 = 0.0, sin1 = 0.0, omega = 0.0;
     double ve = 0.0, vn = 0.0, vu = 0.0;
@@ -336,6 +362,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         throw Error("sky: horizon grid size differs from the normal grids");
     added_[index] = true;
     const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
+    const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
     const std::size_t width = east_.width();
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
@@ -350,7 +377,8 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             // NaN inputs propagate into the sums, so nodata stays NaN.
             const double hRad = std::isnan(h[col]) ? std::numeric_limits<double>::quiet_NaN()
                                                    : clampElevationRad(h[col]);
-            const double sPos = std::sin(std::max(hRad, 0.0));  // NaN stays NaN
+            const double sinH = std::sin(hRad), cosH = std::cos(hRad);  // NaN stays NaN
+            const double sPos = hRad > 0.0 ? sinH : (std::isnan(hRad) ? hRad : 0.0);
             s1[col] += sPos;
             s2[col] += sPos * sPos;
             if (std::isnan(hRad) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
@@ -359,12 +387,15 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
                     sumPatch_[p].rowPtr(row)[col] = std::numeric_limits<double>::quiet_NaN();
                 continue;
             }
-            const detail::NormalFrame f = detail::makeNormalFrame({e[col], n[col], u[col]});
-            if (f.horizontal >= detail::kFlatNormalEps)  // flat cells: K from the SVF sum
-                k[col] += wedgeK(f, phi1, phi2, hRad, kHalfPi);
+            const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
+            if (normal.east * normal.east + normal.north * normal.north >=
+                detail::kFlatNormalEps * detail::kFlatNormalEps)  // flat: K from the SVF sum
+                k[col] += wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
             for (const PatchPiece& p : pieces)
                 sumPatch_[p.patch].rowPtr(row)[col] +=
-                    wedgeK(f, p.phi1, p.phi2, std::max(hRad, p.lowerRad), p.upperRad);
+                    hRad >= p.lowerRad
+                        ? wedgeKFast(normal, p.range, hRad, sinH, cosH, p.upperRad)
+                        : wedgeKFast(normal, p.range, p.lowerRad, p.upperRad);
         }
     });
 }
@@ -394,10 +425,10 @@ SkyMaps SkyAccumulator::finishImpl(const Grid<float>* albedo, double constantAlb
             out.svfHorizontal(col, row) = static_cast<float>(1.0 - sumSin2_(col, row) / d);
             out.skyFraction(col, row) = static_cast<float>(1.0 - sumSin_(col, row) / d);
             const double nu = up_(col, row);
-            const bool flat =
-                std::hypot(east_(col, row), north_(col, row)) < detail::kFlatNormalEps;
-            double k = flat ? std::max<double>(nu, kMinNormalUp) * (1.0 - sumSin2_(col, row) / d)
-                            : sumK_(col, row);
+            const double ec = east_(col, row), nc = north_(col, row);
+            const bool flat = ec * ec + nc * nc < detail::kFlatNormalEps * detail::kFlatNormalEps;
+            const double unitUp = detail::unitNormal({east_(col, row), north_(col, row), nu}).up;
+            double k = flat ? unitUp * (1.0 - sumSin2_(col, row) / d) : sumK_(col, row);
             if (std::isnan(sumK_(col, row))) k = sumK_(col, row);
             out.skyK(col, row) = static_cast<float>(k);
             const double c = albedo ? (*albedo)(col, row) : constantAlbedo;

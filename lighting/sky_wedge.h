@@ -29,9 +29,18 @@ struct NormalFrame {
     double delta;       ///< atan2(N_n, N_e)
 };
 
+/// The normal scaled to unit length with up >= kMinNormalUp (inputs are float grids, and the
+/// closed forms assume |N| = 1).
+inline EnuVector unitNormal(const EnuVector& n) {
+    const double up = std::max(n.up, kMinNormalUp);
+    const double len = std::sqrt(n.east * n.east + n.north * n.north + up * up);
+    return {n.east / len, n.north / len, up / len};
+}
+
+/// `n` must come from unitNormal.
 inline NormalFrame makeNormalFrame(const EnuVector& n) {
-    NormalFrame f{n.east, n.north, std::max(n.up, kMinNormalUp), 0.0, 0.0};
-    f.horizontal = std::hypot(f.east, f.north);
+    NormalFrame f{n.east, n.north, n.up, 0.0, 0.0};
+    f.horizontal = std::sqrt(f.east * f.east + f.north * f.north);
     f.delta = std::atan2(f.north, f.east);
     return f;
 }
@@ -47,6 +56,31 @@ inline std::pair<double, double> sectorBoundsRad(std::size_t i, std::size_t coun
     const double width = 2.0 * kPi / static_cast<double>(count);
     const double centre = width * static_cast<double>(i);
     return {centre - 0.5 * width, centre + 0.5 * width};
+}
+
+/// An azimuth interval with the sines and cosines of its ends (for the fast path).
+struct AzimuthRange {
+    double phi1, phi2, sin1, cos1, sin2, cos2;
+};
+
+inline AzimuthRange makeAzimuthRange(double phi1, double phi2) {
+    return {phi1, phi2, std::sin(phi1), std::cos(phi1), std::sin(phi2), std::cos(phi2)};
+}
+
+/// True if the tangent plane lies at or below the elevation with sine/cosine (sinE, cosE,
+/// cosE >= 0) at every azimuth of r, so the constant lower limit applies across the whole range
+/// and no cut is needed. Plane elevation <= e  <=>  a(phi) cos e + N_up sin e >= 0; the minimum
+/// of a(phi) = N_e sin phi + N_n cos phi is at an end of r or, if r contains it, at the azimuth
+/// of (-N_e, -N_n) where a = -R. Only decides for ranges narrower than pi (returns false else).
+inline bool planeBelowAcross(const AzimuthRange& r, double ne, double nn, double nu, double sinE,
+                             double cosE) {
+    if (!(r.phi2 - r.phi1 < kPi)) return false;
+    double aMin = std::min(ne * r.sin1 + nn * r.cos1, ne * r.sin2 + nn * r.cos2);
+    // Is the azimuth of u = (-N_e, -N_n) inside r? sin(psi - phi1) >= 0 and sin(phi2 - psi) >= 0.
+    const double ue = -ne, un = -nn;
+    if (ue * r.cos1 - un * r.sin1 >= 0.0 && un * r.sin2 - ue * r.cos2 >= 0.0)
+        aMin = -std::sqrt(ne * ne + nn * nn);
+    return aMin * cosE + nu * sinE >= 0.0;
 }
 
 enum class PieceLower { Constant, Plane };
