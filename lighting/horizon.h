@@ -1,0 +1,147 @@
+// Horizon angle in one true azimuth for every cell of a DEM (DESIGN §3, the core kernel), and
+// the brute-force reference it is measured against.
+//
+// Definitions (DESIGN §1–2):
+//  - The horizon of cell p in azimuth A is the largest elevation angle (degrees above p's local
+//    horizontal plane) of any valid terrain point on the line leaving p in TRUE azimuth A, within
+//    maxDistanceM of p, on a curved earth of effective radius R/(1-k): a point at distance d and
+//    height difference dh is seen at atan((dh - d²/(2 R_eff)) / d).
+//  - "The line in azimuth A" follows the local grid direction: at every point its grid azimuth is
+//    A - gamma (meridian convergence) and its metric steps use that row's cell sizes. In a
+//    projected CRS that is a straight grid line (a geodesic to first order); in a geographic CRS
+//    it is a rhumb line, which departs from the great circle by about d²·tan(lat)/(2R) sideways
+//    (≈ 200 m at 50 km, 45° N) — a known approximation of both methods.
+//  - Cells whose line meets no valid terrain within range get kNoHorizonDeg (-90°).
+//  - Nodata cells get NaN; they neither occlude nor receive.
+//  - truncated = 1 where the line reaches the DEM edge before maxDistanceM (beyond the DEM nothing
+//    is known, so the horizon may be too low there).
+#pragma once
+
+#include "src/grid.h"
+#include "src/progress.h"
+#include "src/terrain.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace demlight {
+
+/// Horizon angle given to a cell that sees no terrain in range (degrees).
+inline constexpr double kNoHorizonDeg = -90.0;
+
+/// A half-open window of cells: columns [col0, col1), rows [row0, row1).
+struct CellWindow {
+    std::size_t col0 = 0, row0 = 0, col1 = 0, row1 = 0;
+};
+
+/// One cell (column, row).
+struct CellIndex {
+    std::size_t col = 0, row = 0;
+};
+
+struct HorizonParams {
+    /// True azimuth of the search (degrees clockwise from true north); any finite value, reduced
+    /// to [0, 360) by wrapAzimuthDeg so 0 and 360 give identical bits.
+    double azimuthDeg = 0.0;
+    /// Occluders farther than this (metres, along the line) are ignored. Must be > 0.
+    double maxDistanceM = std::numeric_limits<double>::infinity();
+    /// Refraction coefficient k in [0, 1): effective earth radius kEarthRadiusM / (1 - k).
+    double refraction = 0.13;
+    /// false = flat earth (no curvature drop, refraction unused).
+    bool curvature = true;
+    /// Worker threads (0 = all cores). Output bits do not depend on it.
+    int threads = 0;
+    /// Compute only these output cells (others are left NaN / 0); occluders come from anywhere.
+    std::optional<CellWindow> window;
+    /// Sweep only: largest allowed error (degrees) of the scan direction against the local true
+    /// azimuth; 0 = automatic (see effectiveDirectionToleranceDeg()). The grid is split into regions, each
+    /// swept with its own straight direction, until every cell's error is below this (see
+    /// sweepRegions). Must be >= 0.
+    double directionToleranceDeg = 0.0;
+};
+
+struct HorizonMap {
+    /// Horizon elevation angle (degrees); NaN at nodata cells (and outside the window).
+    Grid<float> angleDeg;
+    /// 1 where the search reached the DEM edge before maxDistanceM, else 0.
+    Grid<std::uint8_t> truncated;
+};
+
+/// Default search distance (metres): relief / tan(2°), capped by the DEM diagonal.
+/// Terrain farther than relief/tan(2°) can only be seen below 2° elevation (curvature lowers it
+/// further), and a sun that low contributes little and is rarely of interest; below that the
+/// horizon saturates. At least one cell size so that flat DEMs still see their neighbours.
+double defaultMaxDistanceM(const Terrain& terrain);
+
+/// Elevation of the lowest sun that defaultMaxDistanceM() resolves (degrees).
+inline constexpr double kDefaultLowestElevationDeg = 2.0;
+
+/// The direction tolerance used by the sweep (degrees): params.directionToleranceDeg if > 0, else
+/// atan(0.5 cell / reach), reach = min(maxDistanceM, DEM diagonal), clamped to [0.005°, 0.5°]:
+/// the swept line then stays within half a cell of the true line over the whole search distance,
+/// so the direction error is below what the grid resolves (0.02° for 30 m cells and 43 km).
+double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params);
+
+/// A region of the output swept with one straight grid direction.
+struct SweepRegion {
+    CellWindow window;
+    /// Grid direction in cells toward the azimuth: +col = east, +row = south.
+    double dirCol = 0.0, dirRow = 0.0;
+};
+
+/// Splits the output window into regions, each swept along one straight grid direction taken at
+/// the region centre (from that row's cell sizes and the convergence there). Rule: a region is
+/// halved (along the axis whose ends disagree most) while the true azimuth that its direction
+/// represents, evaluated at its corners, edge midpoints and centre with the local cell sizes and
+/// gamma, differs from `azimuthDeg` by more than effectiveDirectionToleranceDeg(). Both sources of error
+/// are smooth (gamma ≈ Δlon·sin(lat); the cell aspect ratio of geographic grids varies with
+/// cos(lat)), so these nine samples bound it. Regions are not split below 8 cells a side. Each
+/// region's lines start up to maxDistanceM beyond it, so many small regions cost extra time.
+std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params);
+
+/// The fast method: upper-convex-hull sweeps along lines parallel to the azimuth (Dozier 1981;
+/// Timonen & Westerholm 2010), O(cells) per region.
+///
+/// Lines step one cell along the major grid axis of the direction and lie one cell apart along
+/// the minor axis; a line sample is linearly interpolated between the two cells bracketing it
+/// (one of them if the other is nodata; both nodata = a gap). Each line is walked from its far end
+/// toward the observer side keeping the upper hull of g(s) = h(s) - s²/(2 R_eff) (DESIGN §2), so
+/// the curved-earth slope is (g_q - g_p)/(s_q - s_p) + s_p/R_eff. A cell is served by the two
+/// lines bracketing it at its major index: each line's hull is queried with the cell's own height
+/// (tangent search starting from the line sample's tangent), and the two tangents (slopes) are
+/// interpolated by the cross-line weight. Distances s accumulate per-row metric step lengths.
+///
+/// maxDistanceM is approximate: hull points farther than maxDistanceM from the current sample are
+/// dropped from the far end of the hull, but a point that had been hidden behind a dropped point
+/// is not restored, so its tangent is missed (measured in tests/horizon_realdem_test.cpp).
+HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params,
+                        ProgressCounter* progress = nullptr);
+
+/// The reference method: a ray march from every cell centre in steps of a quarter of the smaller
+/// cell side, bilinear heights (nodata corners dropped and weights renormalised), re-evaluating
+/// the grid direction from the local gamma and cell sizes at every step, up to maxDistanceM or the
+/// DEM edge. Slow (O(cells × distance)); used to measure the sweep. Parallel over rows.
+HorizonMap referenceHorizon(const Terrain& terrain, const HorizonParams& params,
+                            ProgressCounter* progress = nullptr);
+
+/// Reference horizon of selected cells only (params.window is ignored).
+struct HorizonSample {
+    float angleDeg = 0.0f;       ///< as HorizonMap::angleDeg
+    std::uint8_t truncated = 0;  ///< as HorizonMap::truncated
+};
+std::vector<HorizonSample> referenceHorizonAt(const Terrain& terrain, const HorizonParams& params,
+                                              std::span<const CellIndex> cells,
+                                              ProgressCounter* progress = nullptr);
+
+/// Validates params (finite azimuth, maxDistanceM > 0, 0 <= refraction < 1, tolerance >= 0, a
+/// window inside the grid) and throws Error naming the bad option.
+void validateHorizonParams(const Terrain& terrain, const HorizonParams& params);
+
+/// 1 / R_eff (1/metres) for the params; 0 when curvature is off.
+double inverseEffectiveRadius(const HorizonParams& params);
+
+}  // namespace demlight

@@ -1,0 +1,602 @@
+// Horizon sweep: upper convex hulls along lines parallel to the azimuth (Dozier 1981; Timonen &
+// Westerholm 2010), with the curvature trick of DESIGN §2. See lighting/horizon.h.
+#include "lighting/horizon.h"
+
+#include "src/angles.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace demlight {
+
+namespace {
+
+/// Lines processed in lock-step by one task: adjacent lines touch adjacent cells at each step,
+/// so a block reads and writes a few cache lines per step whatever the direction.
+constexpr std::size_t kLinesPerBlock = 16;
+
+/// Regions are not split below this many cells per side (the direction error of a region that
+/// small is bounded by the local geometry, not by the split).
+constexpr std::size_t kMinRegionCells = 8;
+
+/// Automatic direction tolerance: the swept line may drift this many cells sideways from the
+/// true line at the search distance; clamped to these bounds (degrees).
+constexpr double kLateralBudgetCells = 0.5;
+constexpr double kMinAutoToleranceDeg = 0.005;
+constexpr double kMaxAutoToleranceDeg = 0.5;
+
+std::size_t clampRow(double row, std::size_t height) {
+    if (!(row > 0.0)) return 0;
+    const auto r = static_cast<std::size_t>(row + 0.5);
+    return std::min(r, height - 1);
+}
+
+/// Grid direction (cells per metre; +col east, +row south) of true azimuth `azimuthDeg` at a
+/// point, from the convergence and the cell sizes of the nearest row.
+void localGridDirection(const Terrain& t, double azimuthDeg, double col, double row,
+                        double& dirCol, double& dirRow) {
+    const std::size_t r = clampRow(row, t.height());
+    const double gridAzRad = (azimuthDeg - t.convergence.at(col, row)) * kDegToRad;
+    dirCol = std::sin(gridAzRad) / t.cellWidthM[r];
+    dirRow = -std::cos(gridAzRad) / t.cellHeightM[r];
+}
+
+/// The true azimuth (degrees) that a grid direction represents at a point.
+double trueAzimuthOfDirection(const Terrain& t, double dirCol, double dirRow, double col,
+                              double row) {
+    const std::size_t r = clampRow(row, t.height());
+    const double east = dirCol * t.cellWidthM[r];
+    const double north = -dirRow * t.cellHeightM[r];
+    return std::atan2(east, north) * kRadToDeg + t.convergence.at(col, row);
+}
+
+double azimuthDifferenceDeg(double a, double b) {
+    double d = std::fmod(a - b, 360.0);
+    if (d > 180.0) d -= 360.0;
+    if (d < -180.0) d += 360.0;
+    return std::abs(d);
+}
+
+void splitRegion(const Terrain& t, double azimuthDeg, double toleranceDeg, const CellWindow& w,
+                 std::vector<SweepRegion>& out) {
+    const double c0 = static_cast<double>(w.col0), c1 = static_cast<double>(w.col1 - 1);
+    const double r0 = static_cast<double>(w.row0), r1 = static_cast<double>(w.row1 - 1);
+    const double cm = 0.5 * (c0 + c1), rm = 0.5 * (r0 + r1);
+    SweepRegion region{w, 0.0, 0.0};
+    localGridDirection(t, azimuthDeg, cm, rm, region.dirCol, region.dirRow);
+    auto err = [&](double c, double r) {
+        return azimuthDifferenceDeg(trueAzimuthOfDirection(t, region.dirCol, region.dirRow, c, r),
+                                    azimuthDeg);
+    };
+    // Nine samples: corners, edge midpoints, centre.
+    const double eLeft = std::max({err(c0, r0), err(c0, rm), err(c0, r1)});
+    const double eRight = std::max({err(c1, r0), err(c1, rm), err(c1, r1)});
+    const double eTop = std::max({err(c0, r0), err(cm, r0), err(c1, r0)});
+    const double eBottom = std::max({err(c0, r1), err(cm, r1), err(c1, r1)});
+    const double worst = std::max({eLeft, eRight, eTop, eBottom, err(cm, rm)});
+    const std::size_t w_ = w.col1 - w.col0, h_ = w.row1 - w.row0;
+    const bool canSplitCols = w_ >= 2 * kMinRegionCells;
+    const bool canSplitRows = h_ >= 2 * kMinRegionCells;
+    if (worst <= toleranceDeg || (!canSplitCols && !canSplitRows)) {
+        out.push_back(region);
+        return;
+    }
+    // Halve along the axis whose opposite edges disagree most with the azimuth.
+    const double colVariation = std::abs(err(c0, rm) - err(c1, rm)) + std::max(eLeft, eRight);
+    const double rowVariation = std::abs(err(cm, r0) - err(cm, r1)) + std::max(eTop, eBottom);
+    const bool splitCols = canSplitCols && (!canSplitRows || colVariation > rowVariation);
+    CellWindow a = w, b = w;
+    if (splitCols) {
+        a.col1 = b.col0 = w.col0 + w_ / 2;
+    } else {
+        a.row1 = b.row0 = w.row0 + h_ / 2;
+    }
+    splitRegion(t, azimuthDeg, toleranceDeg, a, out);
+    splitRegion(t, azimuthDeg, toleranceDeg, b, out);
+}
+
+CellWindow outputWindow(const Terrain& t, const HorizonParams& p) {
+    return p.window ? *p.window : CellWindow{0, 0, t.width(), t.height()};
+}
+
+/// One upper-hull vertex: distance from the line's far end (metres) and g = h - σ²/(2 R_eff).
+struct HullPoint {
+    double sigmaM;
+    double g;
+};
+
+/// Per-line state of the far-to-near walk: the hull is buf[lo, hi) with the farthest point at lo.
+struct LineState {
+    HullPoint* buf;
+    std::size_t lo;
+    std::size_t hi;
+    double sigmaM;
+    long chunk;
+    /// Range-limited sweeps only: one record per step, far to near, for the second pass.
+    std::vector<struct StepRecord>* records;
+};
+
+/// What the second (range-limiting) pass needs of one line step.
+struct StepRecord {
+    double sigmaM;
+    double gSample;  // NaN for a gap
+    double gCell[2];
+    std::size_t cellIndex[2];  // kNoCell when the step serves no cell in that plane
+    float* plane[2];
+};
+constexpr std::size_t kNoCell = static_cast<std::size_t>(-1);
+
+/// Largest g-space slope from (sigmaQ, gQ) to the hull, walking from vertex i (the slope from a
+/// point nearer than every vertex is unimodal along an upper hull).
+inline double tangentSlope(const LineState& line, std::size_t i, double sigmaQ, double gQ) {
+    const HullPoint* h = line.buf;
+    auto slopeTo = [&](std::size_t k) { return (h[k].g - gQ) / (sigmaQ - h[k].sigmaM); };
+    double best = slopeTo(i);
+    bool moved = false;
+    while (i > line.lo) {
+        const double s = slopeTo(i - 1);
+        if (!(s > best)) break;
+        best = s;
+        --i;
+        moved = true;
+    }
+    if (!moved) {
+        while (i + 1 < line.hi) {
+            const double s = slopeTo(i + 1);
+            if (!(s >= best)) break;
+            best = s;
+            ++i;
+        }
+    }
+    return best;
+}
+
+/// Second pass of a range-limited line (maxDistanceM = L). The first pass reset its hull whenever
+/// floor(σ/L) changed, so each cell saw exactly the points of its own chunk farther than itself,
+/// all within L. The points within L that it missed lie in the previous (farther) chunk with
+/// σ ≥ σ_cell - L. Walking the cells of a chunk from near to far, that set grows at its far end,
+/// so an upper hull built by adding points in order of distance answers every cell (binary search
+/// for the tangent); the result is max-ed into the planes. Exact: O(n log n) per line.
+void limitRangePass(const std::vector<StepRecord>& rec, double maxDistanceM, double invR,
+                    std::vector<HullPoint>& hull) {
+    const long n = static_cast<long>(rec.size());
+    if (hull.size() < rec.size()) hull.resize(rec.size());
+    auto chunkOf = [&](long i) { return static_cast<long>(std::floor(rec[i].sigmaM / maxDistanceM)); };
+    long chunk = -1, next = -1;  // `next`: next candidate point, moving far (down the records)
+    std::size_t top = 0;         // hull = hull[0, top), nearest first
+    for (long i = n - 1; i >= 0; --i) {
+        const StepRecord& r = rec[i];
+        if (chunkOf(i) != chunk) {
+            chunk = chunkOf(i);
+            top = 0;
+            next = i;
+            while (next >= 0 && chunkOf(next) == chunk) --next;
+        }
+        if (chunk == 0 || (r.cellIndex[0] == kNoCell && r.cellIndex[1] == kNoCell)) continue;
+        // Grow the hull with previous-chunk points within range of this cell.
+        const double limit = r.sigmaM - maxDistanceM;
+        while (next >= 0 && rec[next].sigmaM >= limit && chunkOf(next) == chunk - 1) {
+            const StepRecord& q = rec[next--];
+            if (std::isnan(q.gSample)) continue;
+            const HullPoint p{q.sigmaM, q.gSample};
+            // Points arrive farther each time (x = -σ increasing): keep right turns only.
+            while (top >= 2) {
+                const HullPoint& o = hull[top - 2];
+                const HullPoint& a = hull[top - 1];
+                const double cross = (o.sigmaM - a.sigmaM) * (p.g - o.g) - (a.g - o.g) * (o.sigmaM - p.sigmaM);
+                if (cross < 0.0) break;
+                --top;
+            }
+            hull[top++] = p;
+        }
+        if (top == 0) continue;
+        for (int k = 0; k < 2; ++k) {
+            if (r.cellIndex[k] == kNoCell) continue;
+            auto slopeTo = [&](std::size_t v) { return (hull[v].g - r.gCell[k]) / (r.sigmaM - hull[v].sigmaM); };
+            std::size_t lo = 0, hi = top - 1;
+            while (lo < hi) {
+                const std::size_t mid = (lo + hi) / 2;
+                if (slopeTo(mid + 1) > slopeTo(mid)) lo = mid + 1; else hi = mid;
+            }
+            const float value = static_cast<float>(slopeTo(lo) - r.sigmaM * invR);
+            float& cell = r.plane[k][r.cellIndex[k]];
+            cell = std::max(cell, value);
+        }
+    }
+}
+
+/// How a region's lines map onto the grid. Major index m steps one cell per line sample; a line
+/// k sits at minor coordinate k + slope*m. farSign = +1 when the far end (toward the azimuth)
+/// has the larger major index.
+struct LineGeometry {
+    bool xMajor;
+    int farSign;
+    double slope;
+    std::size_t majorSize, minorSize;
+    long mFar, mNear;  // inclusive major range walked, far end first
+    long kFirst, kLast;
+    std::size_t majorWin0, majorWin1, minorWin0, minorWin1;
+    std::vector<double> stepLengthM;  // metric length of one line step, per grid row
+};
+
+/// minor = base + frac for the line k = 0 at major index m. Shared by the sweep and the combine
+/// pass so both see the same bits.
+inline void lineOffset(double slope, long m, long& base, double& frac) {
+    const double fm = slope * static_cast<double>(m);
+    const double fl = std::floor(fm);
+    base = static_cast<long>(fl);
+    frac = fm - fl;
+    if (frac >= 1.0) {  // fm a hair below an integer
+        frac = 0.0;
+        ++base;
+    }
+}
+
+/// Grid-aligned and diagonal directions computed through sin/cos are off by ~1e-17; snap them
+/// so their lines run exactly through cell centres.
+constexpr double kSlopeSnap = 1e-12;
+double snapSlope(double slope) {
+    if (std::abs(slope) < kSlopeSnap) return 0.0;
+    if (std::abs(std::abs(slope) - 1.0) < kSlopeSnap) return slope > 0 ? 1.0 : -1.0;
+    return slope;
+}
+
+/// Height at which a line's hull is queried for a cell it serves (frac > 0: the line passes
+/// between the cell and a neighbour). The line's own sample at the cell's major index, plus the
+/// part of the cell's height that interpolating the two bracketing lines' samples would lose:
+/// r = frac (1 - frac) (2 h_j - h_{j-1} - h_{j+1}). On a plane r = 0 and the query is exact; on a
+/// ridge r > 0 keeps the cell from inheriting its lower neighbours' horizon. (Querying with the
+/// cell's own height instead is wrong on slopes: the line lies off the cell by up to a cell, and
+/// the cross-line height offset divided by a near distance gives a large error.)
+template <class Index>
+inline double observerHeight(const float* H, const Index& index, long m, long j, long N, double frac,
+                             float cellHeight, float lineSample) {
+    if (frac == 0.0) return cellHeight;  // the line runs through the cell centre
+    if (std::isnan(lineSample)) return cellHeight;
+    if (j < 1 || j + 1 >= N) return lineSample;
+    const float hm = H[index(m, j - 1)], hp = H[index(m, j + 1)];
+    if (std::isnan(hm) || std::isnan(hp)) return lineSample;
+    return lineSample + frac * (1.0 - frac) * (2.0 * cellHeight - hm - hp);
+}
+
+template <bool XMajor>
+void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
+                long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
+                std::vector<StepRecord>* records) {
+    const std::size_t W = t.width();
+    const float* H = t.heightsM.data();
+    const std::size_t lineCapacity = static_cast<std::size_t>(std::abs(geo.mFar - geo.mNear)) + 1;
+    const std::size_t nLines = static_cast<std::size_t>(kEnd - kBegin);
+    if (scratch.size() < nLines * lineCapacity) scratch.resize(nLines * lineCapacity);
+    const bool limited = std::isfinite(maxDistanceM);
+    LineState lines[kLinesPerBlock];
+    for (std::size_t b = 0; b < nLines; ++b) {
+        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, 0.0, 0, limited ? &records[b] : nullptr};
+        if (limited) records[b].clear();
+    }
+
+    const long N = static_cast<long>(geo.minorSize);
+    const long mStep = -geo.farSign;
+    const double halfInvR = 0.5 * invR;
+    auto index = [W](long m, long j) {
+        return XMajor ? static_cast<std::size_t>(j) * W + static_cast<std::size_t>(m)
+                      : static_cast<std::size_t>(m) * W + static_cast<std::size_t>(j);
+    };
+
+    for (long m = geo.mFar;; m += mStep) {
+        long base;
+        double frac;
+        lineOffset(geo.slope, m, base, frac);
+        // Skip steps where every line of the block lies outside the grid.
+        const long n0First = kBegin + base, n0Last = kEnd - 1 + base;
+        const bool anyInside = n0Last >= -1 && n0First <= N - 1;
+        const bool inWindow = m >= static_cast<long>(geo.majorWin0) &&
+                              m < static_cast<long>(geo.majorWin1);
+        if (anyInside) {
+            for (std::size_t b = 0; b < nLines; ++b) {
+                LineState& line = lines[b];
+                const long n0 = kBegin + static_cast<long>(b) + base;
+                const long n1 = n0 + 1;
+                const std::size_t stepRow =
+                    XMajor ? static_cast<std::size_t>(std::clamp<long>(frac < 0.5 ? n0 : n1, 0, N - 1))
+                           : static_cast<std::size_t>(m);
+                const double sigma = line.sigmaM;
+                line.sigmaM += geo.stepLengthM[stepRow];
+                if (n0 < -1 || n0 > N - 1) continue;
+
+                // Line sample: linear across the line between the two bracketing cells; heights
+                // are known inside the hull of the cell centres only.
+                const bool inside = n0 >= 0 && (frac == 0.0 || n1 < N);
+                const float h0 = inside ? H[index(m, n0)] : std::numeric_limits<float>::quiet_NaN();
+                float sample = h0;
+                if (frac > 0.0 && inside) {
+                    const float h1 = H[index(m, n1)];
+                    if (std::isnan(h0)) {
+                        sample = h1;
+                    } else if (!std::isnan(h1)) {
+                        sample = static_cast<float>((1.0 - frac) * h0 + frac * h1);
+                    }
+                }
+
+                // Range limit: a fresh hull per chunk of length maxDistanceM (see limitRangePass).
+                if (limited) {
+                    const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
+                    if (chunk != line.chunk) {
+                        line.chunk = chunk;
+                        line.lo = line.hi = 0;
+                    }
+                }
+
+                // The line sample's tangent vertex = the hull top after the pops it causes.
+                const bool sampleValid = !std::isnan(sample);
+                const double drop = sigma * sigma * halfInvR;
+                const double gSample = static_cast<double>(sample) - drop;
+                std::size_t top = line.hi;  // one past the new top
+                if (sampleValid) {
+                    while (top - line.lo >= 2) {
+                        const HullPoint& v1 = line.buf[top - 1];
+                        const HullPoint& v2 = line.buf[top - 2];
+                        const double s1 = (v1.g - gSample) / (sigma - v1.sigmaM);
+                        const double s2 = (v2.g - gSample) / (sigma - v2.sigmaM);
+                        if (s2 < s1) break;
+                        --top;
+                    }
+                }
+
+                StepRecord rec{sigma, sampleValid ? gSample : std::numeric_limits<double>::quiet_NaN(),
+                               {0.0, 0.0}, {kNoCell, kNoCell}, {planeA, planeB}};
+                // Serve the cells this line brackets at this step: cell n1 (line below it, weight
+                // frac) into plane A, cell n0 (line above it, weight 1-frac) into plane B; on an
+                // exact hit (frac == 0) cell n0 into plane A.
+                if (inWindow) {
+                    auto serve = [&](long j, int planeIndex) {
+                        if (j < static_cast<long>(geo.minorWin0) || j >= static_cast<long>(geo.minorWin1)) return;
+                        const std::size_t idx = index(m, j);
+                        const float hc = H[idx];
+                        if (std::isnan(hc)) return;
+                        const double hQuery = observerHeight(H, index, m, j, N, frac, hc, sample);
+                        const double gCell = hQuery - drop;
+                        float value = -std::numeric_limits<float>::infinity();
+                        if (line.lo < line.hi) {
+                            const std::size_t start = top > line.lo ? top - 1 : line.lo;
+                            value = static_cast<float>(tangentSlope(line, start, sigma, gCell) - sigma * invR);
+                        }
+                        rec.plane[planeIndex][idx] = value;
+                        rec.gCell[planeIndex] = gCell;
+                        rec.cellIndex[planeIndex] = idx;
+                    };
+                    if (frac > 0.0) {
+                        serve(n1, 0);
+                        serve(n0, 1);
+                    } else {
+                        serve(n0, 0);
+                    }
+                }
+                if (limited) line.records->push_back(rec);
+
+                if (sampleValid) {
+                    line.hi = top;
+                    line.buf[line.hi++] = {sigma, gSample};
+                }
+            }
+        }
+        if (m == geo.mNear) break;
+    }
+    if (limited) {
+        for (std::size_t b = 0; b < nLines; ++b) limitRangePass(records[b], maxDistanceM, invR, scratch);
+    }
+}
+
+LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double maxDistanceM) {
+    LineGeometry geo;
+    geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
+    const double major = geo.xMajor ? region.dirCol : region.dirRow;
+    const double minor = geo.xMajor ? region.dirRow : region.dirCol;
+    geo.farSign = major >= 0 ? 1 : -1;
+    geo.slope = snapSlope(minor / major);
+    geo.majorSize = geo.xMajor ? t.width() : t.height();
+    geo.minorSize = geo.xMajor ? t.height() : t.width();
+    const CellWindow& w = region.window;
+    geo.majorWin0 = geo.xMajor ? w.col0 : w.row0;
+    geo.majorWin1 = geo.xMajor ? w.col1 : w.row1;
+    geo.minorWin0 = geo.xMajor ? w.row0 : w.col0;
+    geo.minorWin1 = geo.xMajor ? w.row1 : w.col1;
+
+    geo.stepLengthM.resize(t.height());
+    double minStep = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < t.height(); ++r) {
+        const double dc = geo.xMajor ? 1.0 : geo.slope;
+        const double dr = geo.xMajor ? geo.slope : 1.0;
+        geo.stepLengthM[r] = std::hypot(dc * t.cellWidthM[r], dr * t.cellHeightM[r]);
+        minStep = std::min(minStep, geo.stepLengthM[r]);
+    }
+
+    // Far end: the grid edge, or far enough beyond the window to cover maxDistanceM.
+    const long M = static_cast<long>(geo.majorSize);
+    long extension = M;
+    if (std::isfinite(maxDistanceM)) {
+        extension = std::min<long>(M, static_cast<long>(std::ceil(maxDistanceM / minStep)) + 1);
+    }
+    if (geo.farSign > 0) {
+        geo.mNear = static_cast<long>(geo.majorWin0);
+        geo.mFar = std::min(M - 1, static_cast<long>(geo.majorWin1) - 1 + extension);
+    } else {
+        geo.mNear = static_cast<long>(geo.majorWin1) - 1;
+        geo.mFar = std::max(0L, static_cast<long>(geo.majorWin0) - extension);
+    }
+
+    // Lines serving window cells: k = j - base or j - base - 1 at the window's major ends.
+    long baseA, baseB;
+    double fracUnused;
+    lineOffset(geo.slope, static_cast<long>(geo.majorWin0), baseA, fracUnused);
+    lineOffset(geo.slope, static_cast<long>(geo.majorWin1) - 1, baseB, fracUnused);
+    geo.kFirst = static_cast<long>(geo.minorWin0) - std::max(baseA, baseB) - 1;
+    geo.kLast = static_cast<long>(geo.minorWin1) - 1 - std::min(baseA, baseB);
+    return geo;
+}
+
+/// Turns the two planes of tangents into angles for the region's window, and sets the
+/// truncation flag from the distance to the DEM edge along the region's direction.
+void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, std::size_t row,
+                const CellWindow& w, float* planeA, const float* planeB, std::uint8_t* truncated) {
+    const std::size_t W = t.width();
+    const double M = static_cast<double>(geo.majorSize), N = static_cast<double>(geo.minorSize);
+    const double minorPerFarStep = geo.slope * geo.farSign;
+    const float none = -std::numeric_limits<float>::infinity();
+    for (std::size_t col = w.col0; col < w.col1; ++col) {
+        const std::size_t idx = row * W + col;
+        const long m = static_cast<long>(geo.xMajor ? col : row);
+        const double j = static_cast<double>(geo.xMajor ? row : col);
+
+        // Steps to the DEM edge (cell edges at -0.5 and size - 0.5) along the region direction.
+        const double md = static_cast<double>(m);
+        double steps = geo.farSign > 0 ? M - 0.5 - md : md + 0.5;
+        if (minorPerFarStep > 0) steps = std::min(steps, (N - 0.5 - j) / minorPerFarStep);
+        if (minorPerFarStep < 0) steps = std::min(steps, (j + 0.5) / -minorPerFarStep);
+        truncated[idx] = steps * geo.stepLengthM[row] < maxDistanceM ? 1 : 0;
+
+        if (std::isnan(t.heightsM.data()[idx])) {
+            planeA[idx] = std::numeric_limits<float>::quiet_NaN();
+            continue;
+        }
+        long base;
+        double frac;
+        lineOffset(geo.slope, m, base, frac);
+        const float a = planeA[idx];
+        float slope = a;
+        if (frac > 0.0) {
+            const float b = planeB[idx];
+            if (a == none) {
+                slope = b;
+            } else if (b != none) {
+                slope = static_cast<float>(frac * a + (1.0 - frac) * b);
+            }
+        }
+        planeA[idx] = slope == none ? static_cast<float>(kNoHorizonDeg)
+                                    : static_cast<float>(std::atan(static_cast<double>(slope)) * kRadToDeg);
+    }
+}
+
+}  // namespace
+
+double inverseEffectiveRadius(const HorizonParams& params) {
+    return params.curvature ? (1.0 - params.refraction) / kEarthRadiusM : 0.0;
+}
+
+void validateHorizonParams(const Terrain& terrain, const HorizonParams& p) {
+    if (terrain.heightsM.empty()) throw Error("horizon: the terrain has no cells");
+    if (terrain.cellWidthM.size() != terrain.height() || terrain.cellHeightM.size() != terrain.height())
+        throw Error("horizon: terrain cell sizes must have one entry per row");
+    for (std::size_t r = 0; r < terrain.height(); ++r) {
+        if (!(terrain.cellWidthM[r] > 0.0) || !(terrain.cellHeightM[r] > 0.0) ||
+            !std::isfinite(terrain.cellWidthM[r]) || !std::isfinite(terrain.cellHeightM[r]))
+            throw Error("horizon: terrain cell sizes must be positive and finite (row " +
+                        std::to_string(r) + ")");
+    }
+    if (!std::isfinite(p.azimuthDeg))
+        throw Error("horizon: azimuth must be a finite number of degrees, got " + std::to_string(p.azimuthDeg));
+    if (!(p.maxDistanceM > 0.0))
+        throw Error("horizon: max distance must be > 0 metres, got " + std::to_string(p.maxDistanceM));
+    if (!(p.refraction >= 0.0 && p.refraction < 1.0))
+        throw Error("horizon: refraction coefficient must be in [0, 1), got " + std::to_string(p.refraction));
+    if (!(p.directionToleranceDeg >= 0.0))
+        throw Error("horizon: direction tolerance must be >= 0 degrees (0 = automatic), got " +
+                    std::to_string(p.directionToleranceDeg));
+    if (p.window) {
+        const CellWindow& w = *p.window;
+        if (w.col0 >= w.col1 || w.row0 >= w.row1 || w.col1 > terrain.width() || w.row1 > terrain.height())
+            throw Error("horizon: window must be a non-empty part of the " + std::to_string(terrain.width()) +
+                        " x " + std::to_string(terrain.height()) + " grid");
+    }
+}
+
+double defaultMaxDistanceM(const Terrain& terrain) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (float h : terrain.heightsM.values()) {
+        if (std::isnan(h)) continue;
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+    }
+    if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
+    double widthM = 0.0, heightM = 0.0, minCellM = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < terrain.height(); ++r) {
+        widthM = std::max(widthM, terrain.cellWidthM[r] * static_cast<double>(terrain.width()));
+        heightM += terrain.cellHeightM[r];
+        minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
+    }
+    const double reliefM = static_cast<double>(hi) - static_cast<double>(lo);
+    const double byRelief = reliefM / std::tan(kDefaultLowestElevationDeg * kDegToRad);
+    return std::max(minCellM, std::min(byRelief, std::hypot(widthM, heightM)));
+}
+
+double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params) {
+    if (params.directionToleranceDeg > 0.0) return params.directionToleranceDeg;
+    double minCellM = std::numeric_limits<double>::infinity(), widthM = 0.0, heightM = 0.0;
+    for (std::size_t r = 0; r < terrain.height(); ++r) {
+        minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
+        widthM = std::max(widthM, terrain.cellWidthM[r] * static_cast<double>(terrain.width()));
+        heightM += terrain.cellHeightM[r];
+    }
+    const double reachM = std::min(params.maxDistanceM, std::hypot(widthM, heightM));
+    const double deg = std::atan(kLateralBudgetCells * minCellM / reachM) * kRadToDeg;
+    return std::clamp(deg, kMinAutoToleranceDeg, kMaxAutoToleranceDeg);
+}
+
+std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params) {
+    validateHorizonParams(terrain, params);
+    std::vector<SweepRegion> regions;
+    splitRegion(terrain, wrapAzimuthDeg(params.azimuthDeg), effectiveDirectionToleranceDeg(terrain, params),
+                outputWindow(terrain, params), regions);
+    return regions;
+}
+
+HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params, ProgressCounter* progress) {
+    const std::vector<SweepRegion> regions = sweepRegions(terrain, params);
+    const double invR = inverseEffectiveRadius(params);
+    const int threads = resolveThreadCount(params.threads);
+
+    HorizonMap out;
+    out.angleDeg = Grid<float>(terrain.width(), terrain.height(), std::numeric_limits<float>::quiet_NaN());
+    out.truncated = Grid<std::uint8_t>(terrain.width(), terrain.height(), 0);
+    // NaN until written, so a cell no line served would show up as NaN in the tests.
+    Grid<float> planeB(terrain.width(), terrain.height(), std::numeric_limits<float>::quiet_NaN());
+
+    for (const SweepRegion& region : regions) {
+        const LineGeometry geo = makeGeometry(terrain, region, params.maxDistanceM);
+        const long nLines = geo.kLast - geo.kFirst + 1;
+        const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
+                                                             static_cast<long>(kLinesPerBlock));
+        const CellWindow& w = region.window;
+        // Every served cell of plane A is written; plane B only where frac > 0, read only there.
+        parallelFor(0, nBlocks, threads, [&](std::size_t blockIndex) {
+            if (progress && progress->cancelled()) return;
+            thread_local std::vector<HullPoint> scratch;
+            thread_local std::vector<StepRecord> records[kLinesPerBlock];
+            const long kBegin = geo.kFirst + static_cast<long>(blockIndex * kLinesPerBlock);
+            const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
+            if (geo.xMajor) {
+                sweepBlock<true>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
+                                 out.angleDeg.data(), planeB.data(), scratch, records);
+            } else {
+                sweepBlock<false>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
+                                  out.angleDeg.data(), planeB.data(), scratch, records);
+            }
+        });
+        if (progress) progress->throwIfCancelled();
+        parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
+            combineRow(terrain, geo, params.maxDistanceM, row, w, out.angleDeg.data(), planeB.data(),
+                       out.truncated.data());
+        }, 16);
+        if (progress) {
+            progress->advance((w.col1 - w.col0) * (w.row1 - w.row0));
+            progress->throwIfCancelled();
+        }
+    }
+    return out;
+}
+
+}  // namespace demlight

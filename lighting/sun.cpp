@@ -1,0 +1,88 @@
+#include "lighting/sun.h"
+
+#include "src/angles.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace demlight {
+
+Enu directionEnu(double azimuthDeg, double elevationDeg) {
+    // Reduce the azimuth first so that 0 and 360 give the same bits.
+    const double az = wrapAzimuthDeg(azimuthDeg) * kDegToRad;
+    const double el = elevationDeg * kDegToRad;
+    const double c = std::cos(el);
+    return {c * std::sin(az), c * std::cos(az), std::sin(el)};
+}
+
+double tangentPlaneElevationDeg(const Enu& n, double azimuthDeg) {
+    // Direction v = (cos e sin A, cos e cos A, sin e) lies in the plane when N·v = 0.
+    const double az = wrapAzimuthDeg(azimuthDeg) * kDegToRad;
+    const double horizontal = n.east * std::sin(az) + n.north * std::cos(az);
+    return std::atan2(-horizontal, n.up) * kRadToDeg;
+}
+
+double sunVisibility(double horizonDeg, double sunElevationDeg, double sunDiameterDeg) {
+    if (std::isnan(horizonDeg)) return std::numeric_limits<double>::quiet_NaN();
+    // Hoffman & Mitchell seed Eq. 5, 6: the disk spans [θmin, θmax].
+    const double thetaMin = sunElevationDeg - 0.5 * sunDiameterDeg;
+    const double thetaMax = sunElevationDeg + 0.5 * sunDiameterDeg;
+    if (!(thetaMax > thetaMin)) {
+        return horizonDeg < sunElevationDeg ? 1.0 : horizonDeg > sunElevationDeg ? 0.0 : 0.5;
+    }
+    // Seed Eq. 7, clamped to [0, 1].
+    return std::clamp((thetaMax - horizonDeg) / (thetaMax - thetaMin), 0.0, 1.0);
+}
+
+double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                            double sunElevationDeg, double sunDiameterDeg) {
+    if (std::isnan(horizonDeg)) return std::numeric_limits<double>::quiet_NaN();
+    const double effective = std::max(horizonDeg, tangentPlaneElevationDeg(normal, sunAzimuthDeg));
+    return sunVisibility(effective, sunElevationDeg, sunDiameterDeg);
+}
+
+double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                     double sunElevationDeg, double sunDiameterDeg) {
+    const double o = sunVisibilityClamped(normal, horizonDeg, sunAzimuthDeg, sunElevationDeg, sunDiameterDeg);
+    if (std::isnan(o)) return o;
+    const Enu s = directionEnu(sunAzimuthDeg, sunElevationDeg);
+    const double cosine = normal.east * s.east + normal.north * s.north + normal.up * s.up;
+    // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
+    return o * std::max(0.0, cosine);
+}
+
+SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizon, const Normals& normals,
+                         double sunAzimuthDeg, double sunElevationDeg, double sunDiameterDeg, int threads) {
+    if (!horizon.angleDeg.sameShape(terrain.heightsM) || !normals.east.sameShape(terrain.heightsM) ||
+        !normals.north.sameShape(terrain.heightsM) || !normals.up.sameShape(terrain.heightsM))
+        throw Error("sun: horizon map and normals must have the terrain's size");
+    if (!std::isfinite(sunAzimuthDeg))
+        throw Error("sun: azimuth must be a finite number of degrees, got " + std::to_string(sunAzimuthDeg));
+    if (!(sunElevationDeg >= -90.0 && sunElevationDeg <= 90.0))
+        throw Error("sun: elevation must be in [-90, 90] degrees, got " + std::to_string(sunElevationDeg));
+    if (!(sunDiameterDeg >= 0.0 && sunDiameterDeg < 90.0))
+        throw Error("sun: disk diameter must be in [0, 90) degrees, got " + std::to_string(sunDiameterDeg));
+
+    const std::size_t W = terrain.width(), H = terrain.height();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    SunLight out{Grid<float>(W, H, nan), Grid<float>(W, H, nan)};
+    const double azimuth = wrapAzimuthDeg(sunAzimuthDeg);
+    parallelFor(0, H, threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < W; ++col) {
+            if (!terrain.valid(col, row)) continue;
+            const Enu n = normals.at(col, row);
+            const double h = horizon.angleDeg(col, row);
+            const double o = sunVisibilityClamped(n, h, azimuth, sunElevationDeg, sunDiameterDeg);
+            out.visibility(col, row) = static_cast<float>(o);
+            out.irradiance(col, row) =
+                static_cast<float>(sunIrradiance(n, h, azimuth, sunElevationDeg, sunDiameterDeg));
+        }
+    }, 8);
+    return out;
+}
+
+}  // namespace demlight

@@ -1,0 +1,51 @@
+// Direct sun: visibility of the sun's disk over the horizon and the lit irradiance
+// (Hoffman & Mitchell, seed Eq. 3 and 5–7; DESIGN §3 "Sun").
+#pragma once
+
+#include "lighting/horizon.h"
+#include "lighting/surface.h"
+#include "src/grid.h"
+#include "src/terrain.h"
+
+namespace demlight {
+
+/// Mean apparent angular diameter of the sun (degrees).
+inline constexpr double kSunDiameterDeg = 0.533;
+
+/// Unit vector toward a direction given by true azimuth and elevation (degrees), in ENU.
+Enu directionEnu(double azimuthDeg, double elevationDeg);
+
+/// Elevation (degrees) of the plane tangent to the surface with unit normal `normal`, in true
+/// azimuth `azimuthDeg`: directions below it are behind the surface.
+double tangentPlaneElevationDeg(const Enu& normal, double azimuthDeg);
+
+/// Fraction of the sun's disk above a horizon (seed Eq. 5–7): with θmin/max = θsun ∓ α/2,
+/// O = clamp((θmax - θh) / (θmax - θmin), 0, 1). A disk of zero diameter is a step (0.5 exactly
+/// on the horizon). Angles in degrees; NaN horizon gives NaN.
+double sunVisibility(double horizonDeg, double sunElevationDeg, double sunDiameterDeg);
+
+/// Visibility with the horizon clamped to the hemisphere of the normal (seed "effective
+/// horizon"): θh' = max(θh, tangent-plane elevation in the sun's azimuth).
+double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                            double sunElevationDeg, double sunDiameterDeg);
+
+/// Normalised direct-sun irradiance for a unit-radiance sun (seed Eq. 3; DESIGN §1: a flat,
+/// unshadowed cell under a zenith sun gets 1): O · max(0, N·s) with O from sunVisibilityClamped.
+double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                     double sunElevationDeg, double sunDiameterDeg);
+
+struct SunLight {
+    /// Clamped visibility of the sun's disk in [0, 1]; NaN at nodata.
+    Grid<float> visibility;
+    /// Normalised irradiance O · max(0, N·s); NaN at nodata.
+    Grid<float> irradiance;
+};
+
+/// Sun visibility and irradiance for every cell, from the horizon map computed in the sun's
+/// azimuth and the surface normals. Throws Error on mismatched grids or out-of-range angles
+/// (elevation in [-90, 90], diameter in [0, 90)). Parallel over rows (0 = all cores).
+SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizonAtSunAzimuth,
+                         const Normals& normals, double sunAzimuthDeg, double sunElevationDeg,
+                         double sunDiameterDeg = kSunDiameterDeg, int threads = 0);
+
+}  // namespace demlight
