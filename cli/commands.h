@@ -20,5 +20,11 @@ void registerInfo(CLI::App& app, CliContext& ctx);
 void registerSunpos(CLI::App& app, CliContext& ctx);
 void registerHorizon(CLI::App& app, CliContext& ctx);
 void registerSun(CLI::App& app, CliContext& ctx);
+void registerSky(CLI::App& app, CliContext& ctx);
+void registerAperture(CLI::App& app, CliContext& ctx);
+void registerLight(CLI::App& app, CliContext& ctx);
+void registerRender(CLI::App& app, CliContext& ctx);
+void registerTimelapse(CLI::App& app, CliContext& ctx);
+void registerSunhours(CLI::App& app, CliContext& ctx);
 
 }  // namespace demlight::cli

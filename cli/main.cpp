@@ -23,6 +23,12 @@ int main(int argc, char** argv) {
     cli::registerSunpos(app, ctx);
     cli::registerHorizon(app, ctx);
     cli::registerSun(app, ctx);
+    cli::registerSky(app, ctx);
+    cli::registerAperture(app, ctx);
+    cli::registerLight(app, ctx);
+    cli::registerRender(app, ctx);
+    cli::registerTimelapse(app, ctx);
+    cli::registerSunhours(app, ctx);
 
     try {
         app.parse(argc, argv);

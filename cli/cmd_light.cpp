@@ -1,0 +1,8 @@
+// Placeholder: the 'light' subcommand is not registered yet (work in progress).
+#include "cli/commands.h"
+
+namespace demlight::cli {
+
+void registerLight(CLI::App&, CliContext&) {}
+
+}  // namespace demlight::cli

@@ -1,0 +1,33 @@
+// The sun's position across a DEM at one instant, sampled on a coarse lattice of cells (filled
+// by geo/ with SPA; read by lighting/). Over a large DEM the sun's azimuth and elevation differ
+// from place to place by about the longitude span in hour angle.
+#pragma once
+
+#include "src/grid.h"
+
+#include <cstddef>
+#include <utility>
+
+namespace demlight {
+
+/// Node (i, j) holds the sun at cell (min(i * stepCells, width-1), min(j * stepCells, height-1)).
+/// Azimuths are unwrapped around the centre azimuth so interpolation never crosses 0/360.
+struct SunField {
+    Grid<float> azimuthDeg;    ///< true azimuth, unwrapped (may lie outside [0, 360))
+    Grid<float> elevationDeg;  ///< apparent topocentric elevation
+    std::size_t stepCells = 64;
+    double centreAzimuthDeg = 0;    ///< at the DEM centre, in [0, 360)
+    double centreElevationDeg = 0;  ///< at the DEM centre
+
+    /// A field with the same sun everywhere (tests, or a sun given by the user).
+    static SunField uniform(double azimuthDeg, double elevationDeg);
+    /// Azimuth (degrees, unwrapped) and elevation (degrees) at a cell, bilinear between nodes.
+    std::pair<double, double> at(double col, double row) const;
+    /// Smallest and largest azimuth over a window of cells (degrees, unwrapped).
+    std::pair<double, double> azimuthRange(std::size_t col0, std::size_t row0, std::size_t col1,
+                                           std::size_t row1) const;
+    /// Smallest and largest elevation over the whole field (degrees).
+    std::pair<double, double> elevationRange() const;
+};
+
+}  // namespace demlight
