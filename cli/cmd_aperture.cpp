@@ -1,8 +1,78 @@
-// Placeholder: the 'aperture' subcommand is not registered yet (work in progress).
-#include "cli/commands.h"
+// demlight aperture DEM -o OUT.tif: ambient aperture per cell (Oat & Sander 2007): the visible
+// solid angle, the spherical cap of the same area and its axis, the bent normal.
+#include "cli/common.h"
+#include "cli/progress_bar.h"
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/surface.h"
+
+#include <chrono>
 
 namespace demlight::cli {
+namespace {
 
-void registerAperture(CLI::App&, CliContext&) {}
+/// Default number of directions, as for `demlight sky`.
+constexpr int kDefaultApertureDirections = 32;
+
+struct ApertureOptions {
+    std::string demPath;
+    OutputOptions out;
+    SearchOptions search;
+    int directions = kDefaultApertureDirections;
+};
+
+void runAperture(const ApertureOptions& o, const CliContext& ctx) {
+    checkOutputPath(o.out.path, o.demPath);
+    const Dem dem = loadDem(o.demPath);
+    const Terrain& t = dem.terrain;
+    HorizonParams params;
+    params.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
+    params.refraction = o.search.refraction;
+    params.threads = o.search.threads;
+
+    const auto start = std::chrono::steady_clock::now();
+    const Normals normals = computeNormals(t, o.search.threads);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up,
+                            static_cast<std::size_t>(o.directions), o.search.threads);
+    ProgressBar bar(!ctx.quiet);
+    ProgressCounter counter(bar.callback(), "aperture", t.heightsM.size() * static_cast<std::size_t>(o.directions));
+    sweepDirections(t, params, static_cast<std::size_t>(o.directions),
+                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
+                    &counter);
+    const ApertureMaps maps = acc.finish();
+    bar.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const std::map<std::string, std::string> meta = {
+        {"DEMLIGHT_PRODUCT", "aperture"},
+        {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_DIRECTIONS", std::to_string(o.directions)},
+        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
+        {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
+    };
+    writeRaster(o.out.path,
+                {{&maps.bentEast, nullptr, "bent_normal_east", "unit vector component (ENU)"},
+                 {&maps.bentNorth, nullptr, "bent_normal_north", "unit vector component (ENU)"},
+                 {&maps.bentUp, nullptr, "bent_normal_up", "unit vector component (ENU)"},
+                 {&maps.radiusDeg, nullptr, "aperture_radius_deg", "deg"},
+                 {&maps.solidAngleSr, nullptr, "visible_solid_angle_sr", "sr"}},
+                dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
+    note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
+                  std::to_string(o.directions) + " directions, " + formatNumber(seconds) + " s compute");
+}
+
+}  // namespace
+
+void registerAperture(CLI::App& app, CliContext& ctx) {
+    auto o = std::make_shared<ApertureOptions>();
+    CLI::App* cmd = app.add_subcommand("aperture", "Ambient aperture: bent normal, cap radius, visible solid angle");
+    cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
+    addOutputOptions(cmd, o->out);
+    cmd->add_option("--directions", o->directions, "Number of horizon directions integrated")
+        ->check(CLI::Range(4, 1024))
+        ->capture_default_str();
+    addSearchOptions(cmd, o->search);
+    cmd->callback([o, &ctx] { runAperture(*o, ctx); });
+}
 
 }  // namespace demlight::cli
