@@ -1,0 +1,190 @@
+// End-to-end CLI tests: every bad input of DESIGN §6 gets one clear message naming the problem,
+// a non-zero exit, and leaves no output file behind; good runs produce aligned GeoTIFFs.
+#include "cli_runner.h"
+#include "geo/raster.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::runDemlight;
+
+const std::string kSamples = DEMLIGHT_SAMPLES_DIR;
+const std::string kHelens = kSamples + "/mount_st_helens_1980_usgs.dem";
+const std::string kRocky = kSamples + "/rocky_mountain_np_dem.tif";
+const std::string kUtmWkt = R"(PROJCS["WGS 84 / UTM zone 11N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",-117],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1],AUTHORITY["EPSG","32611"]])";
+
+class CliBadInput : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("demlight_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    std::string out() const { return (dir_ / "out.tif").string(); }
+    /// A small raster made to order in the scratch folder.
+    std::string fixture(const std::string& name, const GeoReference& ref, float fill) const {
+        Grid<float> z(8, 8, fill);
+        const std::string path = (dir_ / name).string();
+        writeRaster(path, {{&z, nullptr, "h", "m"}}, ref, {});
+        return path;
+    }
+    /// Runs, expects failure with `needle` in stderr, and no output file left in the folder.
+    void expectFailure(const std::string& args, const std::string& needle, std::size_t filesBefore) {
+        const auto r = runDemlight(args);
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+        EXPECT_FALSE(fs::exists(out()));
+        EXPECT_EQ(static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{})),
+                  filesBefore)
+            << "a file was left behind";
+    }
+    fs::path dir_;
+};
+
+TEST_F(CliBadInput, MissingFile) {
+    expectFailure("sun /nonexistent/dem.tif -o " + out() + " --time 2024-06-21T12:00Z", "nonexistent", 0);
+}
+
+TEST_F(CliBadInput, NotARaster) {
+    const fs::path p = dir_ / "notes.tif";
+    std::ofstream(p) << "hello\n";
+    expectFailure("horizon " + p.string() + " -o " + out() + " --azimuth 90", "GDAL does not recognise", 1);
+}
+
+TEST_F(CliBadInput, NoCrs) {
+    GeoReference ref;
+    ref.geoTransform = {0, 30, 0, 0, 0, -30};
+    const std::string dem = fixture("nocrs.tif", ref, 10);
+    expectFailure("horizon " + dem + " -o " + out() + " --azimuth 90", "no coordinate reference system", 1);
+}
+
+TEST_F(CliBadInput, RotatedGeotransform) {
+    GeoReference ref;
+    ref.geoTransform = {0, 30, 3, 0, 3, -30};
+    ref.crsWkt = kUtmWkt;
+    const std::string dem = fixture("rot.tif", ref, 10);
+    expectFailure("info " + dem, "rotated or sheared", 1);
+    expectFailure("sky " + dem + " -o " + out(), "rotated or sheared", 1);
+}
+
+TEST_F(CliBadInput, AllNodataAndNanHeights) {
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    const std::string dem = fixture("nan.tif", ref, std::numeric_limits<float>::quiet_NaN());
+    expectFailure("sun " + dem + " -o " + out() + " --time 2024-06-21T12:00Z", "every cell is nodata", 1);
+}
+
+TEST_F(CliBadInput, TimeWithoutZone) {
+    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00", "no zone", 0);
+}
+
+TEST_F(CliBadInput, UnknownZone) {
+    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00 --tz Mars/Olympus",
+                  "Mars/Olympus", 0);
+}
+
+TEST_F(CliBadInput, ImpossibleDate) {
+    expectFailure("sun " + kHelens + " -o " + out() + " --time 2023-02-30T12:00Z", "2023-02-30", 0);
+}
+
+TEST_F(CliBadInput, OutOfRangeOptions) {
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --refraction 1.5", "--refraction", 0);
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --max-distance -5", "--max-distance", 0);
+    expectFailure("sky " + kHelens + " -o " + out() + " --albedo 2", "--albedo", 0);
+    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00Z --sun-diameter -1",
+                  "--sun-diameter", 0);
+    expectFailure("horizon " + kHelens + " -o " + out(), "--azimuth", 0);
+    expectFailure("sky " + kHelens + " -o " + out() + " --patches sectors:0", "sectors", 0);
+}
+
+TEST_F(CliBadInput, UnwritableOutput) {
+    const auto r = runDemlight("horizon " + kHelens + " -o " + (dir_ / "no" / "such" / "out.tif").string() +
+                               " --azimuth 90");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "no"));
+}
+
+TEST_F(CliBadInput, OutputWouldOverwriteInput) {
+    const fs::path copy = dir_ / "dem.tif";
+    fs::copy_file(kRocky, copy);
+    const auto before = fs::file_size(copy);
+    expectFailure("horizon " + copy.string() + " -o " + copy.string() + " --azimuth 90",
+                  "overwrite the input", 1);
+    EXPECT_EQ(fs::file_size(copy), before);
+}
+
+TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_horizon";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string out = (dir / "h.tif").string();
+    const auto r = runDemlight("-q horizon " + kRocky + " -o " + out + " --azimuth 0 123.5 --threads 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const RasterSummary in = inspectRaster(kRocky);
+    const RasterSummary s = inspectRaster(out);
+    EXPECT_EQ(s.width, in.width);
+    EXPECT_EQ(s.height, in.height);
+    EXPECT_EQ(s.ref.geoTransform, in.ref.geoTransform);
+    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"horizon_azimuth=0", "horizon_azimuth=123.5"}));
+    EXPECT_EQ(s.units[0], "deg");
+    EXPECT_NE(s.metadata.at("DEMLIGHT_COMMAND").find("horizon"), std::string::npos);
+    const RasterSummary mask = inspectRaster((dir / "h.truncated.tif").string());
+    EXPECT_EQ(mask.dataTypes[0], "Byte");
+    EXPECT_EQ(mask.descriptions[1], "truncated_azimuth=123.5");
+}
+
+TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_sun";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string out = (dir / "sun.tif").string();
+    const auto r = runDemlight("-q sun " + kHelens + " -o " + out +
+                               " --time 2024-06-21T07:30 --tz America/Los_Angeles --of COG");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const RasterSummary s = inspectRaster(out);
+    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"sun_visibility", "sun_irradiance"}));
+    EXPECT_EQ(s.imageStructure.at("LAYOUT"), "COG");
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_TIME_UTC"), "2024-06-21T14:30:00Z");
+    // Sun near azimuth 76 deg, elevation 20 deg at 07:30 PDT at Mount St. Helens.
+    EXPECT_NEAR(std::stod(s.metadata.at("DEMLIGHT_SUN_AZIMUTH_DEG")), 76.5, 0.5);
+    EXPECT_NEAR(std::stod(s.metadata.at("DEMLIGHT_SUN_ELEVATION_DEG")), 19.9, 0.5);
+    ASSERT_TRUE(s.nodata.has_value());
+    EXPECT_EQ(*s.nodata, -32767.0);  // the input's nodata, carried over
+    const RasterBand vis = readRasterBand(out);
+    std::size_t nodata = 0, lit = 0, shadow = 0;
+    for (float v : vis.values.values()) {
+        if (std::isnan(v)) ++nodata;
+        else if (v >= 0.999f) ++lit;
+        else if (v <= 0.001f) ++shadow;
+        else EXPECT_TRUE(v > 0 && v < 1);
+    }
+    EXPECT_EQ(nodata, 4151u);  // exactly the DEM's nodata cells
+    EXPECT_GT(lit, shadow);    // a morning sun at 20 deg lights most of the mountain
+    EXPECT_GT(shadow, 1000u);  // and the crater and west flanks are in shadow
+}
+
+TEST(CliOutputs, InfoJsonReportsMetricCellSizes) {
+    const auto r = runDemlight("info " + kRocky + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("epsg"), 4326);
+    EXPECT_EQ(j.at("width"), 152);
+    // 0.00211 deg of latitude at 40.36 N is about 234.3 m; 0.00275 deg of longitude is 233.6 m.
+    EXPECT_NEAR(j.at("cell_size_m").at("centre").at("y_m").get<double>(), 234.3, 0.3);
+    EXPECT_NEAR(j.at("cell_size_m").at("centre").at("x_m").get<double>(), 233.6, 0.3);
+    EXPECT_EQ(j.at("relief_m"), 1980.0);
+    EXPECT_TRUE(j.at("convergence_deg").is_null());
+}
+
+}  // namespace
+}  // namespace demlight
