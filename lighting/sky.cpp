@@ -149,11 +149,6 @@ void checkCellInputs(const Grid<float>& e, const Grid<float>& n, const Grid<floa
 
 }  // namespace
 
-EnuVector enuFromAzimuthElevation(double azimuthDeg, double elevationDeg) {
-    const double az = azimuthDeg * kDegToRad, el = elevationDeg * kDegToRad;
-    return {std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)};
-}
-
 double svfHorizontal(std::span<const float> horizonDeg) {
     // Dozier & Frew 1990: V_d = (1/2pi) integral cos^2 h d phi for a horizontal surface.
     double sum = 0.0;

@@ -14,6 +14,8 @@
 // it gets K = 1 for every D, and flat ground with h <= 0 gets K = 1.
 #pragma once
 
+#include "lighting/sun.h"
+#include "lighting/surface.h"
 #include "src/grid.h"
 
 #include <cstddef>
@@ -26,14 +28,7 @@
 namespace demlight {
 
 /// A direction or normal in the local East-North-Up frame (unit length unless stated).
-struct EnuVector {
-    double east = 0.0;
-    double north = 0.0;
-    double up = 1.0;
-};
-
-/// Unit ENU vector for a true azimuth (degrees clockwise from north) and elevation (degrees).
-EnuVector enuFromAzimuthElevation(double azimuthDeg, double elevationDeg);
+using EnuVector = Enu;
 
 /// Normals whose up component is below this are treated as having this up component (a height
 /// field's normal always points up; this only guards degenerate input).

@@ -100,7 +100,7 @@ TEST(Aperture, WallBlocksHalfTheSky) {
         const Aperture a = aperture(hz, {0, 0, 1});
         EXPECT_NEAR(a.solidAngleSr, kPi, 1e-12);
         EXPECT_NEAR(a.radiusDeg, 60.0, 1e-9);
-        const EnuVector expect = enuFromAzimuthElevation(270.0 - 180.0 / d, 45.0);
+        const EnuVector expect = directionEnu(270.0 - 180.0 / d, 45.0);
         EXPECT_NEAR(dot(a.bentNormal, expect), 1.0, 1e-12) << "D=" << d;
     }
 }
@@ -221,7 +221,7 @@ TEST(Caps, SmoothstepApproximationWithinStatedError) {
 
 TEST(Caps, IntersectionVectorAndCentroid) {
     const EnuVector up{0, 0, 1};
-    const EnuVector sun = enuFromAzimuthElevation(120.0, 30.0);
+    const EnuVector sun = directionEnu(120.0, 30.0);
     // Containment: the inner cap's centre; the vector is pi sin^2 r c.
     EXPECT_NEAR(dot(capIntersectionCentroid(sun, 0.005, up, kPi / 2), sun), 1.0, 1e-15);
     EXPECT_NEAR(dot(capIntersectionCentroidFast(sun, 0.005, up, kPi / 2), sun), 1.0, 1e-15);
@@ -241,8 +241,8 @@ TEST(Caps, IntersectionVectorAndCentroid) {
     for (const Case& c : cases) {
         const double rl = c.rlDeg * kDeg, rp = c.rpDeg * kDeg;
         const EnuVector normal = slopeNormal(c.slopeDeg, 120.0);
-        const EnuVector bent = enuFromAzimuthElevation(300.0, c.bentElevDeg);
-        const EnuVector light = enuFromAzimuthElevation(300.0, c.lightElevDeg);
+        const EnuVector bent = directionEnu(300.0, c.bentElevDeg);
+        const EnuVector light = directionEnu(300.0, c.lightElevDeg);
         EnuVector t1, t2;
         basis(light, t1, t2);
         double sum = 0.0, sum2 = 0.0;
@@ -295,16 +295,16 @@ TEST(LightingModels, ApertureOnFlatGround) {
         EXPECT_NEAR(zenith.sun, 1.0, 1e-12);
         EXPECT_NEAR(zenith.ambient, 1.0 - capAreaSr(kSunRadiusDeg * kDeg) / (2 * kPi), 1e-12);
         // Sun at 30 degrees: Lambert sin(30).
-        EXPECT_NEAR(apertureLight({0, 0, 1}, flat, enuFromAzimuthElevation(90, 30), p).sun, 0.5,
+        EXPECT_NEAR(apertureLight({0, 0, 1}, flat, directionEnu(90, 30), p).sun, 0.5,
                     1e-6);
         // Sun below the horizon: no direct light.
-        EXPECT_EQ(apertureLight({0, 0, 1}, flat, enuFromAzimuthElevation(90, -1), p).sun, 0.0);
+        EXPECT_EQ(apertureLight({0, 0, 1}, flat, directionEnu(90, -1), p).sun, 0.0);
         // Sun centre on the horizon: half the disk above it. Exact: the half-disk's Lambert
         // mean is its centroid elevation 4 r / 3 pi, times half the area -> 2 r / 3 pi.
         // Smooth: half the area at the cheap centroid r / 2 -> sin(r / 2) / 2.
         const double rl = kSunRadiusDeg * kDeg;
         const double horizonSun =
-            apertureLight({0, 0, 1}, flat, enuFromAzimuthElevation(90, 0), p).sun;
+            apertureLight({0, 0, 1}, flat, directionEnu(90, 0), p).sun;
         EXPECT_NEAR(horizonSun, smooth ? 0.5 * std::sin(0.5 * rl) : 2.0 * rl / (3.0 * kPi),
                     1e-4 * rl);
     }
@@ -318,8 +318,8 @@ TEST(LightingModels, ApertureWallShadowsTheSun) {
     for (int i = 0; i < 4; ++i) hz[static_cast<std::size_t>(i)] = 90.0f;
     const Aperture a = aperture(hz, {0, 0, 1});
     ApertureLightParams p;
-    const double east = apertureLight({0, 0, 1}, a, enuFromAzimuthElevation(67.5, 30), p).sun;
-    const double west = apertureLight({0, 0, 1}, a, enuFromAzimuthElevation(247.5, 30), p).sun;
+    const double east = apertureLight({0, 0, 1}, a, directionEnu(67.5, 30), p).sun;
+    const double west = apertureLight({0, 0, 1}, a, directionEnu(247.5, 30), p).sun;
     EXPECT_EQ(east, 0.0);
     EXPECT_NEAR(west, 0.5, 1e-3);
 }
@@ -376,7 +376,7 @@ TEST(ApertureGrid, MatchesKernelThreadDeterministicNodata) {
     EXPECT_NEAR(one.radiusDeg(5, 4), a.radiusDeg, 1e-4);
     EXPECT_NEAR(one.bentNorth(5, 4), a.bentNormal.north, 1e-6);
 
-    const ApertureLightMaps lit = applyApertureLight(one, e, n, u, enuFromAzimuthElevation(180, 40),
+    const ApertureLightMaps lit = applyApertureLight(one, e, n, u, directionEnu(180, 40),
                                                      ApertureLightParams{}, 2);
     EXPECT_TRUE(std::isnan(lit.sun(2, 2)));
     EXPECT_GE(lit.ambient(5, 4), 0.0f);
