@@ -1,8 +1,152 @@
-// Placeholder: the 'sunhours' subcommand is not registered yet (work in progress).
-#include "cli/commands.h"
+// demlight sunhours DEM -o OUT.tif (--date D | --start D --end D) [--tz ZONE] [--step MIN]:
+// hours of direct sun, sun irradiation and the cell's own sunrise/sunset over local days.
+//
+// Instants every --step minutes from local midnight of the first day to local midnight after
+// the last (inclusive), integrated with the trapezoid rule (lighting/sunhours.h). The default
+// step of 10 min was measured against a 1-minute integral (README, `sunhours`).
+#include "cli/common.h"
+#include "cli/progress_bar.h"
+#include "geo/sun_field.h"
+#include "geo/time.h"
+#include "lighting/sunhours.h"
+#include "src/error.h"
+
+#include <chrono>
+#include <cmath>
 
 namespace demlight::cli {
+namespace {
 
-void registerSunhours(CLI::App&, CliContext&) {}
+/// Default integration step (minutes): trapezoid error of sun hours ≤ ~0.3 % of a day's total
+/// on the samples (README).
+constexpr double kDefaultStepMin = 10.0;
+
+struct SunhoursOptions {
+    std::string demPath;
+    OutputOptions out;
+    SearchOptions search;
+    std::string date, startDate, endDate;
+    std::string tz;
+    double stepMin = kDefaultStepMin;
+    double sunDiameterDeg = kSunDiameterDeg;
+};
+
+struct Sequence {
+    std::vector<SunInstant> instants;
+    std::vector<UtcInstant> utc;
+};
+
+/// Instants every stepMin from the start of the first local day to the end of the last one.
+Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZoneSpec& zone,
+                      double stepMin) {
+    using namespace std::chrono;
+    const milliseconds step(static_cast<long long>(std::llround(stepMin * 60000.0)));
+    Sequence s;
+    auto add = [&](UtcInstant t, bool isEnd) {
+        // Clock time within the local day the instant belongs to (24.0 for the final midnight).
+        const LocalDay d = localDayOf(isEnd ? t - milliseconds(1) : t, zone);
+        const auto local = t + zone.offsetAt(t);
+        const double clock =
+            duration<double, std::ratio<3600>>(local - UtcInstant(d.date)).count();
+        const double hours = duration<double, std::ratio<3600>>(t - first.startUtc).count();
+        s.utc.push_back(t);
+        s.instants.push_back({hours, clock});
+    };
+    for (UtcInstant t = first.startUtc; t < last.endUtc; t += step) add(t, false);
+    add(last.endUtc, true);
+    return s;
+}
+
+void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
+    const TimeZoneSpec zone = TimeZoneSpec::fromName(o.tz);
+    std::chrono::sys_days d0, d1;
+    if (!o.date.empty()) {
+        if (!o.startDate.empty() || !o.endDate.empty())
+            throw Error("sunhours: give either --date or --start/--end, not both");
+        d0 = d1 = parseDate(o.date);
+    } else {
+        if (o.startDate.empty() || o.endDate.empty())
+            throw Error("sunhours: give --date D, or both --start D and --end D");
+        d0 = parseDate(o.startDate);
+        d1 = parseDate(o.endDate);
+        if (d1 < d0) throw Error("sunhours: --end " + o.endDate + " is before --start " + o.startDate);
+    }
+    checkOutputPath(o.out.path, o.demPath);
+    const Dem dem = loadDem(o.demPath);
+    const Terrain& t = dem.terrain;
+    const Sequence seq = makeSequence(localDay(d0, zone), localDay(d1, zone), zone, o.stepMin);
+
+    SunHoursParams params;
+    params.frame.sunDiameterDeg = o.sunDiameterDeg;
+    params.frame.refraction = o.search.refraction;
+    params.frame.threads = o.search.threads;
+    params.frame.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    const SolarSite site;  // default pressure and temperature; position from each lattice node
+
+    const auto start = std::chrono::steady_clock::now();
+    const Normals normals = computeNormals(t, o.search.threads);
+    ProgressBar bar(!ctx.quiet);
+    ProgressCounter counter(bar.callback(), "sunhours", seq.instants.size());
+    const SunHoursMaps maps = integrateSunHours(
+        t, normals, seq.instants,
+        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], site, SpaOptions{}); },
+        params, &counter);
+    bar.finish();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const std::map<std::string, std::string> meta = {
+        {"DEMLIGHT_PRODUCT", "sunhours"},
+        {"DEMLIGHT_FIRST_DATE", formatDate(d0)},
+        {"DEMLIGHT_LAST_DATE", formatDate(d1)},
+        {"DEMLIGHT_TIME_ZONE", zone.describe()},
+        {"DEMLIGHT_START_UTC", formatInstant(seq.utc.front(), std::string())},
+        {"DEMLIGHT_END_UTC", formatInstant(seq.utc.back(), std::string())},
+        {"DEMLIGHT_STEP_MIN", formatNumber(o.stepMin)},
+        {"DEMLIGHT_INTEGRATION", "trapezoid"},
+        {"DEMLIGHT_INSTANTS", std::to_string(seq.instants.size())},
+        {"DEMLIGHT_INSTANTS_SWEPT", std::to_string(maps.instantsSwept)},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
+        {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
+        {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
+    };
+    writeRaster(o.out.path,
+                {{&maps.sunHours, nullptr, "sun_hours", "hours of direct sun weighted by visibility (h)"},
+                 {&maps.sunIrradiation, nullptr, "sun_irradiation",
+                  "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)"},
+                 {&maps.firstLitClock, nullptr, "first_lit",
+                  "local clock hours (" + zone.describe() + ") when half the sun first shows; NaN = never"},
+                 {&maps.lastLitClock, nullptr, "last_lit",
+                  "local clock hours (" + zone.describe() + ") when half the sun last shows; NaN = never"}},
+                dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
+    note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, first_lit, last_lit): " +
+                  std::to_string(seq.instants.size()) + " instants every " +
+                  formatNumber(o.stepMin) + " min, " + std::to_string(maps.instantsSwept) +
+                  " with the sun up, " + formatNumber(seconds) + " s compute");
+}
+
+}  // namespace
+
+void registerSunhours(CLI::App& app, CliContext& ctx) {
+    auto o = std::make_shared<SunhoursOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "sunhours", "Hours of direct sun, sun irradiation and first/last lit time over local days");
+    cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
+    addOutputOptions(cmd, o->out);
+    cmd->add_option("--date", o->date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
+    cmd->add_option("--start", o->startDate, "First local day YYYY-MM-DD of a range");
+    cmd->add_option("--end", o->endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    cmd->add_option("--tz", o->tz, "IANA time zone of the days and clock times (default UTC)");
+    cmd->add_option("--step", o->stepMin, "Integration step (minutes, trapezoid rule)")
+        ->check(CLI::Range(0.1, 120.0))
+        ->capture_default_str();
+    cmd->add_option("--sun-diameter", o->sunDiameterDeg,
+                    "Angular diameter of the sun disk (degrees)")
+        ->check(CLI::Range(0.0, 20.0))
+        ->capture_default_str();
+    addSearchOptions(cmd, o->search);
+    cmd->callback([o, &ctx] { runSunhours(*o, ctx); });
+}
 
 }  // namespace demlight::cli

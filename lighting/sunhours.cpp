@@ -1,0 +1,84 @@
+// Sun-hour integrals; see sunhours.h.
+#include "lighting/sunhours.h"
+
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <cmath>
+#include <limits>
+
+namespace demlight {
+
+SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
+                               std::span<const SunInstant> instants, const SunFieldAt& fieldAt,
+                               const SunHoursParams& params, ProgressCounter* progress) {
+    if (instants.size() < 2) throw Error("sun hours: need at least two instants");
+    for (std::size_t i = 1; i < instants.size(); ++i)
+        if (!(instants[i].hours > instants[i - 1].hours))
+            throw Error("sun hours: instants must be strictly increasing");
+
+    const std::size_t w = t.width(), h = t.height();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    Grid<double> sumVis(w, h, 0.0), sumIrr(w, h, 0.0);
+    Grid<float> prevVis(w, h, 0.0f);
+    SunHoursMaps out;
+    out.firstLitClock = Grid<float>(w, h, nan);
+    out.lastLitClock = Grid<float>(w, h, nan);
+
+    for (std::size_t i = 0; i < instants.size(); ++i) {
+        // Trapezoid weights (hours): half the neighbouring intervals.
+        const double before = i > 0 ? instants[i].hours - instants[i - 1].hours : 0.0;
+        const double after = i + 1 < instants.size() ? instants[i + 1].hours - instants[i].hours : 0.0;
+        const double weight = 0.5 * (before + after);
+        const SunField field = fieldAt(i);
+        const bool dark = field.elevationRange().second < kSunDownElevationDeg;
+        SunFrame frame;
+        if (!dark) {
+            frame = computeSunFrame(t, normals, field, params.frame);
+            ++out.instantsSwept;
+        }
+        const double clock = instants[i].clockHours;
+        const double prevClock = i > 0 ? instants[i - 1].clockHours : clock;
+        const bool last = i + 1 == instants.size();
+        parallelFor(0, h, params.frame.threads, [&](std::size_t row) {
+            for (std::size_t col = 0; col < w; ++col) {
+                if (!t.valid(col, row)) continue;
+                const float v = dark ? 0.0f : frame.light.visibility(col, row);
+                const float e = dark ? 0.0f : frame.light.irradiance(col, row);
+                if (std::isnan(v)) continue;
+                sumVis(col, row) += weight * v;
+                sumIrr(col, row) += weight * e;
+                const float p = prevVis(col, row);
+                if (i == 0) {
+                    if (v >= kLitVisibility) out.firstLitClock(col, row) = static_cast<float>(clock);
+                } else {
+                    // Linear interpolation of the crossing between the two samples.
+                    const double f = (kLitVisibility - p) / (static_cast<double>(v) - p);
+                    const double crossing = prevClock + f * (clock - prevClock);
+                    if (p < kLitVisibility && v >= kLitVisibility &&
+                        std::isnan(out.firstLitClock(col, row)))
+                        out.firstLitClock(col, row) = static_cast<float>(crossing);
+                    if (p >= kLitVisibility && v < kLitVisibility)
+                        out.lastLitClock(col, row) = static_cast<float>(crossing);
+                }
+                if (last && v >= kLitVisibility) out.lastLitClock(col, row) = static_cast<float>(clock);
+                prevVis(col, row) = v;
+            }
+        });
+        if (progress) {
+            progress->advance(1);
+            progress->throwIfCancelled();
+        }
+    }
+
+    out.sunHours = Grid<float>(w, h, nan);
+    out.sunIrradiation = Grid<float>(w, h, nan);
+    for (std::size_t k = 0; k < t.heightsM.size(); ++k) {
+        if (std::isnan(t.heightsM.data()[k])) continue;
+        out.sunHours.data()[k] = static_cast<float>(sumVis.data()[k]);
+        out.sunIrradiation.data()[k] = static_cast<float>(sumIrr.data()[k]);
+    }
+    return out;
+}
+
+}  // namespace demlight

@@ -1,0 +1,60 @@
+// Integrals of direct sun over a sequence of instants (DESIGN §3 "Time-lapse and integrals"):
+// hours of direct sun, normalised sun irradiation, and the first and last time each cell is lit.
+//
+// Quadrature: the trapezoid rule over the given instants (any spacing), so a quantity that is
+// constant over [t0, tN] integrates to exactly its value times (tN - t0). Instants where the
+// sun's upper limb is below the horizon everywhere (field elevation < kSunDownElevationDeg) are
+// not swept: every valid cell gets visibility 0 there.
+#pragma once
+
+#include "lighting/sun_frame.h"
+#include "lighting/surface.h"
+#include "src/grid.h"
+#include "src/progress.h"
+#include "src/sun_field.h"
+#include "src/terrain.h"
+
+#include <functional>
+#include <span>
+
+namespace demlight {
+
+/// Below this sun elevation everywhere (degrees) an instant is dark without any sweep: the disk
+/// radius (0.27°) plus the deepest terrain horizon a DEM plausibly gives a cell (~0.7° below
+/// level from a summit over curved earth) keeps every cell in shadow.
+inline constexpr double kSunDownElevationDeg = -1.0;
+
+/// Visibility at which a cell counts as lit for first_lit / last_lit: half the sun's disk above
+/// the cell's horizon (the cell's own sunrise / sunset, as SPA's is for the sun's centre).
+inline constexpr double kLitVisibility = 0.5;
+
+/// One instant of the sequence.
+struct SunInstant {
+    double hours = 0;       ///< time of the instant (hours from any fixed origin), increasing
+    double clockHours = 0;  ///< local clock time of the instant (hours, e.g. 6.25 = 06:15)
+};
+
+struct SunHoursParams {
+    SunFrameParams frame;  ///< sun disk, search distance, refraction, threads
+};
+
+struct SunHoursMaps {
+    Grid<float> sunHours;        ///< ∫ visibility dt (hours); NaN at nodata
+    Grid<float> sunIrradiation;  ///< ∫ normalised irradiance dt (normalised irradiance × hours)
+    Grid<float> firstLitClock;   ///< local clock hours when visibility first reaches 0.5; NaN if never
+    Grid<float> lastLitClock;    ///< local clock hours when visibility last drops below 0.5; NaN if never
+    std::size_t instantsSwept = 0;  ///< instants with the sun up somewhere (each costs a sweep)
+};
+
+/// Returns the sun across the DEM at instant i of the sequence.
+using SunFieldAt = std::function<SunField(std::size_t instantIndex)>;
+
+/// Integrates direct sun over `instants` (at least 2). first/last lit are interpolated linearly
+/// between samples where visibility crosses kLitVisibility; a cell lit at the first (last)
+/// instant gets that instant's clock time. Progress counts instants. Deterministic for any
+/// thread count.
+SunHoursMaps integrateSunHours(const Terrain& terrain, const Normals& normals,
+                               std::span<const SunInstant> instants, const SunFieldAt& fieldAt,
+                               const SunHoursParams& params, ProgressCounter* progress = nullptr);
+
+}  // namespace demlight
