@@ -1,0 +1,88 @@
+// The preview rig: how demlight shows a person a lit DEM (DESIGN §3, after Quilez, "outdoors
+// lighting", seed 004). Three lights in linear space on an albedo of about 0.2:
+//   key    sun · max(0, N·s) · visibility^(1, 1.2, 1.5)   (coloured penumbra; no occlusion)
+//   fill   sky colour · sky light (Lambert-weighted visible sky K, lighting/sky.h)
+//   bounce bounce colour · max(0, N·b) · sky light, b = horizontal direction opposite the sun
+// and gamma 1/2.2 only at the very end. Below the horizon the key and bounce fade out and the
+// sky fill dims to a twilight floor, so a night picture still shows the relief, never black.
+#pragma once
+
+#include "lighting/surface.h"
+#include "src/grid.h"
+#include "src/progress.h"
+#include "src/terrain.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace demlight {
+
+/// Horizon directions the preview's sky fill is integrated over by default: enough for a
+/// picture (K within a few per cent of 64 directions; tests/sky_test.cpp measures the error).
+inline constexpr std::size_t kPreviewSkyDirections = 16;
+
+/// Sky light for the fill and bounce: K(p) (Lambert-weighted visible sky in the normal
+/// hemisphere, lighting/sky.h) from `directions` exact horizon sweeps out to maxDistanceM
+/// (<= 0: defaultMaxDistanceM). NaN at nodata. Progress counts cells swept.
+Grid<float> previewSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
+                            double maxDistanceM, double refraction, int threads,
+                            ProgressCounter* progress = nullptr);
+
+/// Linear RGB.
+struct Rgb {
+    double r = 0, g = 0, b = 0;
+};
+
+/// Sky fill at night as a fraction of the daytime fill: keeps the relief readable.
+inline constexpr double kNightSkyFloor = 0.25;
+/// Sun elevations (degrees) between which the sky fill fades from night floor to full day
+/// (civil-to-nautical twilight).
+inline constexpr double kTwilightLowDeg = -12.0, kTwilightHighDeg = 0.0;
+/// Sun elevations (degrees) between which the bounce light fades in (it is lit terrain's glow).
+inline constexpr double kBounceLowDeg = -1.0, kBounceHighDeg = 3.0;
+
+struct PreviewParams {
+    Rgb sunColor{1.64, 1.27, 0.99};     ///< key light (Quilez)
+    Rgb skyColor{0.16, 0.20, 0.28};     ///< sky fill (Quilez)
+    Rgb bounceColor{0.40, 0.28, 0.20};  ///< bounce fill (Quilez)
+    Rgb penumbraExponent{1.0, 1.2, 1.5};  ///< coloured penumbra: visibility^e per channel
+    double albedo = 0.2;      ///< linear albedo when no colour raster is given
+    double exposure = 1.0;    ///< multiplies linear radiance before gamma
+    double gamma = 2.2;       ///< display gamma (the output is linear^(1/gamma))
+};
+
+/// Scale of the sky fill for a sun elevation (degrees): kNightSkyFloor at or below
+/// kTwilightLowDeg, 1 at or above kTwilightHighDeg, smoothstep in between.
+double twilightSkyScale(double sunElevationDeg);
+/// Scale of the bounce light for a sun elevation (degrees), smoothstep 0..1.
+double bounceScale(double sunElevationDeg);
+
+/// Linear radiance of one cell. normal: unit ENU; albedo: linear; sunVisibility in [0, 1];
+/// sun at azimuth/elevation (degrees); skyLight: K in [0, 1] (or (1 + N_up)/2 without horizons).
+Rgb previewRadiance(const Enu& normal, const Rgb& albedo, double sunVisibility,
+                    double sunAzimuthDeg, double sunElevationDeg, double skyLight,
+                    const PreviewParams& params);
+
+/// Display value of a linear radiance: clamp((exposure · x)^(1/gamma), 0, 1) per channel.
+Rgb toDisplay(const Rgb& linear, const PreviewParams& params);
+
+/// An 8-bit RGBA picture, row-major, row 0 at the top (north), 4 bytes per pixel.
+struct Image8 {
+    std::size_t width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;
+};
+
+/// Neutral grey given to nodata pixels (alpha 0 where the format has alpha).
+inline constexpr std::uint8_t kNodataGrey = 128;
+
+/// Renders every cell (one pixel per cell). sunVisibility and skyLight have the normals' shape;
+/// albedoRgb is empty (use params.albedo) or three linear grids of that shape. Nodata cells
+/// (NaN normal or visibility) get kNodataGrey with alpha 0; NaN albedo falls back to
+/// params.albedo. Parallel over rows; deterministic.
+Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
+                     const Grid<float>& skyLight, const std::vector<Grid<float>>& albedoRgb,
+                     double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params,
+                     int threads = 0);
+
+}  // namespace demlight

@@ -1,0 +1,162 @@
+// End-to-end tests of `demlight render`, `timelapse` and `sunhours`: run the built binary
+// (DEMLIGHT_CLI_PATH) on the Mount St Helens sample and check the pictures it writes.
+#include "lighting/preview.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kDem = std::string(DEMLIGHT_SAMPLES_DIR) + "/mount_st_helens_1980_usgs.dem";
+constexpr std::uint32_t kDemWidth = 327, kDemHeight = 468;
+
+/// Runs `demlight -q ARGS`; returns the exit code, stderr appended to `err`.
+int runCli(const std::string& args, std::string* err = nullptr) {
+    const fs::path errPath = fs::temp_directory_path() / ("demlight_render_test_" + std::to_string(::getpid()) + ".err");
+    const std::string cmd = std::string("'") + DEMLIGHT_CLI_PATH + "' -q " + args + " 2>'" +
+                            errPath.string() + "'";
+    const int status = std::system(cmd.c_str());
+    if (err) {
+        std::ifstream f(errPath);
+        std::stringstream ss;
+        ss << f.rdbuf();
+        *err = ss.str();
+    }
+    fs::remove(errPath);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// A fresh scratch folder per test.
+fs::path scratch(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("demlight_render_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::vector<unsigned char> readFile(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+std::uint32_t bigEndian32(const unsigned char* p) {
+    return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+}
+
+/// Checks the PNG signature and that the IHDR chunk gives the DEM's size.
+void expectPngOfDemSize(const fs::path& p) {
+    const auto bytes = readFile(p);
+    ASSERT_GE(bytes.size(), 24u) << p;
+    const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    EXPECT_TRUE(std::equal(signature, signature + 8, bytes.begin())) << p;
+    EXPECT_EQ(std::string(bytes.begin() + 12, bytes.begin() + 16), "IHDR");
+    EXPECT_EQ(bigEndian32(&bytes[16]), kDemWidth);
+    EXPECT_EQ(bigEndian32(&bytes[20]), kDemHeight);
+}
+
+/// Pixels of a binary PPM (P6, maxval 255) as RGB bytes; width and height out.
+std::vector<unsigned char> readPpm(const fs::path& p, std::uint32_t& w, std::uint32_t& h) {
+    std::ifstream f(p, std::ios::binary);
+    std::string magic;
+    int maxval = 0;
+    f >> magic >> w >> h >> maxval;
+    f.get();
+    std::vector<unsigned char> px(std::size_t(w) * h * 3);
+    f.read(reinterpret_cast<char*>(px.data()), static_cast<std::streamsize>(px.size()));
+    EXPECT_EQ(magic, "P6");
+    EXPECT_EQ(maxval, 255);
+    EXPECT_TRUE(f.good());
+    return px;
+}
+
+// The rig's kernel: Quilez's numbers, gamma only at the end, night never black.
+TEST(PreviewRig, FlatCellUnderFullSunIsLinearKeyPlusFills) {
+    const demlight::PreviewParams p;
+    const demlight::Enu up{0, 0, 1};
+    const demlight::Rgb a{0.2, 0.2, 0.2};
+    // Zenith sun, open sky: key 1.64 + sky 0.16 (bounce is horizontal: N.b = 0 on flat ground).
+    const demlight::Rgb lin = demlight::previewRadiance(up, a, 1.0, 180.0, 90.0, 1.0, p);
+    EXPECT_NEAR(lin.r, 0.2 * (1.64 + 0.16), 1e-9);
+    EXPECT_NEAR(demlight::toDisplay(lin, p).r, std::pow(0.2 * 1.80, 1 / 2.2), 1e-9);
+    // Half-visible sun: the penumbra goes red (blue falls fastest).
+    const demlight::Rgb pen = demlight::previewRadiance(up, a, 0.5, 180.0, 90.0, 0.0, p);
+    EXPECT_NEAR(pen.r / (0.2 * 1.64), 0.5, 1e-9);
+    EXPECT_NEAR(pen.b / (0.2 * 0.99), std::pow(0.5, 1.5), 1e-9);
+    // Deep night: only the twilight floor of the sky fill remains.
+    const demlight::Rgb night = demlight::previewRadiance(up, a, 0.0, 0.0, -40.0, 1.0, p);
+    EXPECT_NEAR(night.b, 0.2 * 0.28 * demlight::kNightSkyFloor, 1e-9);
+    EXPECT_GT(demlight::toDisplay(night, p).b, 0.1);
+}
+
+TEST(RenderCli, DayPngHasTheDemSize) {
+    const fs::path d = scratch("day");
+    std::string err;
+    ASSERT_EQ(runCli("render '" + kDem + "' -o '" + (d / "day.png").string() +
+                         "' --time 2024-06-21T09:00 --tz America/Los_Angeles",
+                     &err),
+              0)
+        << err;
+    expectPngOfDemSize(d / "day.png");
+    fs::remove_all(d);
+}
+
+// Guards "never black noise at night": twilight sky fill keeps the relief visible and smooth.
+TEST(RenderCli, NightImageIsNotBlack) {
+    const fs::path d = scratch("night");
+    std::string err;
+    ASSERT_EQ(runCli("render '" + kDem + "' -o '" + (d / "night.ppm").string() +
+                         "' --time 2024-06-21T23:30 --tz America/Los_Angeles",
+                     &err),
+              0)
+        << err;
+    std::uint32_t w = 0, h = 0;
+    const auto px = readPpm(d / "night.ppm", w, h);
+    ASSERT_EQ(w, kDemWidth);
+    ASSERT_EQ(h, kDemHeight);
+    // Valid cells: not the neutral nodata grey. Every one must be visibly above black.
+    std::size_t valid = 0, dark = 0;
+    for (std::size_t i = 0; i < px.size(); i += 3) {
+        if (px[i] == 128 && px[i + 1] == 128 && px[i + 2] == 128) continue;
+        ++valid;
+        if (px[i] + px[i + 1] + px[i + 2] < 15) ++dark;
+    }
+    EXPECT_GT(valid, std::size_t(w) * h / 2);
+    EXPECT_EQ(dark, 0u);
+    fs::remove_all(d);
+}
+
+TEST(RenderCli, TimeWithoutZoneFailsNamingIt) {
+    const fs::path d = scratch("nozone");
+    std::string err;
+    EXPECT_NE(runCli("render '" + kDem + "' -o '" + (d / "x.png").string() + "' --time 2024-06-21T09:00", &err), 0);
+    EXPECT_NE(err.find("zone"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(d / "x.png"));
+    fs::remove_all(d);
+}
+
+TEST(RenderCli, UnknownImageExtensionFails) {
+    const fs::path d = scratch("ext");
+    std::string err;
+    EXPECT_NE(runCli("render '" + kDem + "' -o '" + (d / "x.nosuchformat").string() +
+                         "' --time 2024-06-21T09:00Z",
+                     &err),
+              0);
+    EXPECT_NE(err.find("nosuchformat"), std::string::npos) << err;
+    fs::remove_all(d);
+}
+
+}  // namespace
