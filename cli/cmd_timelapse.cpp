@@ -1,8 +1,274 @@
-// Placeholder: the 'timelapse' subcommand is not registered yet (work in progress).
-#include "cli/commands.h"
+// demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D [--tz ZONE]):
+// a frame per instant. Per frame the sun is placed per region and swept exactly along its own
+// azimuth (lighting/sun_frame.h); the sky light K is computed once. Writes
+//   DIR/frame_NNN.tif  lightmaps: sun_irradiance, sun_visibility, sky_k (Float32, linear)
+//   DIR/frame_NNN.png  previews with the render rig (lighting/preview.h)
+//   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
+#include "cli/common.h"
+#include "cli/image_out.h"
+#include "cli/progress_bar.h"
+#include "geo/solar_position.h"
+#include "geo/sun_field.h"
+#include "geo/time.h"
+#include "lighting/preview.h"
+#include "lighting/sun_frame.h"
+#include "src/error.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <sstream>
 
 namespace demlight::cli {
+namespace {
 
-void registerTimelapse(CLI::App&, CliContext&) {}
+namespace fs = std::filesystem;
+
+struct TimelapseOptions {
+    std::string demPath;
+    std::string outDir;
+    SearchOptions search;
+    std::string start, end, date, tz;
+    std::string step = "15m";
+    std::string formats = "tif,png,gif";
+    int fps = 8;
+    std::size_t gifSize = 800;
+    std::size_t skyDirections = kPreviewSkyDirections;
+    double exposure = 1.0;
+    double albedo = PreviewParams{}.albedo;
+    std::string colorRaster;
+    double sunDiameterDeg = kSunDiameterDeg;
+};
+
+/// "15m", "1h", "90s", "1h30m", or a plain number of minutes. Throws Error naming --step.
+std::chrono::milliseconds parseStep(const std::string& text) {
+    using namespace std::chrono;
+    auto bad = [&] {
+        return Error("--step '" + text + "': expected a duration like 15m, 1h, 90s or 1h30m");
+    };
+    if (text.empty()) throw bad();
+    double totalMs = 0;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        std::size_t used = 0;
+        double v;
+        try {
+            v = std::stod(text.substr(i), &used);
+        } catch (const std::exception&) {
+            throw bad();
+        }
+        i += used;
+        char unit = i < text.size() ? text[i] : 'm';
+        if (i < text.size()) ++i;
+        const double scale = unit == 'h' ? 3.6e6 : unit == 'm' ? 6e4 : unit == 's' ? 1e3 : -1;
+        if (scale < 0 || !(v >= 0)) throw bad();
+        totalMs += v * scale;
+    }
+    if (!(totalMs >= 1000)) throw Error("--step '" + text + "': must be at least 1 s");
+    return milliseconds(static_cast<long long>(std::llround(totalMs)));
+}
+
+std::set<std::string> parseFormats(const std::string& text) {
+    std::set<std::string> out;
+    std::stringstream ss(text);
+    std::string f;
+    while (std::getline(ss, f, ',')) {
+        if (f != "tif" && f != "png" && f != "gif")
+            throw Error("--formats: unknown format '" + f + "'; expected a list of tif, png, gif");
+        out.insert(f);
+    }
+    if (out.empty()) throw Error("--formats: give at least one of tif, png, gif");
+    return out;
+}
+
+std::string frameName(std::size_t i, std::size_t count, const std::string& ext) {
+    const int digits = std::max(3, static_cast<int>(std::to_string(count - 1).size()));
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "frame_%0*zu.", digits, i);
+    return buf + ext;
+}
+
+struct Frames {
+    std::vector<UtcInstant> instants;
+    TimeZoneSpec zone;
+    std::string description;  // how the sequence was chosen
+};
+
+Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
+    const auto step = parseStep(o.step);
+    Frames f;
+    UtcInstant t0, t1;
+    if (!o.date.empty()) {
+        if (!o.start.empty() || !o.end.empty())
+            throw Error("timelapse: give either --date or --start/--end, not both");
+        f.zone = TimeZoneSpec::fromName(o.tz);
+        const LocalDay day = localDay(parseDate(o.date), f.zone);
+        // Sunrise to sunset at the DEM centre (SPA A.2); the whole day on polar day.
+        const auto [lat, lon] = cellLatLon(dem, dem.terrain.width() / 2.0, dem.terrain.height() / 2.0);
+        SolarSite site;
+        site.latitudeDeg = lat;
+        site.longitudeDeg = lon;
+        const SunEvents ev = sunEvents(site, day.startUtc);
+        if (ev.kind == DayKind::PolarNight)
+            throw Error("--date " + o.date + ": the sun does not rise at the DEM centre (polar night); use --start/--end");
+        t0 = ev.sunrise.value_or(day.startUtc);
+        t1 = ev.sunset.value_or(day.endUtc);
+        f.description = ev.kind == DayKind::PolarDay ? "local day (polar day)" : "sunrise to sunset";
+    } else {
+        if (o.start.empty() || o.end.empty())
+            throw Error("timelapse: give --start T and --end T (with --step), or --date D");
+        const ZonedInstant a = parseZonedInstant(o.start, o.tz);
+        const ZonedInstant b = parseZonedInstant(o.end, o.tz);
+        if (!(b.utc > a.utc)) throw Error("timelapse: --end must be after --start");
+        f.zone = a.zone;
+        t0 = a.utc;
+        t1 = b.utc;
+        f.description = "start to end";
+    }
+    for (UtcInstant t = t0; t <= t1; t += step) f.instants.push_back(t);
+    if (f.instants.size() > 100000) throw Error("--step " + o.step + ": more than 100000 frames");
+    return f;
+}
+
+void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
+    const std::set<std::string> formats = parseFormats(o.formats);
+    const Dem dem = loadDem(o.demPath);
+    const Terrain& t = dem.terrain;
+    const Frames frames = chooseFrames(o, dem);
+    std::error_code ec;
+    fs::create_directories(o.outDir, ec);
+    if (!fs::is_directory(o.outDir))
+        throw Error("-o " + o.outDir + ": cannot create the output folder");
+    checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.demPath);
+    std::vector<Grid<float>> albedo;
+    if (!o.colorRaster.empty()) albedo = loadAlbedoRaster(o.colorRaster, dem, "--color-raster");
+
+    using clock = std::chrono::steady_clock;
+    const auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
+    const auto tStart = clock::now();
+    const std::size_t n = frames.instants.size();
+    ProgressBar bar(!ctx.quiet);
+    ProgressCounter counter(bar.callback(), "timelapse", t.heightsM.size() * (o.skyDirections + n));
+
+    // Sky once.
+    const Normals normals = computeNormals(t, o.search.threads);
+    const Grid<float> sky = previewSkyLight(t, normals, o.skyDirections,
+                                            o.search.maxDistanceM.value_or(0.0),
+                                            o.search.refraction, o.search.threads, &counter);
+    const double skySeconds = seconds(clock::now() - tStart);
+
+    SunFrameParams sp;
+    sp.sunDiameterDeg = o.sunDiameterDeg;
+    sp.refraction = o.search.refraction;
+    sp.threads = o.search.threads;
+    sp.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    PreviewParams pp;
+    pp.albedo = o.albedo;
+    pp.exposure = o.exposure;
+    std::unique_ptr<GifWriter> gif;
+    if (formats.count("gif"))
+        gif = std::make_unique<GifWriter>((fs::path(o.outDir) / "timelapse.gif").string(), o.fps);
+
+    double computeS = 0, writeS = 0;
+    std::size_t sunUp = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const UtcInstant when = frames.instants[i];
+        const auto c0 = clock::now();
+        const SunField field = computeSunField(dem, when, SolarSite{}, SpaOptions{});
+        const SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
+        if (!frame.tiles.empty()) ++sunUp;
+        Image8 preview;
+        if (formats.count("png") || gif)
+            preview = renderPreview(normals, frame.light.visibility, sky, albedo,
+                                    field.centreAzimuthDeg, field.centreElevationDeg, pp,
+                                    o.search.threads);
+        const auto c1 = clock::now();
+        computeS += seconds(c1 - c0);
+        if (formats.count("tif")) {
+            const std::map<std::string, std::string> meta = {
+                {"DEMLIGHT_PRODUCT", "timelapse frame"},
+                {"DEMLIGHT_FRAME", std::to_string(i)},
+                {"DEMLIGHT_TIME_UTC", formatInstant(when, std::string())},
+                {"DEMLIGHT_TIME_LOCAL", formatInstant(when, frames.zone)},
+                {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
+                {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
+                {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
+                {"DEMLIGHT_METHOD", "sweep"},
+                {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
+                {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
+                {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(o.skyDirections)},
+            };
+            OutputOptions out;
+            out.path = (fs::path(o.outDir) / frameName(i, n, "tif")).string();
+            writeRaster(out.path,
+                        {{&frame.light.irradiance, nullptr, "sun_irradiance",
+                          "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"},
+                         {&frame.light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"},
+                         {&sky, nullptr, "sky_k",
+                          "normalised sky irradiance K under a unit uniform sky (0-1)"}},
+                        dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
+        }
+        if (formats.count("png"))
+            writeImage((fs::path(o.outDir) / frameName(i, n, "png")).string(), preview);
+        if (gif) gif->add(downsample(preview, o.gifSize));
+        writeS += seconds(clock::now() - c1);
+        counter.throwIfCancelled();
+    }
+    if (gif) gif->finish();
+    bar.finish();
+    const double total = seconds(clock::now() - tStart);
+    note(ctx, "frames: " + std::to_string(n) + " (" + frames.description + ", " +
+                  formatInstant(frames.instants.front(), frames.zone) + " .. " +
+                  formatInstant(frames.instants.back(), frames.zone) + ", step " + o.step +
+                  "), " + std::to_string(sunUp) + " with the sun up");
+    note(ctx, "time: sky " + formatNumber(std::round(skySeconds * 1000)) + " ms once (" +
+                  std::to_string(o.skyDirections) + " directions); per frame " +
+                  formatNumber(std::round(computeS * 1000 / n)) + " ms compute + " +
+                  formatNumber(std::round(writeS * 1000 / n)) + " ms writing; total " +
+                  formatNumber(std::round(total * 100) / 100) + " s");
+    note(ctx, "wrote " + o.outDir + ": " +
+                  (formats.count("tif") ? "frame_*.tif (sun_irradiance, sun_visibility, sky_k) " : "") +
+                  (formats.count("png") ? "frame_*.png " : "") + (gif ? "timelapse.gif" : ""));
+}
+
+}  // namespace
+
+void registerTimelapse(CLI::App& app, CliContext& ctx) {
+    auto o = std::make_shared<TimelapseOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "timelapse", "A lightmap and preview per instant, and an animated GIF");
+    cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
+    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing)")->required();
+    cmd->add_option("--start", o->start, "First instant (ISO 8601 with offset, or local with --tz)");
+    cmd->add_option("--end", o->end, "Last instant (inclusive when on a step)");
+    cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
+    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (default UTC)");
+    cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (plain number = minutes)")
+        ->capture_default_str();
+    cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif")
+        ->capture_default_str();
+    cmd->add_option("--fps", o->fps, "GIF frames per second")->check(CLI::Range(1, 100))->capture_default_str();
+    cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
+        ->check(CLI::Range(16, 100000))
+        ->capture_default_str();
+    cmd->add_option("--sky-directions", o->skyDirections, "Horizon directions for the sky term")
+        ->check(CLI::Range(1, 360))
+        ->capture_default_str();
+    cmd->add_option("--color-raster", o->colorRaster, "RGB raster used as preview albedo")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--albedo", o->albedo, "Linear preview albedo without a colour raster")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--exposure", o->exposure, "Preview exposure (multiplies linear light)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    cmd->add_option("--sun-diameter", o->sunDiameterDeg, "Angular diameter of the sun disk (degrees)")
+        ->check(CLI::Range(0.0, 20.0))
+        ->capture_default_str();
+    addSearchOptions(cmd, o->search);
+    cmd->callback([o, &ctx] { runTimelapse(*o, ctx); });
+}
 
 }  // namespace demlight::cli

@@ -10,6 +10,7 @@
 #include <cctype>
 #include <filesystem>
 #include <memory>
+#include <utility>
 #include <unistd.h>
 
 namespace demlight::cli {
@@ -108,33 +109,88 @@ void writeImage(const std::string& path, const Image8& image) {
     commit(tmp, path);
 }
 
-void writeAnimatedGif(const std::string& path, const std::vector<Image8>& frames,
-                      int framesPerSecond) {
-    if (frames.empty()) throw Error(path + ": no frames to write");
-    auto out = OIIO::ImageOutput::create("gif");
-    if (!out) throw Error(path + ": this OpenImageIO cannot write GIF");
-    if (!out->supports("multiimage") || !out->supports("appendsubimage"))
-        throw Error(path + ": this OpenImageIO's GIF writer cannot write animations");
-    // RGB frames: GIF transparency is one palette entry; nodata shows as neutral grey.
-    std::vector<OIIO::ImageSpec> specs(
-        frames.size(), OIIO::ImageSpec(static_cast<int>(frames[0].width),
-                                       static_cast<int>(frames[0].height), 3, OIIO::TypeDesc::UINT8));
-    const int fps[2] = {framesPerSecond, 1};
-    for (auto& s : specs) {
-        s.attribute("FramesPerSecond", OIIO::TypeRational, fps);
-        s.attribute("oiio:LoopCount", 0);
-        s.attribute("gif:LoopCount", 0);
+struct GifWriter::Impl {
+    std::unique_ptr<OIIO::ImageOutput> out;
+    OIIO::ImageSpec spec;
+    fs::path tmp;
+    bool open = false;
+};
+
+GifWriter::GifWriter(std::string path, int framesPerSecond)
+    : path_(std::move(path)), fps_(framesPerSecond), impl_(std::make_unique<Impl>()) {
+    impl_->out = OIIO::ImageOutput::create("gif");
+    if (!impl_->out) throw Error(path_ + ": this OpenImageIO cannot write GIF");
+    if (!impl_->out->supports("appendsubimage"))
+        throw Error(path_ + ": this OpenImageIO's GIF writer cannot write animations");
+    impl_->tmp = tempPathFor(path_);
+}
+
+GifWriter::~GifWriter() {
+    if (impl_ && impl_->open) {
+        impl_->out->close();
+        std::error_code ec;
+        fs::remove(impl_->tmp, ec);
     }
-    const fs::path tmp = tempPathFor(path);
-    if (!out->open(tmp.string(), static_cast<int>(specs.size()), specs.data())) fail(*out, tmp, path);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-        if (i > 0 && !out->open(tmp.string(), specs[i], OIIO::ImageOutput::AppendSubimage))
-            fail(*out, tmp, path);
-        const std::vector<std::uint8_t> rgb = dropAlpha(frames[i]);
-        if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(*out, tmp, path);
+}
+
+void GifWriter::add(const Image8& frame) {
+    if (frames_ == 0) {
+        impl_->spec = OIIO::ImageSpec(static_cast<int>(frame.width), static_cast<int>(frame.height),
+                                      3, OIIO::TypeDesc::UINT8);
+        const int fps[2] = {fps_, 1};
+        impl_->spec.attribute("FramesPerSecond", OIIO::TypeRational, fps);
+        impl_->spec.attribute("oiio:LoopCount", 0);
+        if (!impl_->out->open(impl_->tmp.string(), impl_->spec)) fail(*impl_->out, impl_->tmp, path_);
+        impl_->open = true;
+    } else {
+        if (static_cast<int>(frame.width) != impl_->spec.width ||
+            static_cast<int>(frame.height) != impl_->spec.height)
+            throw Error(path_ + ": GIF frames differ in size");
+        if (!impl_->out->open(impl_->tmp.string(), impl_->spec, OIIO::ImageOutput::AppendSubimage))
+            fail(*impl_->out, impl_->tmp, path_);
     }
-    if (!out->close()) fail(*out, tmp, path);
-    commit(tmp, path);
+    const std::vector<std::uint8_t> rgb = dropAlpha(frame);
+    if (!impl_->out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(*impl_->out, impl_->tmp, path_);
+    ++frames_;
+}
+
+void GifWriter::finish() {
+    if (frames_ == 0) throw Error(path_ + ": no frames to write");
+    impl_->open = false;
+    if (!impl_->out->close()) fail(*impl_->out, impl_->tmp, path_);
+    commit(impl_->tmp, path_);
+}
+
+Image8 downsample(const Image8& image, std::size_t maxSide) {
+    const std::size_t longer = std::max(image.width, image.height);
+    if (maxSide == 0 || longer <= maxSide) return image;
+    const std::size_t f = (longer + maxSide - 1) / maxSide;
+    Image8 out;
+    out.width = (image.width + f - 1) / f;
+    out.height = (image.height + f - 1) / f;
+    out.rgba.assign(out.width * out.height * 4, 0);
+    for (std::size_t r = 0; r < out.height; ++r)
+        for (std::size_t c = 0; c < out.width; ++c) {
+            unsigned sum[4] = {0, 0, 0, 0};
+            unsigned n = 0, all = 0;
+            for (std::size_t y = r * f; y < std::min(image.height, (r + 1) * f); ++y)
+                for (std::size_t x = c * f; x < std::min(image.width, (c + 1) * f); ++x) {
+                    const std::uint8_t* p = image.rgba.data() + (y * image.width + x) * 4;
+                    ++all;
+                    if (p[3] == 0) continue;
+                    for (int k = 0; k < 4; ++k) sum[k] += p[k];
+                    ++n;
+                }
+            std::uint8_t* q = out.rgba.data() + (r * out.width + c) * 4;
+            if (n == 0) {
+                q[0] = q[1] = q[2] = kNodataGrey;
+                q[3] = 0;
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) q[k] = static_cast<std::uint8_t>((sum[k] + n / 2) / n);
+            q[3] = static_cast<std::uint8_t>((sum[3] + all / 2) / all);
+        }
+    return out;
 }
 
 }  // namespace demlight::cli

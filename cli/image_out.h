@@ -5,6 +5,7 @@
 #include "geo/dem.h"
 #include "lighting/preview.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,30 @@ void checkImagePath(const std::string& path);
 /// neutral grey the renderer put there). Throws Error naming the path on failure.
 void writeImage(const std::string& path, const Image8& image);
 
-/// Writes frames (same size) as an animated GIF looping forever at `framesPerSecond`.
-void writeAnimatedGif(const std::string& path, const std::vector<Image8>& frames,
-                      int framesPerSecond);
+/// Streams an animated GIF frame by frame (so long sequences of big frames never sit in
+/// memory together). Written under a temporary name; finish() renames it into place, and
+/// destruction without finish() removes it.
+class GifWriter {
+public:
+    GifWriter(std::string path, int framesPerSecond);
+    ~GifWriter();
+    GifWriter(const GifWriter&) = delete;
+    GifWriter& operator=(const GifWriter&) = delete;
+    /// Adds a frame; every frame must have the first frame's size. RGB only (no alpha).
+    void add(const Image8& frame);
+    void finish();
+    std::size_t frames() const { return frames_; }
+
+private:
+    struct Impl;
+    std::string path_;
+    int fps_;
+    std::size_t frames_ = 0;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Box-filtered copy of `image` whose longer side is at most maxSide pixels (integer factor;
+/// returned unchanged when already small enough). Transparent pixels are left out of the mean.
+Image8 downsample(const Image8& image, std::size_t maxSide);
 
 }  // namespace demlight::cli

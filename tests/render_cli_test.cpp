@@ -139,6 +139,38 @@ TEST(RenderCli, NightImageIsNotBlack) {
     fs::remove_all(d);
 }
 
+// Frames, previews and the GIF: sizes match the DEM (GIF logical screen, little endian).
+TEST(TimelapseCli, WritesFramesPreviewsAndGif) {
+    const fs::path d = scratch("timelapse");
+    std::string err;
+    ASSERT_EQ(runCli("timelapse '" + kDem + "' -o '" + (d / "out").string() +
+                         "' --start 2024-06-21T06:00 --end 2024-06-21T07:00 --step 30m "
+                         "--tz America/Los_Angeles --sky-directions 4",
+                     &err),
+              0)
+        << err;
+    for (const char* f : {"frame_000.tif", "frame_001.tif", "frame_002.tif", "frame_003.tif"})
+        EXPECT_EQ(fs::exists(d / "out" / f), std::string(f) != "frame_003.tif") << f;
+    expectPngOfDemSize(d / "out" / "frame_002.png");
+    const auto gif = readFile(d / "out" / "timelapse.gif");
+    ASSERT_GE(gif.size(), 10u);
+    EXPECT_EQ(std::string(gif.begin(), gif.begin() + 3), "GIF");
+    EXPECT_EQ(gif[6] | (gif[7] << 8), int(kDemWidth));
+    EXPECT_EQ(gif[8] | (gif[9] << 8), int(kDemHeight));
+    fs::remove_all(d);
+}
+
+TEST(TimelapseCli, BadStepNamesTheOption) {
+    const fs::path d = scratch("badstep");
+    std::string err;
+    EXPECT_NE(runCli("timelapse '" + kDem + "' -o '" + (d / "out").string() +
+                         "' --start 2024-06-21T06:00Z --end 2024-06-21T07:00Z --step 5x",
+                     &err),
+              0);
+    EXPECT_NE(err.find("--step"), std::string::npos) << err;
+    fs::remove_all(d);
+}
+
 TEST(RenderCli, TimeWithoutZoneFailsNamingIt) {
     const fs::path d = scratch("nozone");
     std::string err;
