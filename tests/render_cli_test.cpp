@@ -1,5 +1,6 @@
 // End-to-end tests of `demlight render`, `timelapse` and `sunhours`: run the built binary
 // (DEMLIGHT_CLI_PATH) on the Mount St Helens sample and check the pictures it writes.
+#include "geo/raster.h"
 #include "lighting/preview.h"
 
 #include <gtest/gtest.h>
@@ -168,6 +169,22 @@ TEST(TimelapseCli, BadStepNamesTheOption) {
                      &err),
               0);
     EXPECT_NE(err.find("--step"), std::string::npos) << err;
+    fs::remove_all(d);
+}
+
+TEST(LightCli, OneBandOrThreeWithColours) {
+    const fs::path d = scratch("light");
+    std::string err;
+    const std::string base = "light '" + kDem + "' --time 2024-06-21T09:00 --tz America/Los_Angeles "
+                             "--sky-directions 4 -o '";
+    ASSERT_EQ(runCli(base + (d / "l1.tif").string() + "'", &err), 0) << err;
+    const demlight::RasterSummary one = demlight::inspectRaster((d / "l1.tif").string());
+    EXPECT_EQ(one.width, kDemWidth);
+    EXPECT_EQ(one.height, kDemHeight);
+    EXPECT_EQ(one.descriptions, std::vector<std::string>{"light"});
+    ASSERT_EQ(runCli(base + (d / "l3.tif").string() + "' --sun-color 1,0.9,0.8", &err), 0) << err;
+    EXPECT_EQ(demlight::inspectRaster((d / "l3.tif").string()).descriptions,
+              (std::vector<std::string>{"light_r", "light_g", "light_b"}));
     fs::remove_all(d);
 }
 
