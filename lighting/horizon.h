@@ -81,9 +81,9 @@ double defaultMaxDistanceM(const Terrain& terrain);
 inline constexpr double kDefaultLowestElevationDeg = 2.0;
 
 /// The direction tolerance used by the sweep (degrees): params.directionToleranceDeg if > 0, else
-/// atan(0.5 cell / reach), reach = min(maxDistanceM, DEM diagonal), clamped to [0.005°, 0.5°]:
-/// the swept line then stays within half a cell of the true line over the whole search distance,
-/// so the direction error is below what the grid resolves (0.02° for 30 m cells and 43 km).
+/// atan(1 cell / reach), reach = min(maxDistanceM, DEM diagonal), clamped to [0.01°, 0.5°]: the
+/// swept line then stays within a cell of the true line over the whole search distance (0.05°
+/// for 30 m cells and 34 km). Each extra region costs a sweep of its own (see sweepRegions).
 double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params);
 
 /// A region of the output swept with one straight grid direction.

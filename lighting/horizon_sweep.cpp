@@ -25,8 +25,8 @@ constexpr std::size_t kMinRegionCells = 8;
 
 /// Automatic direction tolerance: the swept line may drift this many cells sideways from the
 /// true line at the search distance; clamped to these bounds (degrees).
-constexpr double kLateralBudgetCells = 0.5;
-constexpr double kMinAutoToleranceDeg = 0.005;
+constexpr double kLateralBudgetCells = 1.0;
+constexpr double kMinAutoToleranceDeg = 0.01;
 constexpr double kMaxAutoToleranceDeg = 0.5;
 
 std::size_t clampRow(double row, std::size_t height) {
