@@ -113,8 +113,9 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
         const SunEvents ev = sunEvents(site, day.startUtc);
         if (ev.kind == DayKind::PolarNight)
             throw Error("--date " + o.date + ": the sun does not rise at the DEM centre (polar night); use --start/--end");
-        t0 = ev.sunrise.value_or(day.startUtc);
-        t1 = ev.sunset.value_or(day.endUtc);
+        // Whole seconds: frame times read cleanly and the sun is up by then.
+        t0 = std::chrono::ceil<std::chrono::seconds>(ev.sunrise.value_or(day.startUtc));
+        t1 = std::chrono::floor<std::chrono::seconds>(ev.sunset.value_or(day.endUtc));
         f.description = ev.kind == DayKind::PolarDay ? "local day (polar day)" : "sunrise to sunset";
     } else {
         if (o.start.empty() || o.end.empty())
