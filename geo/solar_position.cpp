@@ -438,10 +438,11 @@ SunEvents sunEvents(const SolarSite& site, UtcInstant dayStartUtc, const SpaOpti
     // A.2.5-A.2.7: transit, rise, set fractions in [0, 1).
     const double m[3] = {wrapUnit(m0), wrapUnit(m0 - h0Deg / 360.0), wrapUnit(m0 + h0Deg / 360.0)};
 
-    // A.2.10: interpolation coefficients; a jump larger than 2° is a 360° wrap of α.
-    const auto limitJump = [](double d) { return std::abs(d) > 2.0 ? wrapUnit(d) : d; };
-    const double aA = limitJump(alpha[1] - alpha[0]), bA = limitJump(alpha[2] - alpha[1]);
-    const double aD = limitJump(delta[1] - delta[0]), bD = limitJump(delta[2] - delta[1]);
+    // A.2.10: interpolation coefficients. α changes about 1°/day; a difference near ±360° is
+    // α wrapping through 0 (the report limits such values to [0, 1); reducing to [-180, 180)
+    // gives the true difference whatever the daily rate).
+    const double aA = wrap180(alpha[1] - alpha[0]), bA = wrap180(alpha[2] - alpha[1]);
+    const double aD = delta[1] - delta[0], bD = delta[2] - delta[1];
     const double cA = bA - aA, cD = bD - aD;
 
     double hPrime[3], deltaPrime[3], hDeg[3];
