@@ -17,11 +17,11 @@ constexpr double kCarriedNodataMagnitude = 10000.0;
 
 void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
     cmd->add_option("-o,--output", o.path, "Output raster path")->required();
-    cmd->add_option("--of", o.format, "Output format: GTiff (tiled, DEFLATE) or COG")
+    cmd->add_option("--of", o.format, "Output format (also -of): GTiff (tiled, DEFLATE) or COG")
         ->check(CLI::IsMember({"GTiff", "COG"}, CLI::ignore_case))
         ->transform([](std::string s) { return (s == "cog" || s == "COG") ? "COG" : "GTiff"; });
     cmd->add_option("--co", o.creationOptions,
-                    "GDAL creation option KEY=VALUE (repeatable), e.g. --co COMPRESS=ZSTD");
+                    "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=ZSTD");
 }
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {

@@ -3,7 +3,10 @@
 #include "cli/commands.h"
 #include "src/error.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 #include <exception>
 #include <iostream>
 
@@ -30,8 +33,14 @@ int main(int argc, char** argv) {
     cli::registerTimelapse(app, ctx);
     cli::registerSunhours(app, ctx);
 
+    // GDAL spells these with one dash (-of COG, -co KEY=VALUE); accept both spellings.
+    std::vector<std::string> args(argv + 1, argv + argc);
+    for (auto& a : args)
+        if (a == "-of" || a == "-co") a = "-" + a;
+    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
+
     try {
-        app.parse(argc, argv);
+        app.parse(args);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const Cancelled&) {

@@ -149,11 +149,12 @@ TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
     fs::create_directories(dir);
     const std::string out = (dir / "sun.tif").string();
     const auto r = runDemlight("-q sun " + kHelens + " -o " + out +
-                               " --time 2024-06-21T07:30 --tz America/Los_Angeles --of COG");
+                               " --time 2024-06-21T07:30 --tz America/Los_Angeles -of COG -co COMPRESS=ZSTD");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const RasterSummary s = inspectRaster(out);
     EXPECT_EQ(s.descriptions, (std::vector<std::string>{"sun_visibility", "sun_irradiance"}));
     EXPECT_EQ(s.imageStructure.at("LAYOUT"), "COG");
+    EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "ZSTD");
     EXPECT_EQ(s.metadata.at("DEMLIGHT_TIME_UTC"), "2024-06-21T14:30:00Z");
     // Sun near azimuth 76 deg, elevation 20 deg at 07:30 PDT at Mount St. Helens.
     EXPECT_NEAR(std::stod(s.metadata.at("DEMLIGHT_SUN_AZIMUTH_DEG")), 76.5, 0.5);

@@ -1,45 +1,17 @@
 // End-to-end tests of `demlight sunpos`: runs the built binary (DEMLIGHT_CLI_PATH).
+#include "cli_runner.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <array>
-#include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;  // stdout
-    std::string err;  // stderr
-};
+using demlight::testing::RunResult;
 
-std::string readAll(FILE* f) {
-    std::string s;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) s.append(buf.data(), n);
-    return s;
-}
-
-/// Runs `demlight sunpos ARGS` through the shell; stderr goes to a temporary file.
-RunResult runSunpos(const std::string& args) {
-    FILE* errFile = std::tmpfile();
-    const std::string errPath = "/proc/self/fd/" + std::to_string(fileno(errFile));
-    const std::string cmd =
-        std::string("'") + DEMLIGHT_CLI_PATH + "' sunpos " + args + " 2>" + errPath;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "", "popen failed"};
-    RunResult r;
-    r.out = readAll(pipe);
-    const int status = pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::rewind(errFile);
-    r.err = readAll(errFile);
-    std::fclose(errFile);
-    return r;
-}
+/// Runs `demlight sunpos ARGS`.
+RunResult runSunpos(const std::string& args) { return demlight::testing::runDemlight("sunpos " + args); }
 
 const char* kSpaCase =
     "--time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786 --elevation 1830.14 "
