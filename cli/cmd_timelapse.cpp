@@ -122,7 +122,7 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
             throw Error("timelapse: give --start T and --end T (with --step), or --date D");
         const ZonedInstant a = parseZonedInstant(o.start, o.tz);
         const ZonedInstant b = parseZonedInstant(o.end, o.tz);
-        if (!(b.utc > a.utc)) throw Error("timelapse: --end must be after --start");
+        if (b.utc < a.utc) throw Error("timelapse: --end is before --start");
         f.zone = a.zone;
         t0 = a.utc;
         t1 = b.utc;

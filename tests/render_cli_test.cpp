@@ -161,6 +161,66 @@ TEST(TimelapseCli, WritesFramesPreviewsAndGif) {
     fs::remove_all(d);
 }
 
+// A frame's sun bands equal `demlight sun` at the same instant (same driver, same sweeps).
+TEST(TimelapseCli, FramesMatchDemlightSun) {
+    const fs::path d = scratch("tlsun");
+    std::string err;
+    ASSERT_EQ(runCli("timelapse '" + kDem + "' -o '" + (d / "out").string() +
+                         "' --start 2024-06-21T07:30:00-07:00 --end 2024-06-21T07:30:00-07:00 "
+                         "--formats tif --sky-directions 1",
+                     &err),
+              0)
+        << err;
+    ASSERT_EQ(runCli("sun '" + kDem + "' -o '" + (d / "sun.tif").string() +
+                         "' --time 2024-06-21T07:30:00-07:00",
+                     &err),
+              0)
+        << err;
+    const demlight::RasterBand ref = demlight::readRasterBand(kDem);
+    const auto frame = demlight::readRasterResampled((d / "out" / "frame_000.tif").string(), ref.ref,
+                                                     kDemWidth, kDemHeight);
+    const auto sun = demlight::readRasterResampled((d / "sun.tif").string(), ref.ref, kDemWidth, kDemHeight);
+    ASSERT_EQ(frame.size(), 3u);
+    ASSERT_EQ(sun.size(), 2u);
+    std::size_t compared = 0;
+    for (std::size_t k = 0; k < frame[0].size(); ++k) {
+        const float fi = frame[0].data()[k], si = sun[1].data()[k];
+        const float fv = frame[1].data()[k], sv = sun[0].data()[k];
+        if (std::isnan(si) || std::isnan(fi)) {
+            EXPECT_EQ(std::isnan(si), std::isnan(fi)) << k;
+            continue;
+        }
+        ++compared;
+        ASSERT_NEAR(fi, si, 1e-5) << k;  // irradiance
+        ASSERT_NEAR(fv, sv, 1e-5) << k;  // visibility
+    }
+    EXPECT_GT(compared, frame[0].size() / 2);
+    fs::remove_all(d);
+}
+
+// Bands, names and plausible values of a summer day on the sample.
+TEST(SunhoursCli, WritesFourBands) {
+    const fs::path d = scratch("sunhours");
+    std::string err;
+    ASSERT_EQ(runCli("sunhours '" + kDem + "' -o '" + (d / "sh.tif").string() +
+                         "' --date 2024-06-21 --tz America/Los_Angeles --step 30",
+                     &err),
+              0)
+        << err;
+    const demlight::RasterSummary s = demlight::inspectRaster((d / "sh.tif").string());
+    EXPECT_EQ(s.descriptions,
+              (std::vector<std::string>{"sun_hours", "sun_irradiation", "first_lit", "last_lit"}));
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_STEP_MIN"), "30");
+    const demlight::RasterBand ref = demlight::readRasterBand(kDem);
+    const auto b = demlight::readRasterResampled((d / "sh.tif").string(), ref.ref, kDemWidth, kDemHeight);
+    const std::size_t centre = (kDemHeight / 2) * kDemWidth + kDemWidth / 2;
+    EXPECT_GT(b[0].data()[centre], 8.0f);   // hours of sun on the volcano in June
+    EXPECT_LT(b[0].data()[centre], 15.6f);  // at most the astronomical day (sunrise 05:17, sunset 20:47)
+    EXPECT_GT(b[2].data()[centre], 5.0f);   // first lit after local sunrise
+    EXPECT_LT(b[3].data()[centre], 21.0f);  // last lit before local sunset
+    fs::remove_all(d);
+}
+
 TEST(TimelapseCli, BadStepNamesTheOption) {
     const fs::path d = scratch("badstep");
     std::string err;
