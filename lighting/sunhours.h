@@ -19,9 +19,11 @@
 
 namespace demlight {
 
-/// Below this sun elevation everywhere (degrees) an instant is dark without any sweep: the disk
-/// radius (0.27°) plus the deepest terrain horizon a DEM plausibly gives a cell (~0.7° below
-/// level from a summit over curved earth) keeps every cell in shadow.
+/// Below this sun elevation everywhere (degrees) an instant is dark without any sweep.
+/// computeSunFrame already treats the sun as set once its upper limb is below the level horizon
+/// everywhere (elevation < -0.27°), so this cut-off loses nothing it would have computed; it only
+/// saves the frame set-up. (A cell on a steep slope at a summit could in reality see a sun a
+/// little below level; neither driver models that.)
 inline constexpr double kSunDownElevationDeg = -1.0;
 
 /// Visibility at which a cell counts as lit for first_lit / last_lit: half the sun's disk above
