@@ -11,7 +11,9 @@
 #include "geo/sun_field.h"
 #include "geo/time.h"
 #include "lighting/preview.h"
+#include "lighting/sky.h"
 #include "lighting/sun_frame.h"
+#include "lighting/sunhours.h"
 #include "src/error.h"
 
 #include <chrono>
@@ -33,6 +35,7 @@ struct TimelapseOptions {
     std::string start, end, date, tz;
     std::string step = "15m";
     std::string formats = "tif,png,gif";
+    std::string horizonMode = "exact";
     int fps = 8;
     std::size_t gifSize = 800;
     std::size_t skyDirections = kPreviewSkyDirections;
@@ -68,6 +71,23 @@ std::chrono::milliseconds parseStep(const std::string& text) {
     }
     if (!(totalMs >= 1000)) throw Error("--step '" + text + "': must be at least 1 s");
     return milliseconds(static_cast<long long>(std::llround(totalMs)));
+}
+
+/// "exact" -> 0; "interpolated" -> 64; "interpolated:N" -> N (4..720). Throws naming the option.
+std::size_t parseHorizonMode(const std::string& text) {
+    if (text == "exact") return 0;
+    if (text == "interpolated") return 64;
+    const std::string prefix = "interpolated:";
+    if (text.rfind(prefix, 0) == 0) {
+        std::size_t used = 0;
+        long n = -1;
+        try {
+            n = std::stol(text.substr(prefix.size()), &used);
+        } catch (const std::exception&) {
+        }
+        if (used == text.size() - prefix.size() && n >= 4 && n <= 720) return static_cast<std::size_t>(n);
+    }
+    throw Error("--horizon-mode '" + text + "': expected exact, interpolated or interpolated:N (N in 4..720)");
 }
 
 std::set<std::string> parseFormats(const std::string& text) {
@@ -135,6 +155,7 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const std::set<std::string> formats = parseFormats(o.formats);
+    const std::size_t stackDirections = parseHorizonMode(o.horizonMode);
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
     const Frames frames = chooseFrames(o, dem);
@@ -151,13 +172,26 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const auto tStart = clock::now();
     const std::size_t n = frames.instants.size();
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "timelapse", t.heightsM.size() * (o.skyDirections + n));
+    ProgressCounter counter(bar.callback(), "timelapse",
+                            t.heightsM.size() * ((stackDirections > 0 ? stackDirections : o.skyDirections) + n));
 
-    // Sky once.
+    // Sky once; with interpolated horizons, from the same precomputed directions.
     const Normals normals = computeNormals(t, o.search.threads);
-    const Grid<float> sky = previewSkyLight(t, normals, o.skyDirections,
-                                            o.search.maxDistanceM.value_or(0.0),
-                                            o.search.refraction, o.search.threads, &counter);
+    HorizonStack stack;
+    Grid<float> sky;
+    if (stackDirections > 0) {
+        HorizonParams hp;
+        hp.maxDistanceM = o.search.maxDistanceM.value_or(sunSearchDistanceM(t, 0.0, o.sunDiameterDeg));
+        hp.refraction = o.search.refraction;
+        hp.threads = o.search.threads;
+        stack = computeHorizonStack(t, stackDirections, hp, &counter);
+        SkyAccumulator acc(normals.east, normals.north, normals.up, stackDirections, {}, o.search.threads);
+        for (std::size_t i = 0; i < stackDirections; ++i) acc.addDirection(i, stack.angleDeg[i]);
+        sky = acc.finish(0.0).skyK;
+    } else {
+        sky = previewSkyLight(t, normals, o.skyDirections, o.search.maxDistanceM.value_or(0.0),
+                              o.search.refraction, o.search.threads, &counter);
+    }
     const double skySeconds = seconds(clock::now() - tStart);
 
     SunFrameParams sp;
@@ -178,8 +212,16 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         const UtcInstant when = frames.instants[i];
         const auto c0 = clock::now();
         const SunField field = computeSunField(dem, when, SolarSite{}, SpaOptions{});
-        const SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
-        if (!frame.tiles.empty()) ++sunUp;
+        SunFrame frame;
+        if (stackDirections > 0) {
+            frame.light = sunLightFromStack(t, normals, stack, field, o.sunDiameterDeg, o.search.threads);
+            frame.maxDistanceM = stack.maxDistanceM;
+            counter.advance(t.heightsM.size());
+            if (field.elevationRange().second > -o.sunDiameterDeg / 2) ++sunUp;
+        } else {
+            frame = computeSunFrame(t, normals, field, sp, &counter);
+            if (!frame.tiles.empty()) ++sunUp;
+        }
         Image8 preview;
         if (formats.count("png") || gif)
             preview = renderPreview(normals, frame.light.visibility, sky, albedo,
@@ -196,10 +238,10 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                 {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
                 {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
                 {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
-                {"DEMLIGHT_METHOD", "sweep"},
+                {"DEMLIGHT_METHOD", stackDirections > 0 ? "sweep, interpolated:" + std::to_string(stackDirections) : "sweep"},
                 {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
                 {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
-                {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(o.skyDirections)},
+                {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(stackDirections > 0 ? stackDirections : o.skyDirections)},
             };
             OutputOptions out;
             out.path = (fs::path(o.outDir) / frameName(i, n, "tif")).string();
@@ -225,7 +267,9 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   formatInstant(frames.instants.back(), frames.zone) + ", step " + o.step +
                   "), " + std::to_string(sunUp) + " with the sun up");
     note(ctx, "time: sky " + formatNumber(std::round(skySeconds * 1000)) + " ms once (" +
-                  std::to_string(o.skyDirections) + " directions); per frame " +
+                  std::to_string(stackDirections > 0 ? stackDirections : o.skyDirections) +
+                  " directions" + (stackDirections > 0 ? ", also the interpolated sun horizons" : "") +
+                  "); per frame " +
                   formatNumber(std::round(computeS * 1000 / n)) + " ms compute + " +
                   formatNumber(std::round(writeS * 1000 / n)) + " ms writing; total " +
                   formatNumber(std::round(total * 100) / 100) + " s");
@@ -247,6 +291,10 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
     cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (default UTC)");
     cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (plain number = minutes)")
+        ->capture_default_str();
+    cmd->add_option("--horizon-mode", o->horizonMode,
+                    "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N "
+                    "directions swept once, horizons interpolated in azimuth; N = 64 by default)")
         ->capture_default_str();
     cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif")
         ->capture_default_str();

@@ -1,6 +1,7 @@
 // Sun-hour integrals; see sunhours.h.
 #include "lighting/sunhours.h"
 
+#include "src/angles.h"
 #include "src/error.h"
 #include "src/parallel.h"
 
@@ -8,6 +9,50 @@
 #include <limits>
 
 namespace demlight {
+
+HorizonStack computeHorizonStack(const Terrain& t, std::size_t directions,
+                                 const HorizonParams& params, ProgressCounter* progress) {
+    if (directions < 2) throw Error("horizon stack: need at least 2 directions");
+    HorizonStack stack;
+    stack.maxDistanceM = params.maxDistanceM;
+    HorizonParams hp = params;
+    for (std::size_t i = 0; i < directions; ++i) {
+        hp.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(directions);
+        stack.angleDeg.push_back(sweepHorizon(t, hp, progress).angleDeg);
+    }
+    return stack;
+}
+
+SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const HorizonStack& stack,
+                           const SunField& field, double sunDiameterDeg, int threads) {
+    const std::size_t w = t.width(), h = t.height(), n = stack.angleDeg.size();
+    if (n < 2) throw Error("horizon stack: need at least 2 directions");
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    SunLight light{Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
+    const bool night = field.elevationRange().second <= -sunDiameterDeg / 2;
+    const double sectorDeg = 360.0 / static_cast<double>(n);
+    parallelFor(0, h, threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < w; ++col) {
+            if (!t.valid(col, row)) continue;
+            if (night) {
+                light.visibility(col, row) = light.irradiance(col, row) = 0.0f;
+                continue;
+            }
+            const auto [az, el] = field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
+            const double azimuth = wrapAzimuthDeg(az);
+            const double u = azimuth / sectorDeg;
+            const std::size_t i0 = static_cast<std::size_t>(u) % n, i1 = (i0 + 1) % n;
+            const double f = u - std::floor(u);
+            const double horizon = (1 - f) * stack.angleDeg[i0](col, row) + f * stack.angleDeg[i1](col, row);
+            const Enu nrm = normals.at(col, row);
+            light.visibility(col, row) =
+                static_cast<float>(sunVisibilityClamped(nrm, horizon, azimuth, el, sunDiameterDeg));
+            light.irradiance(col, row) =
+                static_cast<float>(sunIrradiance(nrm, horizon, azimuth, el, sunDiameterDeg));
+        }
+    });
+    return light;
+}
 
 SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
                                std::span<const SunInstant> instants, const SunFieldAt& fieldAt,

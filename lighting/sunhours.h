@@ -48,6 +48,26 @@ struct SunHoursMaps {
     std::size_t instantsSwept = 0;  ///< instants with the sun up somewhere (each costs a sweep)
 };
 
+/// Horizon maps at N equally spaced true azimuths (direction i at i * 360 / N degrees), swept
+/// once for a whole sequence: the `interpolated:N` horizon mode of time-lapses. Memory: N floats
+/// per cell.
+struct HorizonStack {
+    std::vector<Grid<float>> angleDeg;  ///< NaN at nodata
+    double maxDistanceM = 0;
+};
+
+/// Sweeps the N directions (params.azimuthDeg is ignored). Progress counts cells swept.
+HorizonStack computeHorizonStack(const Terrain& terrain, std::size_t directions,
+                                 const HorizonParams& params, ProgressCounter* progress = nullptr);
+
+/// Sun light at one instant from a stack instead of an exact sweep: each cell's horizon is
+/// interpolated linearly in azimuth between the two directions bracketing its own sun azimuth,
+/// then visibility and irradiance as computeSunFrame (seed Eq. 3, 5-7). All zero (NaN at nodata)
+/// when the sun's upper limb is below the horizon everywhere.
+SunLight sunLightFromStack(const Terrain& terrain, const Normals& normals,
+                           const HorizonStack& stack, const SunField& field,
+                           double sunDiameterDeg, int threads = 0);
+
 /// Returns the sun across the DEM at instant i of the sequence.
 using SunFieldAt = std::function<SunField(std::size_t instantIndex)>;
 

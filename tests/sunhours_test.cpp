@@ -86,6 +86,33 @@ TEST(SunHours, PolarDayGetsTwentyFourHours) {
     EXPECT_EQ(m.lastLitClock(8, 8), 24.0f);
 }
 
+// On a stack direction the interpolated horizon is the exact sweep's: same light as the frame.
+TEST(HorizonStack, MatchesExactSweepOnAStackDirection) {
+    Grid<float> heights(48, 40);
+    for (std::size_t r = 0; r < 40; ++r)
+        for (std::size_t c = 0; c < 48; ++c)
+            heights(c, r) = static_cast<float>(200.0 * std::sin(0.3 * c) * std::cos(0.2 * r) + 5.0 * c);
+    const Terrain t = makeUniformTerrain(heights, kCellM);
+    const Normals normals = computeNormals(t, 1);
+    HorizonParams hp;
+    hp.maxDistanceM = 2000;
+    hp.threads = 1;
+    const HorizonStack stack = computeHorizonStack(t, 8, hp);
+    const SunField field = SunField::uniform(270.0, 8.0);  // direction 6 of 8
+    SunFrameParams fp;
+    fp.maxDistanceM = 2000;
+    fp.threads = 1;
+    const SunFrame exact = computeSunFrame(t, normals, field, fp);
+    const SunLight interp = sunLightFromStack(t, normals, stack, field, fp.sunDiameterDeg, 1);
+    double shadowed = 0;
+    for (std::size_t k = 0; k < heights.size(); ++k) {
+        EXPECT_NEAR(interp.visibility.data()[k], exact.light.visibility.data()[k], 1e-6) << k;
+        EXPECT_NEAR(interp.irradiance.data()[k], exact.light.irradiance.data()[k], 1e-6) << k;
+        shadowed += exact.light.visibility.data()[k] < 0.5;
+    }
+    EXPECT_GT(shadowed, 0);  // the case has shadows to get wrong
+}
+
 TEST(SunHours, RejectsTooFewInstants) {
     const Terrain t = makeUniformTerrain(Grid<float>(4, 4, 0.0f), kCellM);
     const std::vector<SunInstant> one{{0, 0}};
