@@ -16,9 +16,6 @@ namespace {
 /// Ray-march step as a fraction of the smaller side of the start cell.
 constexpr double kStepFractionOfCell = 0.25;
 
-/// Rounding slack (cells) when testing whether a sample lies inside the hull of cell centres, so
-/// that a march along a grid axis does not lose its own row to a 1e-17 drift.
-constexpr double kEdgeSlackCells = 1e-9;
 
 /// Bilinear height at fractional cell coordinates (cell centres at integers); nodata corners are
 /// dropped and the remaining weights renormalised; NaN when no corner with weight is valid.
@@ -78,10 +75,9 @@ public:
                 out.truncated = 1;
                 break;
             }
-            // Heights are known inside the hull of the cell centres only.
-            if (x < -kEdgeSlackCells || x > maxX - 0.5 + kEdgeSlackCells || y < -kEdgeSlackCells ||
-                y > maxY - 0.5 + kEdgeSlackCells)
-                continue;
+            // In the outer half cell (beyond the last cell centres) the height is the nearest
+            // edge value: bilinearHeight clamps to the hull of the centres. Skipping those samples
+            // instead would leave a ray running along the edge with no terrain and no flag.
             const double h = bilinearHeight(t_.heightsM, x, y);
             if (std::isnan(h)) continue;
             // Elevation on a curved earth: the target sits d²/(2 R_eff) lower (DESIGN §2).
