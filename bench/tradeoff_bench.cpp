@@ -1,0 +1,633 @@
+// Speed against accuracy (issue 6 part 1, DESIGN §4): every method and parameter set on the same
+// DEM and the same random sample of non-truncated cells, in one run. For each: time per cell
+// (whole-grid run time / cells, median of repeats, one thread) and error against the reference.
+//
+// Usage: demlight_tradeoff_bench [--dem PATH ...] [--out DIR] [--quick]
+//   Writes DIR/tradeoff.csv (method, params, dem, ns_per_cell, error_metric, error_value, pareto,
+//   notes); scripts/bench.sh draws the chart from it with bench/tradeoff_chart.gnuplot.
+//
+// References (DESIGN §4):
+//  - Sun horizon: referenceHorizonAt (ray march, curvature on) at the sun azimuth with twice the
+//    default search distance D0, so the rows that vary the distance have a truth beyond them.
+//  - Sun visibility / irradiance: the horizon method (seed Eq. 3, 5-7) on the reference horizons
+//    with the exact normals.
+//  - Sky K: the dense reference (referenceHorizonAt in M azimuths at D0, integrated by
+//    referenceSky), as in tests/sky_realdem_test.cpp.
+// Cells: a fixed pseudo-random sample of valid cells at least 2 D0 from every crop edge, minus any
+// cell whose reference horizon is truncated in any azimuth.
+#include "geo/dem.h"
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/horizon.h"
+#include "lighting/lighting_models.h"
+#include "lighting/sky.h"
+#include "lighting/sun.h"
+#include "lighting/sunhours.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+#include "src/sun_field.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+/// The off-grid sun of the sun rows: azimuth between sweep directions for every N tested.
+constexpr double kSunAzimuthDeg = 123.4;
+/// A low sun, so that shadows are long and horizons matter.
+constexpr double kSunElevationDeg = 5.0;
+/// Default search distance D0 is capped at this fraction of the crop's shorter side so that a
+/// sample of cells 2 D0 from every edge remains.
+constexpr double kMaxDistanceSideFraction = 1.0 / 6.0;
+/// Timed runs use one thread: the figure is cost per core, comparable with GRASS r.horizon.
+constexpr int kThreads = 1;
+/// Palette normals: the seed's table size.
+constexpr std::size_t kPaletteSize = 256;
+/// Palette training: Lloyd iterations on at most this many normals.
+constexpr int kPaletteIterations = 10;
+constexpr std::size_t kPaletteTrainingCells = 50000;
+/// Seed 000: 0x0000 = 0 deg and 0xFFFF = 90 deg.
+constexpr double kFixedFullScaleDeg = 90.0;
+constexpr double kFixedMax = 65535.0;
+/// Fixed sample seed (the same cells every run).
+constexpr std::uint64_t kSampleSeed = 4242;
+
+struct Options {
+    std::vector<std::string> dems;
+    std::string outDir = "docs/bench";
+    bool quick = false;
+    std::size_t cropCells = 400;       ///< centred crop, cells a side
+    std::size_t sampleCells = 1000;    ///< reference cells before truncation filtering
+    int referenceAzimuths = 360;       ///< dense sky reference
+    int repeats = 3;
+};
+
+struct Row {
+    std::string method, params, dem;
+    double nsPerCell = 0;
+    std::string metric;
+    double error = 0;
+    std::string notes;
+    bool pareto = false;
+};
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Median wall time of `repeats` calls of f (seconds).
+double medianSeconds(int repeats, const std::function<void()>& f) {
+    std::vector<double> s;
+    for (int i = 0; i < repeats; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        s.push_back(seconds(t0));
+    }
+    std::sort(s.begin(), s.end());
+    return s[s.size() / 2];
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double mean(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0 : s / static_cast<double>(v.size());
+}
+
+std::string fmt(const char* f, double a) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, a);
+    return b;
+}
+
+/// A window of a terrain as a terrain of its own (as tests/sky_realdem_test.cpp).
+Terrain crop(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+    Terrain out;
+    out.heightsM = Grid<float>(w, h);
+    for (std::size_t r = 0; r < h; ++r)
+        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
+    out.cellWidthM.assign(t.cellWidthM.begin() + static_cast<long>(row0), t.cellWidthM.begin() + static_cast<long>(row0 + h));
+    out.cellHeightM.assign(t.cellHeightM.begin() + static_cast<long>(row0), t.cellHeightM.begin() + static_cast<long>(row0 + h));
+    if (!t.rowLatitudeDeg.empty())
+        out.rowLatitudeDeg.assign(t.rowLatitudeDeg.begin() + static_cast<long>(row0), t.rowLatitudeDeg.begin() + static_cast<long>(row0 + h));
+    if (!t.colLongitudeDeg.empty())
+        out.colLongitudeDeg.assign(t.colLongitudeDeg.begin() + static_cast<long>(col0), t.colLongitudeDeg.begin() + static_cast<long>(col0 + w));
+    if (!t.convergence.empty()) {
+        const std::size_t step = 16;
+        out.convergence.stepCells = step;
+        out.convergence.gammaDeg = Grid<float>((w + step - 1) / step + 1, (h + step - 1) / step + 1);
+        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
+            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
+                out.convergence.gammaDeg(i, j) = static_cast<float>(t.convergence.at(
+                    static_cast<double>(col0 + std::min(i * step, w - 1)), static_cast<double>(row0 + std::min(j * step, h - 1))));
+    }
+    return out;
+}
+
+/// 16-bit fixed-point horizon storage. Seed 000 maps 0 deg -> 0x0000 and 90 deg -> 0xFFFF (only
+/// the quarter circle: negative horizons are stored as 0); the signed variant spends the same 16
+/// bits on [-90, 90] deg (step 0.0027 deg) so downhill horizons survive.
+enum class FixedRange { Seed0To90, Signed };
+
+std::uint16_t toFixed16(float deg, FixedRange range) {
+    const double lo = range == FixedRange::Seed0To90 ? 0.0 : -kFixedFullScaleDeg;
+    const double x = (std::clamp(static_cast<double>(deg), lo, kFixedFullScaleDeg) - lo) / (kFixedFullScaleDeg - lo);
+    return static_cast<std::uint16_t>(std::lround(x * kFixedMax));
+}
+float fromFixed16(std::uint16_t v, FixedRange range) {
+    const double lo = range == FixedRange::Seed0To90 ? 0.0 : -kFixedFullScaleDeg;
+    return static_cast<float>(lo + v / kFixedMax * (kFixedFullScaleDeg - lo));
+}
+
+/// Quantises a horizon grid through 16-bit storage and back (NaN = nodata is kept out of band).
+Grid<float> fixed16RoundTrip(const Grid<float>& deg, FixedRange range) {
+    std::vector<std::uint16_t> stored(deg.size());
+    for (std::size_t i = 0; i < deg.size(); ++i) stored[i] = std::isnan(deg.data()[i]) ? 0 : toFixed16(deg.data()[i], range);
+    Grid<float> out(deg.width(), deg.height());
+    for (std::size_t i = 0; i < deg.size(); ++i)
+        out.data()[i] = std::isnan(deg.data()[i]) ? deg.data()[i] : fromFixed16(stored[i], range);
+    return out;
+}
+
+/// 256 unit normals on the upper hemisphere, evenly spread (Fibonacci lattice in up in [0, 1]).
+std::vector<Enu> fibonacciHemisphere(std::size_t n) {
+    std::vector<Enu> out;
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (std::size_t i = 0; i < n; ++i) {
+        const double up = 1.0 - (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+        const double r = std::sqrt(std::max(0.0, 1.0 - up * up));
+        const double a = golden * static_cast<double>(i);
+        out.push_back({r * std::cos(a), r * std::sin(a), up});
+    }
+    return out;
+}
+
+std::size_t nearestPaletteEntry(const std::vector<Enu>& table, double e, double n, double u) {
+    std::size_t best = 0;
+    double bestDot = -2;
+    for (std::size_t k = 0; k < table.size(); ++k) {
+        const double d = table[k].east * e + table[k].north * n + table[k].up * u;
+        if (d > bestDot) bestDot = d, best = k;
+    }
+    return best;
+}
+
+/// Palette normals (seed 000 "palette normal mapping"): the table and one index per cell (255 at
+/// nodata is harmless: nodata cells are never read).
+struct Palette {
+    std::vector<Enu> table;
+    std::vector<std::uint8_t> index;
+};
+
+/// Lloyd iterations (k-means on the sphere, means renormalised) starting from `table`, trained on
+/// a fixed subsample; then every cell gets its nearest entry.
+Palette buildPalette(const Normals& normals, std::vector<Enu> table, int iterations) {
+    const std::size_t cells = normals.up.size();
+    std::vector<std::size_t> valid;
+    for (std::size_t i = 0; i < cells; ++i)
+        if (!std::isnan(normals.up.data()[i])) valid.push_back(i);
+    std::mt19937_64 rng(kSampleSeed);
+    std::shuffle(valid.begin(), valid.end(), rng);
+    if (valid.size() > kPaletteTrainingCells) valid.resize(kPaletteTrainingCells);
+    for (int it = 0; it < iterations; ++it) {
+        std::vector<std::array<double, 3>> sum(table.size(), {0, 0, 0});
+        for (std::size_t i : valid) {
+            const double e = normals.east.data()[i], n = normals.north.data()[i], u = normals.up.data()[i];
+            auto& s = sum[nearestPaletteEntry(table, e, n, u)];
+            s[0] += e, s[1] += n, s[2] += u;
+        }
+        for (std::size_t k = 0; k < table.size(); ++k) {
+            const double len = std::hypot(sum[k][0], sum[k][1], sum[k][2]);
+            if (len > 0) table[k] = {sum[k][0] / len, sum[k][1] / len, sum[k][2] / len};  // empty: keep
+        }
+    }
+    Palette p{table, std::vector<std::uint8_t>(cells, 0)};
+    for (std::size_t i = 0; i < cells; ++i)
+        if (!std::isnan(normals.up.data()[i]))
+            p.index[i] = static_cast<std::uint8_t>(
+                nearestPaletteEntry(table, normals.east.data()[i], normals.north.data()[i], normals.up.data()[i]));
+    return p;
+}
+
+/// One frame of palette shading (seed 000): the 256-entry lighting table max(0, N_k . s) and the
+/// per-entry tangent-plane elevation, then per cell a lookup times the disk visibility.
+Grid<float> paletteIrradiance(const Palette& pal, const Grid<float>& horizonDeg) {
+    const Enu s = directionEnu(kSunAzimuthDeg, kSunElevationDeg);
+    std::array<float, kPaletteSize> lambert{}, planeDeg{};
+    for (std::size_t k = 0; k < pal.table.size(); ++k) {
+        const Enu& n = pal.table[k];
+        lambert[k] = static_cast<float>(std::max(0.0, n.east * s.east + n.north * s.north + n.up * s.up));
+        planeDeg[k] = static_cast<float>(tangentPlaneElevationDeg(n, kSunAzimuthDeg));
+    }
+    Grid<float> out(horizonDeg.width(), horizonDeg.height());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const float h = horizonDeg.data()[i];
+        const std::uint8_t k = pal.index[i];
+        out.data()[i] = std::isnan(h) ? h
+                                      : static_cast<float>(lambert[k] * sunVisibility(std::max(h, planeDeg[k]),
+                                                                                      kSunElevationDeg, kSunDiameterDeg));
+    }
+    return out;
+}
+
+/// Linear interpolation in azimuth between the two stack directions bracketing azimuthDeg (the
+/// same rule as sunLightFromStack).
+float stackHorizonAt(const HorizonStack& stack, std::size_t col, std::size_t row, double azimuthDeg) {
+    const std::size_t n = stack.angleDeg.size();
+    const double x = azimuthDeg / (360.0 / static_cast<double>(n));
+    const auto i0 = static_cast<std::size_t>(std::floor(x)) % n;
+    const double w = x - std::floor(x);
+    return static_cast<float>((1 - w) * stack.angleDeg[i0](col, row) + w * stack.angleDeg[(i0 + 1) % n](col, row));
+}
+
+class DemBench {
+public:
+    DemBench(const Options& o, const std::string& path, std::vector<Row>& rows) : o_(o), rows_(rows) {
+        name_ = std::filesystem::path(path).stem().string();
+        const Dem dem = loadDem(path);
+        const std::size_t w = std::min(o.cropCells, dem.terrain.width()), h = std::min(o.cropCells, dem.terrain.height());
+        t_ = crop(dem.terrain, (dem.terrain.width() - w) / 2, (dem.terrain.height() - h) / 2, w, h);
+        cells_ = static_cast<double>(w * h);
+        normals_ = computeNormals(t_, kThreads);
+        const std::size_t mid = t_.height() / 2;
+        const double sideM = std::min(t_.cellWidthM[mid] * static_cast<double>(w), t_.cellHeightM[mid] * static_cast<double>(h));
+        d0_ = std::min(defaultMaxDistanceM(t_), kMaxDistanceSideFraction * sideM);
+        base_.azimuthDeg = kSunAzimuthDeg;
+        base_.maxDistanceM = d0_;
+        base_.threads = kThreads;
+        std::printf("%s: crop %zu x %zu cells (%.0f x %.0f m cells), D0 = %.0f m (scene default %.0f m)\n", name_.c_str(), w, h,
+                    t_.cellWidthM[mid], t_.cellHeightM[mid], d0_, defaultMaxDistanceM(t_));
+    }
+
+    void run() {
+        sampleAndReference();
+        sunRows();
+        skyRows();
+        std::fflush(stdout);
+    }
+
+private:
+    void add(std::string method, std::string params, double seconds, std::string metric, double error,
+             std::string notes = {}) {
+        const double ns = seconds / cells_ * 1e9;
+        std::printf("  %-22s %-16s %10.1f ns/cell  %-26s %.3g  %s\n", method.c_str(), params.c_str(), ns, metric.c_str(), error,
+                    notes.c_str());
+        rows_.push_back({std::move(method), std::move(params), name_, ns, std::move(metric), error, std::move(notes), false});
+    }
+
+    /// Sample cells, drop truncated ones, compute the sun and sky references.
+    void sampleAndReference() {
+        const std::size_t mid = t_.height() / 2;
+        const double truthM = 2 * d0_;
+        const auto mc = static_cast<std::size_t>(std::ceil(truthM / t_.cellWidthM[mid])) + 2;
+        const auto mr = static_cast<std::size_t>(std::ceil(truthM / t_.cellHeightM[mid])) + 2;
+        std::vector<CellIndex> cand;
+        for (std::size_t r = mr; r + mr < t_.height(); ++r)
+            for (std::size_t c = mc; c + mc < t_.width(); ++c)
+                if (t_.valid(c, r)) cand.push_back({c, r});
+        std::mt19937_64 rng(kSampleSeed);
+        std::shuffle(cand.begin(), cand.end(), rng);
+        if (cand.size() > o_.sampleCells) cand.resize(o_.sampleCells);
+        if (cand.empty()) throw Error(name_ + ": no cells 2 D0 from the crop edge; use a larger crop");
+
+        // Sun truth at 2 D0 and the reference at D0 (timed: one azimuth per cell).
+        HorizonParams p = base_;
+        p.maxDistanceM = truthM;
+        auto t0 = std::chrono::steady_clock::now();
+        const auto truth = referenceHorizonAt(t_, p, cand);
+        refTruthS_ = seconds(t0) / static_cast<double>(cand.size()) * cells_;
+        t0 = std::chrono::steady_clock::now();
+        const auto atD0 = referenceHorizonAt(t_, base_, cand);
+        refD0S_ = seconds(t0) / static_cast<double>(cand.size()) * cells_;
+
+        // Dense sky reference at D0.
+        const int m = o_.referenceAzimuths;
+        std::vector<std::vector<HorizonSample>> sky(static_cast<std::size_t>(m));
+        t0 = std::chrono::steady_clock::now();
+        HorizonParams sp = base_;
+        for (int j = 0; j < m; ++j) {
+            sp.azimuthDeg = (j + 0.5) * 360.0 / m;
+            sky[static_cast<std::size_t>(j)] = referenceHorizonAt(t_, sp, cand);
+        }
+        const double skyHorizonS = seconds(t0);
+
+        std::vector<std::size_t> keep;
+        for (std::size_t i = 0; i < cand.size(); ++i) {
+            bool truncated = truth[i].truncated || atD0[i].truncated;
+            for (const auto& az : sky) truncated = truncated || az[i].truncated;
+            if (!truncated) keep.push_back(i);
+        }
+        t0 = std::chrono::steady_clock::now();
+        for (std::size_t i : keep) {
+            const CellIndex c = cand[i];
+            const Enu n = normals_.at(c.col, c.row);
+            sample_.push_back(c);
+            truthH_.push_back(truth[i].angleDeg);
+            refD0H_.push_back(atD0[i].angleDeg);
+            truthVis_.push_back(sunVisibilityClamped(n, truth[i].angleDeg, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg));
+            truthIrr_.push_back(sunIrradiance(n, truth[i].angleDeg, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg));
+            const auto horizon = [&](double azDeg) {
+                const auto j = std::min(static_cast<std::size_t>(azDeg / (360.0 / m)), static_cast<std::size_t>(m - 1));
+                return static_cast<double>(sky[j][i].angleDeg);
+            };
+            refK_.push_back(referenceSky(horizon, n, m).skyK);
+        }
+        refSkyS_ = (skyHorizonS + seconds(t0)) / static_cast<double>(cand.size()) * cells_;
+        std::printf("  %zu sampled cells, %zu not truncated; sky reference %d azimuths\n", cand.size(), sample_.size(), m);
+        if (sample_.size() < cand.size() / 2) throw Error(name_ + ": most sampled cells are truncated");
+    }
+
+    std::vector<float> sampleOf(const Grid<float>& g) const {
+        std::vector<float> v;
+        for (const CellIndex& c : sample_) v.push_back(g(c.col, c.row));
+        return v;
+    }
+
+    double horizonMedianError(const std::vector<float>& h) const {
+        std::vector<double> e;
+        for (std::size_t i = 0; i < h.size(); ++i) e.push_back(std::abs(static_cast<double>(h[i]) - truthH_[i]));
+        return median(e);
+    }
+    double maeAgainst(const std::vector<float>& v, const std::vector<double>& ref) const {
+        std::vector<double> e;
+        for (std::size_t i = 0; i < v.size(); ++i) e.push_back(std::abs(static_cast<double>(v[i]) - ref[i]));
+        return mean(e);
+    }
+    std::vector<float> visibilityFromHorizons(const std::vector<float>& h) const {
+        std::vector<float> v;
+        for (std::size_t i = 0; i < h.size(); ++i)
+            v.push_back(static_cast<float>(sunVisibilityClamped(normals_.at(sample_[i].col, sample_[i].row), h[i], kSunAzimuthDeg,
+                                                                kSunElevationDeg, kSunDiameterDeg)));
+        return v;
+    }
+
+    /// Horizon and visibility rows of a sun method whose horizons at the sample are `h`.
+    void sunPair(const std::string& method, const std::string& params, double s, const std::vector<float>& h,
+                 const std::vector<float>& vis, const std::string& notes = {}) {
+        add(method, params, s, "horizon_median_abs_deg", horizonMedianError(h), notes);
+        add(method, params, s, "sun_visibility_mae", maeAgainst(vis, truthVis_), notes);
+    }
+
+    void sunRows() {
+        const SunField field = SunField::uniform(kSunAzimuthDeg, kSunElevationDeg);
+        const std::string floorNote = "reference itself: error 0 by definition; plotted at the chart floor";
+        add("reference", "2xD0", refTruthS_, "horizon_median_abs_deg", 0, floorNote + "; ray march timed on the sample");
+        add("reference", "2xD0", refTruthS_, "sun_visibility_mae", 0, floorNote);
+        add("reference", "2xD0", refTruthS_, "sun_irradiance_mae", 0, floorNote);
+        sunPair("reference", "D0", refD0S_, refD0H_, visibilityFromHorizons(refD0H_), "ray march at the default distance");
+
+        // Exact per-instant sweep at the sun azimuth, and its irradiance.
+        HorizonMap exact;
+        SunLight exactLight;
+        const double exactS = medianSeconds(o_.repeats, [&] {
+            exact = sweepHorizon(t_, base_);
+            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+        });
+        const double shadeS = medianSeconds(o_.repeats, [&] {
+            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+        });
+        const std::vector<float> exactH = sampleOf(exact.angleDeg);
+        sunPair("exact sweep", "D0", exactS, exactH, sampleOf(exactLight.visibility));
+        add("exact sweep", "D0 float normals", exactS, "sun_irradiance_mae", maeAgainst(sampleOf(exactLight.irradiance), truthIrr_),
+            "shading pass alone " + fmt("%.1f", shadeS / cells_ * 1e9) + " ns/cell; normals 12 B/cell");
+
+        // Azimuth interpolation between N precomputed directions.
+        for (std::size_t n : {4u, 8u, 16u, 32u, 64u}) {
+            HorizonStack stack;
+            const double stackS = medianSeconds(o_.repeats, [&] { stack = computeHorizonStack(t_, n, base_); });
+            SunLight light;
+            const double interpS = medianSeconds(o_.repeats, [&] {
+                light = sunLightFromStack(t_, normals_, stack, field, kSunDiameterDeg, kThreads);
+            });
+            std::vector<float> h;
+            for (const CellIndex& c : sample_) h.push_back(stackHorizonAt(stack, c.col, c.row, kSunAzimuthDeg));
+            sunPair("interpolated", "N=" + std::to_string(n), stackS + interpS, h, sampleOf(light.visibility),
+                    "time = N sweeps + one interpolated frame; per extra instant " + fmt("%.1f", interpS / cells_ * 1e9) +
+                        " ns/cell");
+        }
+
+        // Maximum search distance.
+        for (double f : {0.25, 0.5, 2.0}) {
+            HorizonParams p = base_;
+            p.maxDistanceM = f * d0_;
+            HorizonMap m;
+            SunLight l;
+            const double s = medianSeconds(o_.repeats, [&] {
+                m = sweepHorizon(t_, p);
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+            });
+            sunPair("exact sweep distance", fmt("%gxD0", f), s, sampleOf(m.angleDeg), sampleOf(l.visibility),
+                    fmt("max distance %.0f m", p.maxDistanceM));
+        }
+
+        // Curvature off (flat earth) against the curved reference.
+        {
+            HorizonParams p = base_;
+            p.curvature = false;
+            HorizonMap m;
+            SunLight l;
+            const double s = medianSeconds(o_.repeats, [&] {
+                m = sweepHorizon(t_, p);
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+            });
+            sunPair("exact sweep flat earth", "D0 curvature off", s, sampleOf(m.angleDeg), sampleOf(l.visibility),
+                    "no curvature or refraction; reference is curved");
+        }
+
+        // 16-bit fixed-point horizon storage (seed 000), the seed's range and a signed range.
+        for (const FixedRange range : {FixedRange::Seed0To90, FixedRange::Signed}) {
+            const bool seed = range == FixedRange::Seed0To90;
+            HorizonMap m;
+            Grid<float> q;
+            SunLight l;
+            const double s = medianSeconds(o_.repeats, [&] {
+                m = sweepHorizon(t_, base_);
+                q = fixed16RoundTrip(m.angleDeg, range);
+                m.angleDeg = q;
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+            });
+            const std::vector<float> h = sampleOf(q);
+            std::vector<double> added;
+            for (std::size_t i = 0; i < h.size(); ++i)
+                if (!seed || exactH[i] >= 0) added.push_back(std::abs(static_cast<double>(h[i]) - exactH[i]));
+            const double maxAdded = added.empty() ? 0 : *std::max_element(added.begin(), added.end());
+            sunPair("fixed16 sweep", seed ? "D0 seed 0..90" : "D0 signed -90..90", s, h, sampleOf(l.visibility),
+                    "2 B/cell/direction instead of 4 (50% saved); added error vs float sweep max " + fmt("%.4f", maxAdded) + " deg" +
+                        (seed ? " on h>=0; negative horizons stored as 0" : ""));
+        }
+
+        // Palette normals (seed 000): 256-entry normal table, per frame one lighting table.
+        for (const bool trained : {false, true}) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const Palette pal = buildPalette(normals_, fibonacciHemisphere(kPaletteSize), trained ? kPaletteIterations : 0);
+            const double buildS = seconds(t0);
+            Grid<float> irr;
+            const double frameS = medianSeconds(o_.repeats, [&] { irr = paletteIrradiance(pal, exact.angleDeg); });
+            std::vector<double> angle;
+            for (const CellIndex& c : sample_) {
+                const Enu n = normals_.at(c.col, c.row);
+                const Enu& k = pal.table[pal.index[c.row * t_.width() + c.col]];
+                angle.push_back(std::acos(std::clamp(n.east * k.east + n.north * k.north + n.up * k.up, -1.0, 1.0)) * 180 /
+                                std::numbers::pi);
+            }
+            add("palette normals", trained ? "256 k-means" : "256 fibonacci", exactS - shadeS + frameS, "sun_irradiance_mae",
+                maeAgainst(sampleOf(irr), truthIrr_),
+                "exact sweep + palette shading pass " + fmt("%.1f", frameS / cells_ * 1e9) + " ns/cell; 1 B/cell; median normal error " +
+                    fmt("%.2f", median(angle)) + " deg; table built in " + fmt("%.2f", buildS) + " s (not timed)");
+        }
+
+        // Aperture model, exact and smoothstep (sun visibility against the horizon method).
+        for (std::size_t n : {8u, 32u}) {
+            for (const bool smooth : {false, true}) {
+                ApertureLightParams lp;
+                lp.sunRadiusDeg = kSunDiameterDeg / 2;
+                lp.smoothIntersection = smooth;
+                ApertureSunMaps sun;
+                const double s = medianSeconds(o_.repeats, [&] {
+                    ApertureAccumulator acc(normals_.east, normals_.north, normals_.up, n, kThreads);
+                    sweepDirections(t_, base_, n, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
+                    sun = applyApertureSun(acc.finish(), normals_.east, normals_.north, normals_.up, field, lp, kThreads);
+                });
+                add(smooth ? "aperture smoothstep" : "aperture exact", "N=" + std::to_string(n), s, "sun_visibility_mae",
+                    maeAgainst(sampleOf(sun.visibility), truthVis_), "N sweeps + aperture + one sun frame");
+            }
+        }
+    }
+
+    void skyRows() {
+        add("sky reference", "dense", refSkyS_, "sky_K_mae", 0,
+            "reference itself: error 0 by definition; plotted at the chart floor; " + std::to_string(o_.referenceAzimuths) +
+                " ray-marched azimuths timed on the sample");
+        for (std::size_t n : {4u, 8u, 16u, 32u, 64u}) {
+            // Float horizons for every N; at the default N also both 16-bit storages.
+            for (const int variant : {0, 1, 2}) {
+                if (variant > 0 && n != kDefaultSkyDirections) continue;
+                const FixedRange range = variant == 1 ? FixedRange::Seed0To90 : FixedRange::Signed;
+                SkyMaps maps;
+                const double s = medianSeconds(o_.repeats, [&] {
+                    SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
+                    sweepDirections(t_, base_, n, [&](std::size_t i, const HorizonMap& m) {
+                        acc.addDirection(i, variant == 0 ? m.angleDeg : fixed16RoundTrip(m.angleDeg, range));
+                    });
+                    maps = acc.finish(0.2);
+                });
+                const std::string params = "N=" + std::to_string(n);
+                if (variant == 0)
+                    add("sky sweep", params, s, "sky_K_mae", maeAgainst(sampleOf(maps.skyK), refK_));
+                else
+                    add("fixed16 sky sweep", params + (variant == 1 ? " seed 0..90" : " signed"), s, "sky_K_mae",
+                        maeAgainst(sampleOf(maps.skyK), refK_),
+                        variant == 1 ? "seed range: negative horizons stored as 0; 2 B/cell/direction"
+                                     : "signed range -90..90; 2 B/cell/direction");
+            }
+        }
+        Grid<float> hemi;
+        HemisphereParams hp;
+        hp.skyRadiance = 1.0;
+        hp.groundIrradiance = 0.0;
+        const double s = medianSeconds(o_.repeats, [&] { hemi = applyHemisphereLight(normals_.up, hp, nullptr, kThreads); });
+        add("hemisphere", "sky term", s, "sky_K_mae", maeAgainst(sampleOf(hemi), refK_),
+            "(1 + N_up) / 2 with a black ground: K of an unoccluded tilted plane; no shadows");
+    }
+
+    const Options& o_;
+    std::vector<Row>& rows_;
+    std::string name_;
+    Terrain t_;
+    Normals normals_;
+    double cells_ = 0, d0_ = 0;
+    HorizonParams base_;
+    std::vector<CellIndex> sample_;
+    std::vector<double> truthH_, truthVis_, truthIrr_, refK_;
+    std::vector<float> refD0H_;
+    double refTruthS_ = 0, refD0S_ = 0, refSkyS_ = 0;
+};
+
+/// Marks, per (dem, metric), the rows no other row beats in both time and error.
+void markPareto(std::vector<Row>& rows) {
+    for (Row& a : rows) {
+        a.pareto = true;
+        for (const Row& b : rows) {
+            if (&a == &b || a.dem != b.dem || a.metric != b.metric) continue;
+            const bool noWorse = b.nsPerCell <= a.nsPerCell && b.error <= a.error;
+            const bool better = b.nsPerCell < a.nsPerCell || b.error < a.error;
+            if (noWorse && better) {
+                a.pareto = false;
+                break;
+            }
+        }
+    }
+}
+
+std::string csvField(std::string s) {
+    std::replace(s.begin(), s.end(), ',', ';');
+    return s;
+}
+
+void writeCsv(const std::vector<Row>& rows, const std::string& path) {
+    std::ofstream f(path);
+    if (!f) throw Error("--out: cannot write " + path);
+    f << "method,params,dem,ns_per_cell,error_metric,error_value,pareto,notes\n";
+    char num[64];
+    for (const Row& r : rows) {
+        f << csvField(r.method) << ',' << csvField(r.params) << ',' << csvField(r.dem) << ',';
+        std::snprintf(num, sizeof num, "%.4g", r.nsPerCell);
+        f << num << ',' << r.metric << ',';
+        std::snprintf(num, sizeof num, "%.6g", r.error);
+        f << num << ',' << (r.pareto ? 1 : 0) << ',' << csvField(r.notes) << '\n';
+    }
+}
+
+}  // namespace
+}  // namespace demlight
+
+int main(int argc, char** argv) {
+    using namespace demlight;
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--dem" && i + 1 < argc) {
+            o.dems.push_back(argv[++i]);
+        } else if (a == "--out" && i + 1 < argc) {
+            o.outDir = argv[++i];
+        } else if (a == "--quick") {
+            o.quick = true;
+        } else {
+            std::fprintf(stderr, "usage: %s [--dem PATH ...] [--out DIR] [--quick]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (o.quick) o.cropCells = 200, o.sampleCells = 300, o.referenceAzimuths = 120;
+    if (o.dems.empty()) o.dems = {"samples/mount_st_helens_1980_usgs.dem"};
+    try {
+        std::vector<Row> rows;
+        for (const std::string& path : o.dems) DemBench(o, path, rows).run();
+        markPareto(rows);
+        std::filesystem::create_directories(o.outDir);
+        const std::string csv = o.outDir + "/tradeoff.csv";
+        writeCsv(rows, csv);
+        std::printf("wrote %s (%zu rows)\n", csv.c_str(), rows.size());
+    } catch (const Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
