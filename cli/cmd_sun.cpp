@@ -1,11 +1,17 @@
 // demlight sun DEM -o OUT.tif --time T [--tz ZONE]: how much of the sun's disk each cell sees.
 //
 // Sun position per region: SPA on a lattice every 64 cells (geo/sun_field.h), interpolated per
-// cell; tiles swept along their own sun azimuth (lighting/sun_frame.h).
+// cell. --model horizon (default): a few sweeps spanning the sun azimuths, interpolated per cell
+// (lighting/sun_frame.h). --model aperture / aperture-smooth: the ambient aperture of every cell
+// from --directions sweeps, then the sun cap intersected with it per cell
+// (lighting/lighting_models.h applyApertureSun).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "geo/sun_field.h"
 #include "geo/time.h"
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/lighting_models.h"
 #include "lighting/sun_frame.h"
 #include "src/angles.h"
 #include "src/error.h"
@@ -25,10 +31,57 @@ struct SunOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     double pressureHpa = 1013.25;
     double temperatureC = 15;
+    std::string model = "horizon";
+    int directions = static_cast<int>(kDefaultSkyDirections);
 };
+
+/// The two output bands and how they were made, for either model.
+struct SunBands {
+    Grid<float> visibility, irradiance;
+    double maxDistanceM = 0;
+    std::string sweeps;          ///< what the closing note says about the sweeps
+    std::size_t sunRegions = 0;  ///< horizon model: sun azimuths swept (0 = sun down everywhere)
+};
+
+SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
+                    const SunOptions& o, ProgressCounter& counter) {
+    SunFrameParams params;
+    params.sunDiameterDeg = o.sunDiameterDeg;
+    params.refraction = o.search.refraction;
+    params.threads = o.search.threads;
+    params.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
+    return {std::move(frame.light.visibility), std::move(frame.light.irradiance), frame.maxDistanceM,
+            std::to_string(frame.sweepAzimuthsDeg.size()) + " sweep azimuth(s)", frame.sweepAzimuthsDeg.size()};
+}
+
+SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& field,
+                     const SunOptions& o, bool smooth, ProgressCounter& counter) {
+    // The aperture does not depend on the sun: the search distance is the sky's default.
+    HorizonParams hp;
+    hp.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
+    hp.refraction = o.search.refraction;
+    hp.threads = o.search.threads;
+    const auto d = static_cast<std::size_t>(o.directions);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, d, o.search.threads);
+    sweepDirections(t, hp, d, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
+                    &counter);
+    ApertureLightParams lp;
+    lp.sunRadiusDeg = 0.5 * o.sunDiameterDeg;
+    lp.smoothIntersection = smooth;
+    ApertureSunMaps m = applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp,
+                                         o.search.threads);
+    return {std::move(m.visibility), std::move(m.irradiance), hp.maxDistanceM,
+            std::to_string(d) + " aperture directions", 0};
+}
 
 void runSun(const SunOptions& o, const CliContext& ctx) {
     const ZonedInstant when = parseZonedInstant(o.time, o.tz);
+    const LightingModel model = parseLightingModel(o.model);
+    if (model == LightingModel::Hemisphere)
+        throw Error("--model hemisphere is a sky-only model (no sun term); use 'demlight sky "
+                    "--model hemisphere', or --model horizon, aperture or aperture-smooth");
+    const bool horizon = model == LightingModel::Horizon;
     checkOutputPath(o.out.path, o.demPath);
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
@@ -39,20 +92,17 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     const SunField field = computeSunField(dem, when.utc, site, SpaOptions{});
     const auto [lowestSun, highestSun] = field.elevationRange();
 
-    SunFrameParams params;
-    params.sunDiameterDeg = o.sunDiameterDeg;
-    params.refraction = o.search.refraction;
-    params.threads = o.search.threads;
-    params.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
-
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "sun", t.heightsM.size());
-    const SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
+    const std::size_t work = t.heightsM.size() * (horizon ? 1 : static_cast<std::size_t>(o.directions));
+    ProgressCounter counter(bar.callback(), "sun", work);
+    const SunBands out = horizon ? horizonSun(t, normals, field, o, counter)
+                                 : apertureSun(t, normals, field, o,
+                                               model == LightingModel::ApertureSmooth, counter);
     bar.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const bool sunUp = !frame.tiles.empty();
+    const bool sunUp = horizon ? out.sunRegions > 0 : highestSun > -0.5 * o.sunDiameterDeg;
 
     const std::map<std::string, std::string> meta = {
         {"DEMLIGHT_PRODUCT", "sun"},
@@ -61,24 +111,30 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
         {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
         {"DEMLIGHT_SUN_ELEVATION_RANGE_DEG", formatNumber(lowestSun) + "," + formatNumber(highestSun)},
-        {"DEMLIGHT_SUN_REGIONS", std::to_string(frame.tiles.size())},
+        {"DEMLIGHT_SUN_SWEEP_AZIMUTHS", std::to_string(out.sunRegions)},
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
+        {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_METHOD", "sweep"},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
-        {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
+        {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(o.directions)},
+        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(out.maxDistanceM)},
+        {"DEMLIGHT_REFRACTION", formatNumber(o.search.refraction)},
     };
     writeRaster(o.out.path,
-                {{&frame.light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"},
-                 {&frame.light.irradiance, nullptr, "sun_irradiance",
-                  "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"}},
+                {{&out.visibility, nullptr, "sun_visibility",
+                  horizon ? "fraction of sun disk (0-1)"
+                          : "fraction of the sun cap inside the aperture cap (0-1)"},
+                 {&out.irradiance, nullptr, "sun_irradiance",
+                  horizon ? "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"
+                          : "normalised irradiance, Lambert integral over the sun cap inside the "
+                            "aperture cap (1 = unit-radiance zenith sun on flat ground)"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "sun at DEM centre: azimuth " + formatNumber(field.centreAzimuthDeg) +
                   " deg, elevation " + formatNumber(field.centreElevationDeg) + " deg (" +
                   formatInstant(when.utc, std::string()) + ")" +
                   (sunUp ? "" : "; the sun is below the horizon: everything is in shadow"));
-    note(ctx, "wrote " + o.out.path + " (band 1 sun_visibility, band 2 sun_irradiance); " +
-                  std::to_string(frame.tiles.size()) + " sun region(s), max distance " +
-                  formatNumber(std::round(frame.maxDistanceM)) + " m, " + formatNumber(seconds) +
+    note(ctx, "wrote " + o.out.path + " (band 1 sun_visibility, band 2 sun_irradiance); model " +
+                  std::string(lightingModelName(model)) + ", " + out.sweeps + ", max distance " +
+                  formatNumber(std::round(out.maxDistanceM)) + " m, " + formatNumber(seconds) +
                   " s compute");
 }
 
@@ -103,6 +159,15 @@ void registerSun(CLI::App& app, CliContext& ctx) {
         ->capture_default_str();
     cmd->add_option("--temperature", o->temperatureC, "Air temperature for solar refraction (C)")
         ->check(CLI::Range(-100.0, 60.0))
+        ->capture_default_str();
+    cmd->add_option("--model", o->model,
+                    "Sun model: horizon (horizon angle in the sun's azimuth), aperture (sun cap "
+                    "intersected with the ambient-aperture cap), aperture-smooth (the same with "
+                    "the smoothstep intersection)")
+        ->capture_default_str();
+    cmd->add_option("--directions", o->directions,
+                    "Aperture models: number of horizon directions integrated into the aperture")
+        ->check(CLI::Range(4, 1024))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runSun(*o, ctx); });

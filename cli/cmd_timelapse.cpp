@@ -220,7 +220,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
             if (field.elevationRange().second > -o.sunDiameterDeg / 2) ++sunUp;
         } else {
             frame = computeSunFrame(t, normals, field, sp, &counter);
-            if (!frame.tiles.empty()) ++sunUp;
+            if (!frame.sweepAzimuthsDeg.empty()) ++sunUp;
         }
         Image8 preview;
         if (formats.count("png") || gif)

@@ -12,29 +12,16 @@ namespace {
 /// Floor of the elevation used to size the search distance (degrees).
 constexpr double kLowestShadowElevationDeg = 0.25;
 
-void splitTiles(const SunField& field, CellWindow w, std::vector<CellWindow>& tiles) {
-    const auto [lo, hi] = field.azimuthRange(w.col0, w.row0, w.col1, w.row1);
-    const std::size_t cols = w.col1 - w.col0, rows = w.row1 - w.row0;
-    if (hi - lo <= kSunAzimuthToleranceDeg || std::max(cols, rows) < 2 * kMinSunTileCells) {
-        tiles.push_back(w);
-        return;
-    }
-    CellWindow a = w, b = w;
-    if (cols >= rows) {
-        a.col1 = b.col0 = w.col0 + cols / 2;
-    } else {
-        a.row1 = b.row0 = w.row0 + rows / 2;
-    }
-    splitTiles(field, a, tiles);
-    splitTiles(field, b, tiles);
-}
-
 }  // namespace
 
-std::vector<CellWindow> sunTiles(const SunField& field, std::size_t width, std::size_t height) {
-    std::vector<CellWindow> tiles;
-    splitTiles(field, {0, 0, width, height}, tiles);
-    return tiles;
+std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width, std::size_t height) {
+    const auto [lo, hi] = field.azimuthRange(0, 0, width, height);
+    if (hi - lo <= kSunAzimuthToleranceDeg) return {0.5 * (lo + hi)};
+    const auto intervals = static_cast<std::size_t>(std::ceil((hi - lo) / kSunAzimuthSpacingDeg));
+    std::vector<double> azimuths(intervals + 1);
+    for (std::size_t i = 0; i <= intervals; ++i)
+        azimuths[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(intervals);
+    return azimuths;
 }
 
 double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double sunDiameterDeg) {
@@ -72,27 +59,35 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.refraction = params.refraction;
     hp.threads = params.threads;
     hp.maxDistanceM = frame.maxDistanceM;
-    frame.tiles = sunTiles(field, t.width(), t.height());
-    for (const CellWindow& tile : frame.tiles) {
-        const auto [azLo, azHi] = field.azimuthRange(tile.col0, tile.row0, tile.col1, tile.row1);
-        hp.azimuthDeg = wrapAzimuthDeg(0.5 * (azLo + azHi));
-        hp.window = tile;
-        const HorizonMap horizon = sweepHorizon(t, hp, progress);
-        parallelFor(tile.row0, tile.row1, params.threads, [&](std::size_t row) {
-            for (std::size_t col = tile.col0; col < tile.col1; ++col) {
-                const float h = horizon.angleDeg(col, row);
-                if (std::isnan(h)) continue;
-                const auto [az, el] =
-                    field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
-                const Enu n = normals.at(col, row);
-                const double azimuth = wrapAzimuthDeg(az);
-                frame.light.visibility(col, row) = static_cast<float>(
-                    sunVisibilityClamped(n, h, azimuth, el, params.sunDiameterDeg));
-                frame.light.irradiance(col, row) =
-                    static_cast<float>(sunIrradiance(n, h, azimuth, el, params.sunDiameterDeg));
-            }
-        });
+    frame.sweepAzimuthsDeg = sunSweepAzimuthsDeg(field, t.width(), t.height());
+    const std::vector<double>& azimuths = frame.sweepAzimuthsDeg;
+    std::vector<HorizonMap> horizons;
+    for (double az : azimuths) {
+        hp.azimuthDeg = wrapAzimuthDeg(az);
+        horizons.push_back(sweepHorizon(t, hp, progress));
     }
+    const double spacing = azimuths.size() > 1 ? azimuths[1] - azimuths[0] : 1.0;
+    parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < t.width(); ++col) {
+            if (std::isnan(horizons[0].angleDeg(col, row))) continue;
+            const auto [az, el] = field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
+            // Horizon at this cell's own sun azimuth, linear between the bracketing sweeps.
+            double h = horizons[0].angleDeg(col, row);
+            if (azimuths.size() > 1) {
+                const double u = std::clamp((az - azimuths[0]) / spacing, 0.0,
+                                            static_cast<double>(azimuths.size() - 1));
+                const auto i0 = std::min(static_cast<std::size_t>(u), azimuths.size() - 2);
+                const double f = u - static_cast<double>(i0);
+                h = (1 - f) * horizons[i0].angleDeg(col, row) + f * horizons[i0 + 1].angleDeg(col, row);
+            }
+            const Enu n = normals.at(col, row);
+            const double azimuth = wrapAzimuthDeg(az);
+            frame.light.visibility(col, row) =
+                static_cast<float>(sunVisibilityClamped(n, h, azimuth, el, params.sunDiameterDeg));
+            frame.light.irradiance(col, row) =
+                static_cast<float>(sunIrradiance(n, h, azimuth, el, params.sunDiameterDeg));
+        }
+    });
     return frame;
 }
 
