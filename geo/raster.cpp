@@ -277,8 +277,9 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
     // Write under a temporary name in the same folder and rename on success, so a failed or
     // interrupted run never leaves a partial file at `path`.
-    const std::string tmp = (parent / ("." + fs::path(path).filename().string() + ".tmp" +
-                                       std::to_string(::getpid()))).string();
+    fs::path tmpName = fs::path(path).filename();
+    tmpName += ".tmp" + std::to_string(::getpid());
+    const std::string tmp = (parent / tmpName).string();
     detail::takeGdalError();
     GDALDataset* written = driver->CreateCopy(tmp.c_str(), ds.get(), FALSE, coList.List(),
                                               nullptr, nullptr);
