@@ -247,6 +247,9 @@ struct LineGeometry {
     std::vector<double> stepLengthM;  // metric length of one line step, per grid row
     std::vector<long> base;           // lineOffset() per major index
     std::vector<double> frac;
+    /// Steps toward the far end before the line leaves the DEM (cell edges at -0.5 and
+    /// size - 0.5) through the major / minor ends, per major / minor index.
+    std::vector<double> edgeStepsMajor, edgeStepsMinor;
 };
 
 /// minor = base + frac for the line k = 0 at major index m. Shared by the sweep and the combine
@@ -470,6 +473,21 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     geo.frac.resize(geo.majorSize);
     for (std::size_t m = 0; m < geo.majorSize; ++m) lineOffset(geo.slope, static_cast<long>(m), geo.base[m], geo.frac[m]);
 
+    const double majorD = static_cast<double>(geo.majorSize), minorD = static_cast<double>(geo.minorSize);
+    const double minorPerFarStep = geo.slope * geo.farSign;
+    geo.edgeStepsMajor.resize(geo.majorSize);
+    for (std::size_t m = 0; m < geo.majorSize; ++m) {
+        const double md = static_cast<double>(m);
+        geo.edgeStepsMajor[m] = geo.farSign > 0 ? majorD - 0.5 - md : md + 0.5;
+    }
+    geo.edgeStepsMinor.resize(geo.minorSize);
+    for (std::size_t j = 0; j < geo.minorSize; ++j) {
+        const double jd = static_cast<double>(j);
+        geo.edgeStepsMinor[j] = minorPerFarStep > 0   ? (minorD - 0.5 - jd) / minorPerFarStep
+                                : minorPerFarStep < 0 ? (jd + 0.5) / -minorPerFarStep
+                                                      : std::numeric_limits<double>::infinity();
+    }
+
     // Lines serving window cells: k = j - base or j - base - 1 at the window's major ends.
     long baseA, baseB;
     double fracUnused;
@@ -513,26 +531,21 @@ inline double fastAtan(double x) {
 void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, std::size_t row,
                 const CellWindow& w, float* planeA, const float* planeB, std::uint8_t* truncated) {
     const std::size_t W = t.width();
-    const double M = static_cast<double>(geo.majorSize), N = static_cast<double>(geo.minorSize);
-    const double minorPerFarStep = geo.slope * geo.farSign;
     const float none = -std::numeric_limits<float>::infinity();
+    const double stepLengthM = geo.stepLengthM[row];
     for (std::size_t col = w.col0; col < w.col1; ++col) {
         const std::size_t idx = row * W + col;
-        const long m = static_cast<long>(geo.xMajor ? col : row);
-        const double j = static_cast<double>(geo.xMajor ? row : col);
-
-        // Steps to the DEM edge (cell edges at -0.5 and size - 0.5) along the region direction.
-        const double md = static_cast<double>(m);
-        double steps = geo.farSign > 0 ? M - 0.5 - md : md + 0.5;
-        if (minorPerFarStep > 0) steps = std::min(steps, (N - 0.5 - j) / minorPerFarStep);
-        if (minorPerFarStep < 0) steps = std::min(steps, (j + 0.5) / -minorPerFarStep);
-        truncated[idx] = steps * geo.stepLengthM[row] < maxDistanceM ? 1 : 0;
+        const std::size_t m = geo.xMajor ? col : row;
+        const std::size_t j = geo.xMajor ? row : col;
+        // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
+        const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
+        truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
 
         if (std::isnan(t.heightsM.data()[idx])) {
             planeA[idx] = std::numeric_limits<float>::quiet_NaN();
             continue;
         }
-        const double frac = geo.frac[static_cast<std::size_t>(m)];
+        const double frac = geo.frac[m];
         const float a = planeA[idx];
         float slope = a;
         if (frac > 0.0) {
