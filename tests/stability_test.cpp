@@ -4,9 +4,9 @@
 // cell sizes, 1x1 and 2x2 DEMs — and checks that outputs stay finite and bounded, monotone
 // where they must be, continuous where the input is, and within documented error bounds.
 //
-// Every check also becomes a row of a markdown report, written to stability.md in the test's
-// working directory (the build tree) and, when DEMLIGHT_STABILITY_REPORT names a path, there
-// (docs/stability.md in the repository is one such run).
+// Every check also becomes a row of a markdown report, written to stability.md in the build
+// tree and, when DEMLIGHT_STABILITY_REPORT names a path, there too (docs/stability.md in the
+// repository is one such run).
 #include "lighting/aperture.h"
 #include "lighting/directions.h"
 #include "lighting/horizon.h"
@@ -56,7 +56,7 @@ public:
         for (const auto& r : rows_)
             s << "| " << r.regime << " | " << r.method << " | " << r.property << " | " << r.bound
               << " | " << r.measured << " | " << (r.pass ? "ok" : "**EXCEEDS**") << " |\n";
-        std::ofstream("stability.md") << s.str();
+        std::ofstream(std::string(DEMLIGHT_BUILD_DIR) + "/stability.md") << s.str();
         if (const char* path = std::getenv("DEMLIGHT_STABILITY_REPORT")) std::ofstream(path) << s.str();
     }
 
