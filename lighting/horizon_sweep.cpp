@@ -241,7 +241,8 @@ struct LineGeometry {
     int farSign;
     double slope;
     std::size_t majorSize, minorSize;
-    long mFar, mNear;  // inclusive major range walked, far end first
+    long mFar, mNear;  // inclusive major range a region's lines may walk, far end first
+    long extensionSteps;  // steps walked beyond the farthest served cell (covers maxDistanceM)
     long kFirst, kLast;
     std::size_t majorWin0, majorWin1, minorWin0, minorWin1;
     std::vector<double> stepLengthM;  // metric length of one line step, per grid row
@@ -320,7 +321,22 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                       : static_cast<std::size_t>(m) * W + static_cast<std::size_t>(j);
     };
 
-    for (long m = geo.mFar;; m += mStep) {
+    // A block serves window cells only where one of its lines is within a cell of the window's
+    // minor range; off-axis, in a region narrower than the DEM, that is a fraction of the
+    // window's major range. Walk from extensionSteps beyond the farthest such step (enough for
+    // maxDistanceM) to the nearest one, not over the whole region.
+    long mServeFar = -1, mServeNear = -1;
+    for (long m = static_cast<long>(geo.majorWin0); m < static_cast<long>(geo.majorWin1); ++m) {
+        const long base = geo.base[static_cast<std::size_t>(m)];
+        if (kBegin + base <= minorWin1 - 1 && kEnd - 1 + base >= minorWin0 - 1) {
+            if (mServeFar < 0 || (m - mServeFar) * geo.farSign > 0) mServeFar = m;
+            if (mServeNear < 0 || (m - mServeNear) * geo.farSign < 0) mServeNear = m;
+        }
+    }
+    if (mServeFar < 0) return;
+    const long mStart = std::clamp(mServeFar + geo.farSign * geo.extensionSteps, std::min(geo.mFar, geo.mNear),
+                                   std::max(geo.mFar, geo.mNear));
+    for (long m = mStart;; m += mStep) {
         const long base = geo.base[static_cast<std::size_t>(m)];
         const double frac = geo.frac[static_cast<std::size_t>(m)];
         // Skip steps where every line of the block lies outside the grid.
@@ -384,7 +400,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // Serve the cells this line brackets at this step: cell n1 (line below it, weight
                 // frac) into plane A, cell n0 (line above it, weight 1-frac) into plane B; on an
                 // exact hit (frac == 0) cell n0 into plane A.
-                if (inWindow) {
+                // (n0 in [minorWin0 - 1, minorWin1 - 1]: n1 or n0 is a window cell.)
+                if (inWindow && n0 >= minorWin0 - 1 && n0 < minorWin1) {
                     const long servedCell[2] = {frac > 0.0 ? n1 : n0, n0};
                     float* const servedPlane[2] = {planeA, planeB};
                     const int nServed = frac > 0.0 ? 2 : 1;
@@ -424,7 +441,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
             }
         }
-        if (m == geo.mNear) break;
+        if (m == mServeNear) break;
     }
     if (limited) {
         for (std::size_t b = 0; b < nLines; ++b) limitRangePass(logs[b], maxDistanceM, invR, scratch);
@@ -461,6 +478,7 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     if (std::isfinite(maxDistanceM)) {
         extension = std::min<long>(M, static_cast<long>(std::ceil(maxDistanceM / minStep)) + 1);
     }
+    geo.extensionSteps = extension;
     if (geo.farSign > 0) {
         geo.mNear = static_cast<long>(geo.majorWin0);
         geo.mFar = std::min(M - 1, static_cast<long>(geo.majorWin1) - 1 + extension);
