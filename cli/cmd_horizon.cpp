@@ -39,10 +39,8 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     std::vector<double> azimuths = o.azimuthsDeg;
     for (int i = 0; i < o.directions; ++i) azimuths.push_back(360.0 * i / o.directions);
 
-    HorizonParams params;
-    params.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(dem.terrain));
-    params.refraction = o.search.refraction;
-    params.threads = o.search.threads;
+    const ScenePlan plan = planFor(o.search, dem.terrain, kDefaultLowestElevationDeg, ctx);
+    HorizonParams params = horizonParams(o.search, plan);
     const bool reference = o.method == "reference";
 
     ProgressBar bar(!ctx.quiet);
@@ -67,14 +65,15 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
         masks.push_back({nullptr, &maps[i].truncated, "truncated_azimuth=" + az, ""});
         azimuthList += (i ? "," : "") + az;
     }
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "horizon"},
         {"DEMLIGHT_METHOD", o.method},
         {"DEMLIGHT_AZIMUTHS_DEG", azimuthList},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
         {"DEMLIGHT_TRUNCATION_MASK", truncationPath(o.out.path)},
-    };
+    });
     WriteOptions wo = makeWriteOptions(o.out, ctx, dem, meta);
     writeRaster(o.out.path, bands, dem.band.ref, wo, o.demPath);
     WriteOptions maskOptions = wo;

@@ -37,6 +37,57 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    cmd->add_option("--quality", o.quality,
+                    "auto: model only what the scene needs within --tolerance; full: every effect "
+                    "at its finest setting")
+        ->check(CLI::IsMember({"auto", "full"}))
+        ->capture_default_str();
+    cmd->add_option("--tolerance", o.toleranceDeg,
+                    "Horizon error budget for --quality auto (degrees)")
+        ->check(CLI::Range(0.001, 10.0))
+        ->capture_default_str();
+    cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
+}
+
+/// The sweep's measured error against the reference on real DEMs (README, "How the horizon is
+/// computed"): median and 99th percentile of the absolute horizon error, degrees.
+constexpr const char* kSweepExpectedErrorDeg = "median 0.07, p99 5.2 (sweep vs reference, real DEMs)";
+
+ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestElevationDeg,
+                  const CliContext& ctx) {
+    QualityBudget budget;
+    budget.toleranceDeg = o.toleranceDeg;
+    budget.lowestElevationDeg = lowestElevationDeg;
+    budget.refraction = o.refraction;
+    ScenePlan plan = planScene(terrain, parseQuality(o.quality), budget);
+    if (o.maxDistanceM) {
+        plan.maxDistanceM = *o.maxDistanceM;
+        plan.reasons[0] = "max_distance_m=" + formatNumber(*o.maxDistanceM) + " (--max-distance)";
+    }
+    if (o.verbose && !ctx.quiet) {
+        note(ctx, "scene plan (--quality " + o.quality + "):");
+        for (const auto& r : plan.reasons) note(ctx, "  " + r);
+    }
+    return plan;
+}
+
+HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
+    HorizonParams p;
+    p.maxDistanceM = plan.maxDistanceM;
+    p.curvature = plan.curvature;
+    p.refraction = o.refraction;
+    p.directionToleranceDeg = plan.directionToleranceDeg;
+    p.threads = o.threads;
+    return p;
+}
+
+std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
+    std::string reasons;
+    for (const auto& r : plan.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
+    return {{"DEMLIGHT_QUALITY", std::string(qualityName(plan.quality))},
+            {"DEMLIGHT_PLAN", reasons},
+            {"DEMLIGHT_CURVATURE", plan.curvature ? "on" : "off"},
+            {"DEMLIGHT_EXPECTED_ERROR_DEG", kSweepExpectedErrorDeg}};
 }
 
 double outputNodata(const Dem& dem) {

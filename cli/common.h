@@ -4,6 +4,8 @@
 #include "cli/commands.h"
 #include "geo/dem.h"
 #include "geo/raster.h"
+#include "lighting/horizon.h"
+#include "lighting/quality.h"
 
 #include <map>
 #include <optional>
@@ -25,8 +27,25 @@ struct SearchOptions {
     std::optional<double> maxDistanceM;
     double refraction = 0.13;
     int threads = 0;
+    std::string quality = "auto";
+    double toleranceDeg = 0.1;
+    bool verbose = false;
 };
 void addSearchOptions(CLI::App* cmd, SearchOptions& o);
+
+/// The scene plan (lighting/quality.h) for these options, with the user's explicit
+/// --max-distance taking precedence; printed with --verbose. `lowestElevationDeg` is the lowest
+/// sun or sky elevation whose shadows matter for the command.
+ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestElevationDeg,
+                  const CliContext& ctx);
+
+/// HorizonParams from a plan: distance, curvature, refraction, direction tolerance, threads.
+HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan);
+
+/// Metadata items recording the plan (DEMLIGHT_QUALITY, DEMLIGHT_PLAN) and the expected error
+/// of the sweep against the reference (DEMLIGHT_EXPECTED_ERROR_DEG, from the measured tables
+/// in the README).
+std::map<std::string, std::string> planMetadata(const ScenePlan& plan);
 
 /// The nodata value written for nodata cells of Float32 outputs: the input's own value when it
 /// cannot be mistaken for a result (NaN, or magnitude >= 10000, e.g. -32768, 65535, -3.4e38),
