@@ -138,8 +138,6 @@ struct RangeLog {
     }
 };
 
-constexpr double kNoG = -std::numeric_limits<double>::infinity();
-
 /// Per-line state of the far-to-near walk: the hull is buf[lo, hi) with the farthest point at lo.
 struct LineState {
     HullPoint* buf;
@@ -148,29 +146,35 @@ struct LineState {
     double sigmaM;
     long chunk;
     double nextChunkM;  // σ at which the chunk changes
-    /// Range-limited sweeps: highest g in the current chunk and in the previous one, and σ of the
-    /// previous chunk's nearest point (bounds of what the second pass could add to a cell).
-    double chunkMaxG, prevChunkMaxG, prevChunkNearestM;
+    /// Range-limited sweeps: the previous chunk's final hull is kept at buf[prevLo, prevHi) (the
+    /// current one starts after it), and the vertex its last tangent touched.
+    std::size_t prevLo, prevHi, prevHint;
     RangeLog* log;      // range-limited sweeps only
 };
 
 /// Largest g-space slope from (sigmaQ, gQ) to the hull, walking from vertex i (the slope from a
 /// point nearer than every vertex is unimodal along an upper hull). Slopes are compared by cross
 /// multiplication (all distances are positive), so only the answer costs a division.
-inline double tangentSlope(const LineState& line, std::size_t i, double sigmaQ, double gQ) {
-    const HullPoint* h = line.buf;
+inline std::size_t tangentVertex(const HullPoint* h, std::size_t lo, std::size_t hi, std::size_t i, double sigmaQ,
+                                 double gQ) {
     // slope(a) > slope(b)  <=>  (g_a - gQ)(σQ - σ_b) > (g_b - gQ)(σQ - σ_a)
     auto steeper = [&](std::size_t a, std::size_t b) {
         return (h[a].g - gQ) * (sigmaQ - h[b].sigmaM) > (h[b].g - gQ) * (sigmaQ - h[a].sigmaM);
     };
     bool moved = false;
-    while (i > line.lo && steeper(i - 1, i)) {
+    while (i > lo && steeper(i - 1, i)) {
         --i;
         moved = true;
     }
     if (!moved) {
-        while (i + 1 < line.hi && !steeper(i, i + 1)) ++i;
+        while (i + 1 < hi && !steeper(i, i + 1)) ++i;
     }
+    return i;
+}
+
+inline double tangentSlope(const LineState& line, std::size_t i, double sigmaQ, double gQ) {
+    const HullPoint* h = line.buf;
+    i = tangentVertex(h, line.lo, line.hi, i, sigmaQ, gQ);
     return (h[i].g - gQ) / (sigmaQ - h[i].sigmaM);
 }
 
@@ -305,7 +309,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     const bool limited = std::isfinite(maxDistanceM);
     LineState lines[kLinesPerBlock];
     for (std::size_t b = 0; b < nLines; ++b) {
-        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, 0.0, 0, maxDistanceM, kNoG, kNoG, 0.0,
+        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, 0.0, 0, maxDistanceM, 0, 0, 0,
                     limited ? &logs[b] : nullptr};
         if (limited) logs[b].reset(lineCapacity);
     }
@@ -314,8 +318,6 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     const long mStep = -geo.farSign;
     const long minorWin0 = static_cast<long>(geo.minorWin0), minorWin1 = static_cast<long>(geo.minorWin1);
     const double halfInvR = 0.5 * invR;
-    // Largest distance the second pass can see, with a margin for the rounding of σ differences.
-    const double farthestM = maxDistanceM * (1.0 + 1e-9);
     auto index = [W](long m, long j) {
         return XMajor ? static_cast<std::size_t>(j) * W + static_cast<std::size_t>(m)
                       : static_cast<std::size_t>(m) * W + static_cast<std::size_t>(j);
@@ -373,13 +375,16 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // Range limit: a fresh hull per chunk of length maxDistanceM (see limitRangePass).
                 if (limited && sigma >= line.nextChunkM) {
                     const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
-                    const bool adjacent = chunk == line.chunk + 1 && line.lo < line.hi;
-                    line.prevChunkMaxG = adjacent ? line.chunkMaxG : kNoG;
-                    line.prevChunkNearestM = adjacent ? line.buf[line.hi - 1].sigmaM : 0.0;
-                    line.chunkMaxG = kNoG;
+                    if (chunk == line.chunk + 1) {
+                        line.prevLo = line.lo;
+                        line.prevHi = line.hi;
+                        line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
+                        line.lo = line.hi;
+                    } else {
+                        line.prevLo = line.prevHi = line.lo = line.hi = 0;
+                    }
                     line.chunk = chunk;
                     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
-                    line.lo = line.hi = 0;
                 }
 
                 // The line sample's tangent vertex = the hull top after the pops it causes:
@@ -419,23 +424,33 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                             value = static_cast<float>(tangentSlope(line, start, sigma, gCell) - sigma * invR);
                         }
                         float* cell = servedPlane[s] + idx;
-                        *cell = value;
-                        // Left to the second pass only if the previous chunk could raise the value:
-                        // its highest point at its nearest distance, or at maxDistanceM if below.
-                        if (line.prevChunkMaxG != kNoG) {
-                            const double rise = line.prevChunkMaxG - gCell;
-                            const double distM = rise >= 0.0 ? sigma - line.prevChunkNearestM : farthestM;
-                            if (static_cast<float>(rise / distM - sigma * invR) > value)
-                                line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints, cell};
+                        // The previous chunk: the tangent to its whole hull bounds what its points
+                        // within range can add, and is that answer when its vertex is in range;
+                        // otherwise the cell is left to the second pass.
+                        bool needsSecondPass = false;
+                        if (line.prevLo < line.prevHi) {
+                            const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
+                                                                sigma, gCell);
+                            line.prevHint = v;
+                            const HullPoint& pv = line.buf[v];
+                            const float bound =
+                                static_cast<float>((pv.g - gCell) / (sigma - pv.sigmaM) - sigma * invR);
+                            if (bound > value) {
+                                if (pv.sigmaM >= sigma - maxDistanceM) {
+                                    value = bound;
+                                } else {
+                                    needsSecondPass = true;
+                                }
+                            }
                         }
+                        *cell = value;
+                        if (needsSecondPass)
+                            line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints, cell};
                     }
                 }
 
                 if (sampleValid) {
-                    if (limited) {
-                        line.log->points[line.log->nPoints++] = {sigma, gSample, line.chunk};
-                        line.chunkMaxG = std::max(line.chunkMaxG, gSample);
-                    }
+                    if (limited) line.log->points[line.log->nPoints++] = {sigma, gSample, line.chunk};
                     line.hi = top;
                     line.buf[line.hi++] = {sigma, gSample};
                 }
