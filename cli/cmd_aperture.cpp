@@ -11,8 +11,10 @@
 namespace demlight::cli {
 namespace {
 
-/// Default number of directions, as for `demlight sky`.
-constexpr int kDefaultApertureDirections = 32;
+/// Default --directions: kDefaultSkyDirections (lighting/sky.h), as for `demlight sky`: the
+/// aperture's solid angle and bent normal converge with the direction count like sky_K does
+/// (README "Sky accuracy").
+constexpr int kDefaultApertureDirections = static_cast<int>(kDefaultSkyDirections);
 
 struct ApertureOptions {
     std::string demPath;

@@ -1,5 +1,6 @@
 #include "lighting/lighting_models.h"
 
+#include "lighting/sun.h"
 #include "src/error.h"
 #include "src/parallel.h"
 
@@ -18,6 +19,20 @@ constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
 
 double dot(const EnuVector& a, const EnuVector& b) {
     return a.east * b.east + a.north * b.north + a.up * b.up;
+}
+
+/// The aperture of a cell and its normal; false if any component is NaN.
+bool cellAperture(const ApertureMaps& a, const Grid<float>& ne, const Grid<float>& nn,
+                  const Grid<float>& nu, std::size_t col, std::size_t row, Aperture& ap,
+                  EnuVector& n) {
+    ap = Aperture{a.solidAngleSr(col, row),
+                  {a.bentEast(col, row), a.bentNorth(col, row), a.bentUp(col, row)},
+                  a.radiusDeg(col, row)};
+    n = EnuVector{ne(col, row), nn(col, row), nu(col, row)};
+    return !(std::isnan(ap.solidAngleSr) || std::isnan(ap.radiusDeg) ||
+             std::isnan(ap.bentNormal.east) || std::isnan(ap.bentNormal.north) ||
+             std::isnan(ap.bentNormal.up) || std::isnan(n.east) || std::isnan(n.north) ||
+             std::isnan(n.up));
 }
 
 }  // namespace
@@ -51,6 +66,7 @@ ApertureLight apertureLight(const EnuVector& normal, const Aperture& ap,
                                                   : capIntersectionAreaSr(rp, rl, d);
     const double sunArea = capAreaSr(rl);
     ApertureLight out;
+    if (sunArea > 0.0) out.sunVisible = std::clamp(area / sunArea, 0.0, 1.0);
     if (area > 0.0 && sunArea > 0.0) {
         if (params.smoothIntersection) {
             // Seed Sec. 3.3: area times the Lambert term at the (cheap) centroid direction.
@@ -89,19 +105,41 @@ ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<fl
                           Grid<float>(ref.width(), ref.height(), kNaNf)};
     parallelFor(0, ref.height(), threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < ref.width(); ++col) {
-            const Aperture ap{aperture.solidAngleSr(col, row),
-                              {aperture.bentEast(col, row), aperture.bentNorth(col, row),
-                               aperture.bentUp(col, row)},
-                              aperture.radiusDeg(col, row)};
-            const EnuVector n{normalEast(col, row), normalNorth(col, row), normalUp(col, row)};
-            if (std::isnan(ap.solidAngleSr) || std::isnan(ap.radiusDeg) ||
-                std::isnan(ap.bentNormal.east) || std::isnan(ap.bentNormal.north) ||
-                std::isnan(ap.bentNormal.up) || std::isnan(n.east) || std::isnan(n.north) ||
-                std::isnan(n.up))
+            Aperture ap;
+            EnuVector n;
+            if (!cellAperture(aperture, normalEast, normalNorth, normalUp, col, row, ap, n))
                 continue;
             const ApertureLight l = apertureLight(n, ap, sunDirection, params);
             out.sun(col, row) = static_cast<float>(l.sun);
             out.ambient(col, row) = static_cast<float>(l.ambient);
+        }
+    });
+    return out;
+}
+
+ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                                 const Grid<float>& normalNorth, const Grid<float>& normalUp,
+                                 const SunField& field, const ApertureLightParams& params,
+                                 int threads) {
+    const Grid<float>& ref = aperture.radiusDeg;
+    for (const Grid<float>* g : {&aperture.bentEast, &aperture.bentNorth, &aperture.bentUp,
+                                 &aperture.solidAngleSr, &normalEast, &normalNorth, &normalUp})
+        if (!g->sameShape(ref))
+            throw Error("aperture sun: aperture and normal grids differ in size");
+    ApertureSunMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
+                        Grid<float>(ref.width(), ref.height(), kNaNf)};
+    parallelFor(0, ref.height(), threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < ref.width(); ++col) {
+            Aperture ap;
+            EnuVector n;
+            if (!cellAperture(aperture, normalEast, normalNorth, normalUp, col, row, ap, n))
+                continue;
+            // Per-cell sun, as computeSunFrame uses for the horizon model.
+            const auto [az, el] =
+                field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
+            const ApertureLight l = apertureLight(n, ap, directionEnu(az, el), params);
+            out.visibility(col, row) = static_cast<float>(l.sunVisible);
+            out.irradiance(col, row) = static_cast<float>(l.sun);
         }
     });
     return out;

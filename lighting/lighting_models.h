@@ -12,6 +12,7 @@
 #include "lighting/aperture.h"
 #include "lighting/sky.h"
 #include "src/grid.h"
+#include "src/sun_field.h"
 
 #include <string_view>
 
@@ -40,6 +41,7 @@ struct ApertureLightParams {
 struct ApertureLight {
     double sun = 0.0;      ///< sunRadiance * integral over the intersection of N.v / (pi sin^2 r_l)
     double ambient = 0.0;  ///< ambientRadiance * sin^2(r_p) max(0, N.V_p) * (1 - A_int / A_p)
+    double sunVisible = 0.0;  ///< A_int / A_sun: covered fraction of the sun cap, in [0, 1]
     double total() const { return sun + ambient; }
 };
 
@@ -69,6 +71,23 @@ ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<fl
                                      const Grid<float>& normalNorth, const Grid<float>& normalUp,
                                      const EnuVector& sunDirection,
                                      const ApertureLightParams& params, int threads = 0);
+
+/// Sun through the aperture for a whole DEM at one instant (`demlight sun --model aperture`,
+/// `aperture-smooth`): every cell with its own sun position from `field` (bilinear at the cell
+/// centre), so the result matches the horizon model's per-cell sun.
+///   visibility = ApertureLight::sunVisible, the covered fraction of the sun cap (the aperture
+///                model's counterpart of the horizon model's visible fraction of the disk);
+///   irradiance = ApertureLight::sun, the direct term (max(0, N.s) for a fully covered sun).
+/// The ambient fill is not included: it is sky light (see `demlight sky`). NaN where any input
+/// is NaN.
+struct ApertureSunMaps {
+    Grid<float> visibility;
+    Grid<float> irradiance;
+};
+ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                                 const Grid<float>& normalNorth, const Grid<float>& normalUp,
+                                 const SunField& field, const ApertureLightParams& params,
+                                 int threads = 0);
 
 // ---- Hemisphere lighting (Hargreaves 2003, seed 001) -----------------------------------------
 

@@ -1,0 +1,102 @@
+// Sky and aperture cost by direction count on a whole DEM: sweep, sky accumulation and aperture
+// accumulation, seconds and ns per cell per direction. The accuracy of each direction count is
+// measured in tests/sky_realdem_test.cpp (README "Sky accuracy").
+// Usage: demlight_sky_bench DEM [threads] [max-distance-m] [crop-width crop-height]
+//   (default: all threads, the scene's defaultMaxDistanceM, the whole DEM; a crop is centred;
+//   max-distance 0 = the scene default). tests/sky_realdem_test.cpp's crops and distances:
+//   N44W072.hgt 2 6627 400 400; big_tujunga_srtm30m_utm11.tif 2 3750 600 500;
+//   svalbard_longyearbyen_npi_dtm20.tif 2 2500 600 500.
+#include "geo/dem.h"
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/horizon.h"
+#include "lighting/sky.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+namespace {
+
+/// The centred crop of a terrain (heights and per-row sizes; convergence sampled every 16 cells).
+demlight::Terrain crop(const demlight::Terrain& t, std::size_t w, std::size_t h) {
+    w = std::min(w, t.width());
+    h = std::min(h, t.height());
+    const std::size_t col0 = (t.width() - w) / 2, row0 = (t.height() - h) / 2;
+    demlight::Terrain out;
+    out.heightsM = demlight::Grid<float>(w, h);
+    for (std::size_t r = 0; r < h; ++r)
+        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
+    out.cellWidthM.assign(t.cellWidthM.begin() + static_cast<long>(row0), t.cellWidthM.begin() + static_cast<long>(row0 + h));
+    out.cellHeightM.assign(t.cellHeightM.begin() + static_cast<long>(row0), t.cellHeightM.begin() + static_cast<long>(row0 + h));
+    if (!t.convergence.empty()) {
+        const std::size_t step = 16;
+        out.convergence.stepCells = step;
+        out.convergence.gammaDeg = demlight::Grid<float>((w + step - 1) / step + 1, (h + step - 1) / step + 1);
+        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
+            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
+                out.convergence.gammaDeg(i, j) = static_cast<float>(t.convergence.at(
+                    static_cast<double>(col0 + std::min(i * step, w - 1)), static_cast<double>(row0 + std::min(j * step, h - 1))));
+    }
+    return out;
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s DEM [threads] [max-distance-m]\n", argv[0]);
+        return 2;
+    }
+    try {
+        const demlight::Dem dem = demlight::loadDem(argv[1]);
+        const demlight::Terrain t = argc > 5 ? crop(dem.terrain, static_cast<std::size_t>(std::atol(argv[4])),
+                                                    static_cast<std::size_t>(std::atol(argv[5])))
+                                             : dem.terrain;
+        const int threads = demlight::resolveThreadCount(argc > 2 ? std::atoi(argv[2]) : 0);
+        demlight::HorizonParams p;
+        p.maxDistanceM = argc > 3 && std::atof(argv[3]) > 0 ? std::atof(argv[3]) : demlight::defaultMaxDistanceM(t);
+        p.threads = threads;
+        const demlight::Normals normals = demlight::computeNormals(t, threads);
+        const double cells = static_cast<double>(t.width() * t.height());
+        std::printf("%s: %zu x %zu cells, max distance %.0f m, %d threads\n", argv[1], t.width(), t.height(),
+                    p.maxDistanceM, threads);
+        std::printf("%4s %9s %9s %9s %9s %14s\n", "D", "sweep s", "sky s", "aper s", "total s", "ns/cell/dir");
+        for (std::size_t d : {4u, 8u, 16u, 32u, 64u}) {
+            demlight::SkyAccumulator sky(normals.east, normals.north, normals.up, d, {}, threads);
+            demlight::ApertureAccumulator ap(normals.east, normals.north, normals.up, d, threads);
+            double skyS = 0, apS = 0;
+            const auto t0 = std::chrono::steady_clock::now();
+            demlight::sweepDirections(t, p, d, [&](std::size_t i, const demlight::HorizonMap& m) {
+                auto t1 = std::chrono::steady_clock::now();
+                sky.addDirection(i, m.angleDeg);
+                skyS += since(t1);
+                t1 = std::chrono::steady_clock::now();
+                ap.addDirection(i, m.angleDeg);
+                apS += since(t1);
+            });
+            auto t1 = std::chrono::steady_clock::now();
+            [[maybe_unused]] const demlight::SkyMaps s = sky.finish(0.2);
+            skyS += since(t1);
+            t1 = std::chrono::steady_clock::now();
+            [[maybe_unused]] const demlight::ApertureMaps a = ap.finish();
+            apS += since(t1);
+            const double total = since(t0);
+            std::printf("%4zu %9.3f %9.3f %9.3f %9.3f %14.1f\n", d, total - skyS - apS, skyS, apS, total,
+                        total / (cells * static_cast<double>(d)) * 1e9);
+            std::fflush(stdout);
+        }
+    } catch (const demlight::Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
