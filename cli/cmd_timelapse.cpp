@@ -11,6 +11,7 @@
 #include "geo/sun_field.h"
 #include "geo/time.h"
 #include "lighting/preview.h"
+#include "lighting/sequence_fit.h"
 #include "lighting/sky.h"
 #include "lighting/sun_frame.h"
 #include "lighting/sunhours.h"
@@ -43,7 +44,13 @@ struct TimelapseOptions {
     double albedo = PreviewParams{}.albedo;
     std::string colorRaster;
     double sunDiameterDeg = kSunDiameterDeg;
+    int fitDegree = 0;  ///< > 0: also store the sun_irradiance sequence as a polynomial fit
 };
+
+/// Seconds since the Unix epoch, the clock the sequence fit's times use.
+double unixSeconds(UtcInstant t) {
+    return std::chrono::duration<double>(t.time_since_epoch()).count();
+}
 
 /// "15m", "1h", "90s", "1h30m", or a plain number of minutes. Throws Error naming --step.
 std::chrono::milliseconds parseStep(const std::string& text) {
@@ -153,6 +160,44 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
     return f;
 }
 
+/// Writes DIR/sequence_fit.tif: the Legendre coefficients of sun_irradiance over the frame span
+/// and the per-cell RMS residual; `demlight sequence` reconstructs any instant from it.
+void writeSequenceFit(const SequenceFitter& fitter, const std::vector<UtcInstant>& instants,
+                      const Dem& dem, const TimelapseOptions& o, const CliContext& ctx) {
+    const SequenceFit fit = fitter.finish();
+    std::vector<OutputBand> bands;
+    for (int j = 0; j <= fit.degree; ++j)
+        bands.push_back({&fit.coefficients[static_cast<std::size_t>(j)], nullptr,
+                         "sun_irradiance_legendre_" + std::to_string(j), "normalised irradiance"});
+    bands.push_back({&fit.rmsError, nullptr, "rms_error", "normalised irradiance"});
+    double sum = 0, worst = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < fit.rmsError.size(); ++i) {
+        const float e = fit.rmsError.data()[i];
+        if (std::isnan(e) || std::isnan(dem.terrain.heightsM.data()[i])) continue;
+        sum += e, worst = std::max<double>(worst, e), ++n;
+    }
+    const double meanRms = n ? sum / static_cast<double>(n) : 0.0;
+    OutputOptions out;
+    out.path = (std::filesystem::path(o.outDir) / "sequence_fit.tif").string();
+    const std::map<std::string, std::string> meta = {
+        {"DEMLIGHT_PRODUCT", "sequence fit"},
+        {"DEMLIGHT_FIT_DEGREE", std::to_string(fit.degree)},
+        {"DEMLIGHT_FIT_BASIS", "Legendre P_j(x), x = 2 (t - t0) / (t1 - t0) - 1"},
+        {"DEMLIGHT_FIT_T0_UTC", formatInstant(instants.front(), std::string())},
+        {"DEMLIGHT_FIT_T1_UTC", formatInstant(instants.back(), std::string())},
+        {"DEMLIGHT_FIT_FRAMES", std::to_string(instants.size())},
+        {"DEMLIGHT_FIT_MEAN_RMS", formatNumber(meanRms)},
+    };
+    writeRaster(out.path, bands, dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
+    note(ctx, "wrote " + out.path + ": sun_irradiance as degree-" + std::to_string(fit.degree) +
+                  " polynomials, " + std::to_string(fit.degree + 1) + " bands for " +
+                  std::to_string(instants.size()) + " frames (size ratio " +
+                  formatNumber(static_cast<double>(fit.degree + 1) / static_cast<double>(instants.size())) +
+                  "); RMS error vs the exact frames: mean " + formatNumber(meanRms) + ", worst cell " +
+                  formatNumber(worst));
+}
+
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const std::set<std::string> formats = parseFormats(o.formats);
     const std::size_t stackDirections = parseHorizonMode(o.horizonMode);
@@ -208,6 +253,12 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
 
     double computeS = 0, writeS = 0;
     std::size_t sunUp = 0;
+    std::unique_ptr<SequenceFitter> fitter;
+    if (o.fitDegree > 0) {
+        std::vector<double> times;
+        for (UtcInstant when : frames.instants) times.push_back(unixSeconds(when));
+        fitter = std::make_unique<SequenceFitter>(times, o.fitDegree, t.width(), t.height());
+    }
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = frames.instants[i];
         const auto c0 = clock::now();
@@ -227,6 +278,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
             preview = renderPreview(normals, frame.light.visibility, sky, albedo,
                                     field.centreAzimuthDeg, field.centreElevationDeg, pp,
                                     o.search.threads);
+        if (fitter) fitter->addFrame(i, frame.light.irradiance);
         const auto c1 = clock::now();
         computeS += seconds(c1 - c0);
         if (formats.count("tif")) {
@@ -261,6 +313,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     }
     if (gif) gif->finish();
     bar.finish();
+    if (fitter) writeSequenceFit(*fitter, frames.instants, dem, o, ctx);
     const double total = seconds(clock::now() - tStart);
     note(ctx, "frames: " + std::to_string(n) + " (" + frames.description + ", " +
                   formatInstant(frames.instants.front(), frames.zone) + " .. " +
@@ -313,6 +366,10 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--exposure", o->exposure, "Preview exposure (multiplies linear light)")
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
+    cmd->add_option("--fit-degree", o->fitDegree,
+                    "Also store sun_irradiance as per-cell Legendre polynomials of this degree in "
+                    "DIR/sequence_fit.tif (0 = off); read back with demlight sequence")
+        ->check(CLI::Range(0, 12));
     cmd->add_option("--sun-diameter", o->sunDiameterDeg, "Angular diameter of the sun disk (degrees)")
         ->check(CLI::Range(0.0, 20.0))
         ->capture_default_str();

@@ -26,5 +26,6 @@ void registerLight(CLI::App& app, CliContext& ctx);
 void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
+void registerSequence(CLI::App& app, CliContext& ctx);
 
 }  // namespace demlight::cli

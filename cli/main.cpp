@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     cli::registerRender(app, ctx);
     cli::registerTimelapse(app, ctx);
     cli::registerSunhours(app, ctx);
+    cli::registerSequence(app, ctx);
 
     // GDAL spells these with one dash (-of COG, -co KEY=VALUE); accept both spellings.
     std::vector<std::string> args(argv + 1, argv + argc);

@@ -124,6 +124,28 @@ RasterBand readRasterBand(const std::string& path) {
     return out;
 }
 
+std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary) {
+    if (summary) *summary = inspectRaster(path);
+    DatasetPtr ds = openRaster(path);
+    const auto width = static_cast<std::size_t>(ds->GetRasterXSize());
+    const auto height = static_cast<std::size_t>(ds->GetRasterYSize());
+    std::vector<Grid<float>> out;
+    for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+        GDALRasterBand* band = ds->GetRasterBand(b);
+        Grid<float> g(width, height);
+        if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height), g.data(),
+                           static_cast<int>(width), static_cast<int>(height), GDT_Float32, 0, 0) != CE_None)
+            throw Error(withGdalReason("cannot read band " + std::to_string(b) + " of '" + path + "'"));
+        int hasNodata = 0;
+        const auto nodata = static_cast<float>(band->GetNoDataValue(&hasNodata));
+        if (hasNodata)
+            for (float& v : g.values())
+                if (v == nodata) v = std::numeric_limits<float>::quiet_NaN();
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
 std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,
                                              std::size_t width, std::size_t height) {
     DatasetPtr src = openRaster(path);

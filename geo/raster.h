@@ -34,6 +34,11 @@ struct RasterBand {
 /// CRS, and rotated or sheared geotransforms.
 RasterBand readRasterBand(const std::string& path);
 
+struct RasterSummary;
+
+/// Reads every band of a raster as float (nodata and NaN become NaN), without resampling.
+std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary = nullptr);
+
 /// Reads all bands of a raster as float, resampled (bilinear) onto `target`'s grid of
 /// `width` x `height`. Used for albedo and colour rasters.
 std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,

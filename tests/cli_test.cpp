@@ -189,3 +189,38 @@ TEST(CliOutputs, InfoJsonReportsMetricCellSizes) {
 
 }  // namespace
 }  // namespace demlight
+
+namespace demlight {
+namespace {
+
+TEST(CliOutputs, SequenceFitRoundTrip) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_sequence";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    auto r = runDemlight("timelapse " + kRocky + " -o " + dir.string() +
+                         " --start 2024-06-21T08:00-06:00 --end 2024-06-21T11:00-06:00 --step 20m"
+                         " --formats tif --fit-degree 3");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("RMS error vs the exact frames"), std::string::npos) << r.err;
+    const RasterSummary fit = inspectRaster((dir / "sequence_fit.tif").string());
+    EXPECT_EQ(fit.descriptions.size(), 5u);  // 4 coefficients + rms_error
+    EXPECT_EQ(fit.metadata.at("DEMLIGHT_FIT_DEGREE"), "3");
+    // Reconstruct the 09:00 frame and compare it with the exact one.
+    const std::string rec = (dir / "rec.tif").string();
+    r = runDemlight("sequence " + (dir / "sequence_fit.tif").string() + " -o " + rec +
+                    " --time 2024-06-21T09:00-06:00");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const RasterBand exact = readRasterBand((dir / "frame_003.tif").string());
+    const RasterBand back = readRasterBand(rec);
+    double sum = 0;
+    for (std::size_t i = 0; i < exact.values.size(); ++i)
+        sum += std::abs(exact.values.data()[i] - back.values.data()[i]);
+    EXPECT_LT(sum / static_cast<double>(exact.values.size()), 0.05);
+    r = runDemlight("sequence " + (dir / "sequence_fit.tif").string() + " -o " + rec +
+                    " --time 2024-06-22T09:00-06:00");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("outside the fitted span"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace demlight
