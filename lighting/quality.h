@@ -4,6 +4,7 @@
 // finest setting. The plan is recorded in output metadata and printed with --verbose.
 #pragma once
 
+#include "lighting/sky.h"
 #include "src/terrain.h"
 
 #include <cstddef>
@@ -33,14 +34,14 @@ struct ScenePlan {
     double maxDistanceM = 0;          ///< horizon search distance (metres)
     bool curvature = true;            ///< earth curvature and refraction in sight lines
     double directionToleranceDeg = 0; ///< sweep region split tolerance (0 = the sweep's automatic rule)
-    int skyDirections = 32;           ///< sectors for sky and aperture integrals
+    int skyDirections = kAutoSkyDirections;           ///< sectors for sky and aperture integrals
     std::size_t sunLatticeStepCells = 64;  ///< SPA evaluated every this many cells
     /// One line per choice, "name=value (why)", for metadata and --verbose.
     std::vector<std::string> reasons;
 };
 
-/// Sky and aperture directions used by `auto` (from the measured sky error table, README).
-inline constexpr int kAutoSkyDirections = 32;
+/// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h).
+inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections);
 /// Directions used by `full`.
 inline constexpr int kFullSkyDirections = 64;
 
