@@ -115,9 +115,10 @@ std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParam
 /// (tangent search starting from the line sample's tangent), and the two tangents (slopes) are
 /// interpolated by the cross-line weight. Distances s accumulate per-row metric step lengths.
 ///
-/// maxDistanceM is approximate: hull points farther than maxDistanceM from the current sample are
-/// dropped from the far end of the hull, but a point that had been hidden behind a dropped point
-/// is not restored, so its tangent is missed (measured in tests/horizon_realdem_test.cpp).
+/// maxDistanceM is exact: each line is cut into chunks of maxDistanceM with a fresh hull each, and
+/// a cell also takes the tangent to the previous chunk's hull when its vertex is in range; the
+/// few cells whose steepest previous-chunk point is out of range get an exact O(n log n) pass.
+/// Each block of lines is walked only from maxDistanceM beyond the cells it serves in a region.
 HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params,
                         ProgressCounter* progress = nullptr);
 
