@@ -20,6 +20,11 @@ enum class Quality { Auto, Full };
 Quality parseQuality(std::string_view name);
 std::string_view qualityName(Quality q);
 
+/// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h).
+inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections);
+/// Directions used by `full`.
+inline constexpr int kFullSkyDirections = 64;
+
 struct QualityBudget {
     /// Horizon angle error the user accepts from modelling choices (degrees).
     double toleranceDeg = 0.1;
@@ -39,11 +44,6 @@ struct ScenePlan {
     /// One line per choice, "name=value (why)", for metadata and --verbose.
     std::vector<std::string> reasons;
 };
-
-/// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h).
-inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections);
-/// Directions used by `full`.
-inline constexpr int kFullSkyDirections = 64;
 
 /// Chooses the plan. Rules for `auto`:
 ///  - search distance: relief / tan(lowestElevation), capped by the DEM diagonal: terrain
