@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,31 @@ struct Day {
 };
 
 void PrintTo(const Day& d, std::ostream* os) { *os << d.file << " " << d.date; }
+
+/// applyApertureSun on open flat ground: the sun is fully covered above the horizon (the
+/// aperture is the whole hemisphere), half covered on it, and the direct term is sin(elevation).
+TEST(ApertureSun, FlatGroundMatchesHorizonModel) {
+    const Terrain t = makeUniformTerrain(Grid<float>(16, 16, 100.0f), 30.0);
+    const Normals normals = computeNormals(t, 1);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, kDefaultSkyDirections, 1);
+    HorizonParams hp;
+    hp.maxDistanceM = 1000.0;
+    hp.threads = 1;
+    sweepDirections(t, hp, kDefaultSkyDirections, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
+    const ApertureMaps ap = acc.finish();
+    for (const bool smooth : {false, true}) {
+        ApertureLightParams lp;
+        lp.smoothIntersection = smooth;
+        for (const double el : {0.0, 5.0, 30.0, 89.0}) {
+            const ApertureSunMaps m = applyApertureSun(ap, normals.east, normals.north, normals.up,
+                                                       SunField::uniform(123.0, el), lp, 1);
+            const double vis = el == 0.0 ? 0.5 : 1.0;
+            EXPECT_NEAR(m.visibility(8, 8), vis, 1e-6) << "elevation " << el << " smooth " << smooth;
+            EXPECT_NEAR(m.irradiance(8, 8), vis * std::sin(el * std::numbers::pi / 180.0), 2e-3)
+                << "elevation " << el << " smooth " << smooth;
+        }
+    }
+}
 
 class ApertureVsHorizon : public ::testing::TestWithParam<Day> {};
 
