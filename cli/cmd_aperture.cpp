@@ -7,6 +7,7 @@
 #include "lighting/surface.h"
 
 #include <chrono>
+#include <optional>
 
 namespace demlight::cli {
 namespace {
@@ -20,38 +21,38 @@ struct ApertureOptions {
     std::string demPath;
     OutputOptions out;
     SearchOptions search;
-    int directions = kDefaultApertureDirections;
+    std::optional<int> directions;  ///< default: the scene plan's (kDefaultApertureDirections for auto)
 };
 
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out.path, o.demPath);
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
-    HorizonParams params;
-    params.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
-    params.refraction = o.search.refraction;
-    params.threads = o.search.threads;
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
+    const HorizonParams params = horizonParams(o.search, plan);
+    const int directions = o.directions.value_or(plan.skyDirections);
 
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     ApertureAccumulator acc(normals.east, normals.north, normals.up,
-                            static_cast<std::size_t>(o.directions), o.search.threads);
+                            static_cast<std::size_t>(directions), o.search.threads);
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "aperture", t.heightsM.size() * static_cast<std::size_t>(o.directions));
-    sweepDirections(t, params, static_cast<std::size_t>(o.directions),
+    ProgressCounter counter(bar.callback(), "aperture", t.heightsM.size() * static_cast<std::size_t>(directions));
+    sweepDirections(t, params, static_cast<std::size_t>(directions),
                     [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
                     &counter);
     const ApertureMaps maps = acc.finish();
     bar.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "aperture"},
         {"DEMLIGHT_METHOD", "sweep"},
-        {"DEMLIGHT_DIRECTIONS", std::to_string(o.directions)},
+        {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
-    };
+    });
     writeRaster(o.out.path,
                 {{&maps.bentEast, nullptr, "bent_normal_east", "unit vector component (ENU)"},
                  {&maps.bentNorth, nullptr, "bent_normal_north", "unit vector component (ENU)"},
@@ -60,7 +61,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
                  {&maps.solidAngleSr, nullptr, "visible_solid_angle_sr", "sr"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
-                  std::to_string(o.directions) + " directions, " + formatNumber(seconds) + " s compute");
+                  std::to_string(directions) + " directions, " + formatNumber(seconds) + " s compute");
 }
 
 }  // namespace
@@ -70,9 +71,10 @@ void registerAperture(CLI::App& app, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand("aperture", "Ambient aperture: bent normal, cap radius, visible solid angle");
     cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
     addOutputOptions(cmd, o->out);
-    cmd->add_option("--directions", o->directions, "Number of horizon directions integrated")
-        ->check(CLI::Range(4, 1024))
-        ->capture_default_str();
+    cmd->add_option("--directions", o->directions,
+                    "Number of horizon directions integrated (default: 16 with --quality auto, "
+                    "64 with full)")
+        ->check(CLI::Range(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runAperture(*o, ctx); });
 }

@@ -10,6 +10,7 @@
 #include "src/error.h"
 
 #include <chrono>
+#include <optional>
 
 namespace demlight::cli {
 namespace {
@@ -22,7 +23,7 @@ struct SkyOptions {
     std::string demPath;
     OutputOptions out;
     SearchOptions search;
-    int directions = kDefaultDirections;
+    std::optional<int> directions;  ///< default: the scene plan's (kDefaultDirections for auto)
     double albedo = 0.2;
     std::string albedoRaster;
     std::string patches;
@@ -68,18 +69,17 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
         return;
     }
 
-    HorizonParams params;
-    params.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
-    params.refraction = o.search.refraction;
-    params.threads = o.search.threads;
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
+    const HorizonParams params = horizonParams(o.search, plan);
+    const int directions = o.directions.value_or(plan.skyDirections);
 
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     SkyAccumulator sky(normals.east, normals.north, normals.up,
-                       static_cast<std::size_t>(o.directions), patches, o.search.threads);
+                       static_cast<std::size_t>(directions), patches, o.search.threads);
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "sky", t.heightsM.size() * static_cast<std::size_t>(o.directions));
-    sweepDirections(t, params, static_cast<std::size_t>(o.directions),
+    ProgressCounter counter(bar.callback(), "sky", t.heightsM.size() * static_cast<std::size_t>(directions));
+    sweepDirections(t, params, static_cast<std::size_t>(directions),
                     [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg); },
                     &counter);
     const SkyMaps maps = albedoRaster.empty() ? sky.finish(o.albedo) : sky.finish(albedoRaster[0]);
@@ -95,19 +95,20 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     for (std::size_t i = 0; i < maps.patchK.size(); ++i)
         bands.push_back({&maps.patchK[i], nullptr, "sky_K_patch=" + patches.patches[i].name,
                          "normalised irradiance"});
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "sky"},
         {"DEMLIGHT_METHOD", "sweep"},
-        {"DEMLIGHT_DIRECTIONS", std::to_string(o.directions)},
+        {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
         {"DEMLIGHT_ALBEDO", o.albedoRaster.empty() ? formatNumber(o.albedo) : o.albedoRaster},
         {"DEMLIGHT_PATCHES", o.patches},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
-    };
+    });
     writeRaster(o.out.path, bands, dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands.size()) + " bands: svf_horizontal, "
               "sky_fraction, sky_K, sky_factor" + (maps.patchK.empty() ? "" : ", patches") + "); " +
-              std::to_string(o.directions) + " directions, max distance " +
+              std::to_string(directions) + " directions, max distance " +
               formatNumber(std::round(params.maxDistanceM)) + " m, " + formatNumber(seconds) + " s compute");
 }
 
@@ -119,9 +120,9 @@ void registerSky(CLI::App& app, CliContext& ctx) {
     cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
     addOutputOptions(cmd, o->out);
     cmd->add_option("--directions", o->directions,
-                    "Number of horizon directions (sectors) integrated")
-        ->check(CLI::Range(4, 1024))
-        ->capture_default_str();
+                    "Number of horizon directions (sectors) integrated (default: 16 with --quality "
+                    "auto, 64 with full)")
+        ->check(CLI::Range(4, 1024));
     auto* albedo = cmd->add_option("--albedo", o->albedo, "Constant ground albedo C for f_sky, in [0, 1]")
                        ->check(CLI::Range(0.0, 1.0))
                        ->capture_default_str();

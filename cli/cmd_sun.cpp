@@ -44,12 +44,14 @@ struct SunBands {
 };
 
 SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
-                    const SunOptions& o, ProgressCounter& counter) {
+                    const SunOptions& o, const ScenePlan& plan, ProgressCounter& counter) {
     SunFrameParams params;
     params.sunDiameterDeg = o.sunDiameterDeg;
     params.refraction = o.search.refraction;
     params.threads = o.search.threads;
-    params.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
+    params.maxDistanceM = o.search.maxDistanceM.value_or(
+        plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
     SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
     return {std::move(frame.light.visibility), std::move(frame.light.irradiance), frame.maxDistanceM,
             std::to_string(frame.sweepAzimuthsDeg.size()) + " sweep azimuth(s)", frame.sweepAzimuthsDeg.size()};
@@ -89,7 +91,8 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     SolarSite site;
     site.pressureHpa = o.pressureHpa;
     site.temperatureC = o.temperatureC;
-    const SunField field = computeSunField(dem, when.utc, site, SpaOptions{});
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
+    const SunField field = computeSunField(dem, when.utc, site, SpaOptions{}, plan.sunLatticeStepCells);
     const auto [lowestSun, highestSun] = field.elevationRange();
 
     const auto start = std::chrono::steady_clock::now();
@@ -97,14 +100,15 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     ProgressBar bar(!ctx.quiet);
     const std::size_t work = t.heightsM.size() * (horizon ? 1 : static_cast<std::size_t>(o.directions));
     ProgressCounter counter(bar.callback(), "sun", work);
-    const SunBands out = horizon ? horizonSun(t, normals, field, o, counter)
+    const SunBands out = horizon ? horizonSun(t, normals, field, o, plan, counter)
                                  : apertureSun(t, normals, field, o,
                                                model == LightingModel::ApertureSmooth, counter);
     bar.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool sunUp = horizon ? out.sunRegions > 0 : highestSun > -0.5 * o.sunDiameterDeg;
 
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "sun"},
         {"DEMLIGHT_TIME_UTC", formatInstant(when.utc, std::string())},
         {"DEMLIGHT_TIME_LOCAL", formatInstant(when.utc, when.zone)},
@@ -118,7 +122,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(o.directions)},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(out.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(o.search.refraction)},
-    };
+    });
     writeRaster(o.out.path,
                 {{&out.visibility, nullptr, "sun_visibility",
                   horizon ? "fraction of sun disk (0-1)"
