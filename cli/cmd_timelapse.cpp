@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -102,12 +103,29 @@ std::set<std::string> parseFormats(const std::string& text) {
     std::stringstream ss(text);
     std::string f;
     while (std::getline(ss, f, ',')) {
-        if (f != "tif" && f != "png" && f != "gif")
-            throw Error("--formats: unknown format '" + f + "'; expected a list of tif, png, gif");
+        if (f != "tif" && f != "png" && f != "gif" && f != "mp4")
+            throw Error("--formats: unknown format '" + f + "'; expected a list of tif, png, gif, mp4");
         out.insert(f);
     }
-    if (out.empty()) throw Error("--formats: give at least one of tif, png, gif");
+    if (out.empty()) throw Error("--formats: give at least one of tif, png, gif, mp4");
+    if (out.count("mp4") && std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
+        throw Error("--formats mp4 needs the ffmpeg program on PATH (Debian: apt-get install ffmpeg)");
     return out;
+}
+
+/// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size).
+void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
+    const int digits = std::max(3, static_cast<int>(std::to_string(frameCount - 1).size()));
+    const fs::path mp4 = fs::path(dir) / "timelapse.mp4";
+    const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
+                            (fs::path(dir) / ("frame_%0" + std::to_string(digits) + "d.png")).string() +
+                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' '" +
+                            mp4.string() + "'";
+    if (std::system(cmd.c_str()) != 0) {
+        std::error_code ec;
+        fs::remove(mp4, ec);
+        throw Error("ffmpeg could not encode " + mp4.string());
+    }
 }
 
 std::string frameName(std::size_t i, std::size_t count, const std::string& ext) {
@@ -274,7 +292,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
             if (!frame.sweepAzimuthsDeg.empty()) ++sunUp;
         }
         Image8 preview;
-        if (formats.count("png") || gif)
+        if (formats.count("png") || formats.count("mp4") || gif)
             preview = renderPreview(normals, frame.light.visibility, sky, albedo,
                                     field.centreAzimuthDeg, field.centreElevationDeg, pp,
                                     o.search.threads);
@@ -305,7 +323,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                           "normalised sky irradiance K under a unit uniform sky (0-1)"}},
                         dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
         }
-        if (formats.count("png"))
+        if (formats.count("png") || formats.count("mp4"))
             writeImage((fs::path(o.outDir) / frameName(i, n, "png")).string(), preview);
         if (gif) gif->add(downsample(preview, o.gifSize));
         writeS += seconds(clock::now() - c1);
@@ -313,6 +331,11 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     }
     if (gif) gif->finish();
     bar.finish();
+    if (formats.count("mp4")) {
+        encodeMp4(o.outDir, n, o.fps);
+        if (!formats.count("png"))  // the PNGs were only the video's input
+            for (std::size_t i = 0; i < n; ++i) fs::remove(fs::path(o.outDir) / frameName(i, n, "png"));
+    }
     if (fitter) writeSequenceFit(*fitter, frames.instants, dem, o, ctx);
     const double total = seconds(clock::now() - tStart);
     note(ctx, "frames: " + std::to_string(n) + " (" + frames.description + ", " +
@@ -328,7 +351,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   formatNumber(std::round(total * 100) / 100) + " s");
     note(ctx, "wrote " + o.outDir + ": " +
                   (formats.count("tif") ? "frame_*.tif (sun_irradiance, sun_visibility, sky_k) " : "") +
-                  (formats.count("png") ? "frame_*.png " : "") + (gif ? "timelapse.gif" : ""));
+                  (formats.count("png") ? "frame_*.png " : "") + (gif ? "timelapse.gif " : "") +
+                  (formats.count("mp4") ? "timelapse.mp4" : ""));
 }
 
 }  // namespace
@@ -349,7 +373,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
                     "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N "
                     "directions swept once, horizons interpolated in azimuth; N = 64 by default)")
         ->capture_default_str();
-    cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif")
+    cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)")
         ->capture_default_str();
     cmd->add_option("--fps", o->fps, "GIF frames per second")->check(CLI::Range(1, 100))->capture_default_str();
     cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 
 namespace demlight {
@@ -220,6 +221,29 @@ TEST(CliOutputs, SequenceFitRoundTrip) {
                     " --time 2024-06-22T09:00-06:00");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("outside the fitted span"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace demlight
+
+namespace demlight {
+namespace {
+
+TEST(CliOutputs, TimelapseMp4NeedsFfmpegOrEncodesOne) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_mp4";
+    fs::remove_all(dir);
+    const bool haveFfmpeg = std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
+    const auto r = runDemlight("-q timelapse " + kRocky + " -o " + dir.string() +
+                               " --start 2024-06-21T08:00-06:00 --end 2024-06-21T09:00-06:00 --step 20m"
+                               " --formats mp4");
+    if (!haveFfmpeg) {
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_NE(r.err.find("needs the ffmpeg program"), std::string::npos) << r.err;
+        return;
+    }
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_GT(fs::file_size(dir / "timelapse.mp4"), 0u);
+    EXPECT_FALSE(fs::exists(dir / "frame_000.png"));  // PNGs were only the video's input
 }
 
 }  // namespace
