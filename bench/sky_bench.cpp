@@ -22,29 +22,6 @@
 
 namespace {
 
-/// The centred crop of a terrain (heights and per-row sizes; convergence sampled every 16 cells).
-demlight::Terrain crop(const demlight::Terrain& t, std::size_t w, std::size_t h) {
-    w = std::min(w, t.width());
-    h = std::min(h, t.height());
-    const std::size_t col0 = (t.width() - w) / 2, row0 = (t.height() - h) / 2;
-    demlight::Terrain out;
-    out.heightsM = demlight::Grid<float>(w, h);
-    for (std::size_t r = 0; r < h; ++r)
-        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
-    out.cellWidthM.assign(t.cellWidthM.begin() + static_cast<long>(row0), t.cellWidthM.begin() + static_cast<long>(row0 + h));
-    out.cellHeightM.assign(t.cellHeightM.begin() + static_cast<long>(row0), t.cellHeightM.begin() + static_cast<long>(row0 + h));
-    if (!t.convergence.empty()) {
-        const std::size_t step = 16;
-        out.convergence.stepCells = step;
-        out.convergence.gammaDeg = demlight::Grid<float>((w + step - 1) / step + 1, (h + step - 1) / step + 1);
-        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
-            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
-                out.convergence.gammaDeg(i, j) = static_cast<float>(t.convergence.at(
-                    static_cast<double>(col0 + std::min(i * step, w - 1)), static_cast<double>(row0 + std::min(j * step, h - 1))));
-    }
-    return out;
-}
-
 double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -58,9 +35,10 @@ int main(int argc, char** argv) {
     }
     try {
         const demlight::Dem dem = demlight::loadDem(argv[1]);
-        const demlight::Terrain t = argc > 5 ? crop(dem.terrain, static_cast<std::size_t>(std::atol(argv[4])),
-                                                    static_cast<std::size_t>(std::atol(argv[5])))
-                                             : dem.terrain;
+        const auto cropW = std::min<std::size_t>(argc > 5 ? std::atol(argv[4]) : dem.terrain.width(), dem.terrain.width());
+        const auto cropH = std::min<std::size_t>(argc > 5 ? std::atol(argv[5]) : dem.terrain.height(), dem.terrain.height());
+        const demlight::Terrain t = demlight::cropTerrain(dem.terrain, (dem.terrain.width() - cropW) / 2,
+                                                          (dem.terrain.height() - cropH) / 2, cropW, cropH);
         const int threads = demlight::resolveThreadCount(argc > 2 ? std::atoi(argv[2]) : 0);
         demlight::HorizonParams p;
         p.maxDistanceM = argc > 3 && std::atof(argv[3]) > 0 ? std::atof(argv[3]) : demlight::defaultMaxDistanceM(t);

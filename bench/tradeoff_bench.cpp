@@ -120,30 +120,6 @@ std::string fmt(const char* f, double a) {
     return b;
 }
 
-/// A window of a terrain as a terrain of its own (as tests/sky_realdem_test.cpp).
-Terrain crop(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
-    Terrain out;
-    out.heightsM = Grid<float>(w, h);
-    for (std::size_t r = 0; r < h; ++r)
-        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
-    out.cellWidthM.assign(t.cellWidthM.begin() + static_cast<long>(row0), t.cellWidthM.begin() + static_cast<long>(row0 + h));
-    out.cellHeightM.assign(t.cellHeightM.begin() + static_cast<long>(row0), t.cellHeightM.begin() + static_cast<long>(row0 + h));
-    if (!t.rowLatitudeDeg.empty())
-        out.rowLatitudeDeg.assign(t.rowLatitudeDeg.begin() + static_cast<long>(row0), t.rowLatitudeDeg.begin() + static_cast<long>(row0 + h));
-    if (!t.colLongitudeDeg.empty())
-        out.colLongitudeDeg.assign(t.colLongitudeDeg.begin() + static_cast<long>(col0), t.colLongitudeDeg.begin() + static_cast<long>(col0 + w));
-    if (!t.convergence.empty()) {
-        const std::size_t step = 16;
-        out.convergence.stepCells = step;
-        out.convergence.gammaDeg = Grid<float>((w + step - 1) / step + 1, (h + step - 1) / step + 1);
-        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
-            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
-                out.convergence.gammaDeg(i, j) = static_cast<float>(t.convergence.at(
-                    static_cast<double>(col0 + std::min(i * step, w - 1)), static_cast<double>(row0 + std::min(j * step, h - 1))));
-    }
-    return out;
-}
-
 /// 16-bit fixed-point horizon storage. Seed 000 maps 0 deg -> 0x0000 and 90 deg -> 0xFFFF (only
 /// the quarter circle: negative horizons are stored as 0); the signed variant spends the same 16
 /// bits on [-90, 90] deg (step 0.0027 deg) so downhill horizons survive.
@@ -266,7 +242,7 @@ public:
         name_ = std::filesystem::path(path).stem().string();
         const Dem dem = loadDem(path);
         const std::size_t w = std::min(o.cropCells, dem.terrain.width()), h = std::min(o.cropCells, dem.terrain.height());
-        t_ = crop(dem.terrain, (dem.terrain.width() - w) / 2, (dem.terrain.height() - h) / 2, w, h);
+        t_ = cropTerrain(dem.terrain, (dem.terrain.width() - w) / 2, (dem.terrain.height() - h) / 2, w, h);
         cells_ = static_cast<double>(w * h);
         normals_ = computeNormals(t_, kThreads);
         const std::size_t mid = t_.height() / 2;

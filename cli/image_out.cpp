@@ -40,7 +40,11 @@ std::unique_ptr<OIIO::ImageOutput> createOutput(const std::string& path) {
 /// A hidden temporary name beside `path`, so the rename stays on one file system.
 fs::path tempPathFor(const std::string& path) {
     const fs::path p(path);
-    return p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()));
+    std::string name = ".";
+    name += p.filename().string();
+    name += ".tmp";
+    name += std::to_string(::getpid());
+    return p.parent_path() / name;
 }
 
 void commit(const fs::path& tmp, const std::string& path) {

@@ -39,6 +39,32 @@ std::pair<float, float> heightRangeM(const Grid<float>& heightsM) {
     return {lo, hi};
 }
 
+Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+    Terrain out;
+    out.heightsM = Grid<float>(w, h);
+    for (std::size_t r = 0; r < h; ++r)
+        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
+    const auto slice = [](const std::vector<double>& v, std::size_t from, std::size_t n) {
+        return v.empty() ? std::vector<double>{} : std::vector<double>(v.begin() + static_cast<long>(from),
+                                                                      v.begin() + static_cast<long>(from + n));
+    };
+    out.cellWidthM = slice(t.cellWidthM, row0, h);
+    out.cellHeightM = slice(t.cellHeightM, row0, h);
+    out.rowLatitudeDeg = slice(t.rowLatitudeDeg, row0, h);
+    out.colLongitudeDeg = slice(t.colLongitudeDeg, col0, w);
+    if (!t.convergence.empty()) {
+        constexpr std::size_t kStep = 16;
+        out.convergence.stepCells = kStep;
+        out.convergence.gammaDeg = Grid<float>((w + kStep - 1) / kStep + 1, (h + kStep - 1) / kStep + 1);
+        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
+            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
+                out.convergence.gammaDeg(i, j) = static_cast<float>(
+                    t.convergence.at(static_cast<double>(col0 + std::min(i * kStep, w - 1)),
+                                     static_cast<double>(row0 + std::min(j * kStep, h - 1))));
+    }
+    return out;
+}
+
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM) {
     Terrain t;
     const std::size_t rows = heightsM.height();

@@ -51,6 +51,11 @@ struct Terrain {
 /// Lowest and highest valid height (metres); {+inf, -inf} when every cell is nodata.
 std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
 
+/// The window [col0, col0 + w) x [row0, row0 + h) of a terrain as a terrain of its own: heights,
+/// per-row cell sizes and latitudes, column longitudes, and the convergence lattice re-sampled
+/// every 16 cells of the window.
+Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h);
+
 /// A flat-earth, square-cell terrain for tests: every row has the same cell size.
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM);
 

@@ -26,26 +26,6 @@ constexpr std::size_t kReferenceCells = 4000;
 
 std::string demPath(const std::string& name) { return std::string(DEMLIGHT_SHARED_DEM_DIR) + "/" + name; }
 
-/// A window of a terrain as a terrain of its own (heights, per-row sizes, convergence re-based).
-Terrain crop(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
-    Terrain out;
-    out.heightsM = Grid<float>(w, h);
-    for (std::size_t r = 0; r < h; ++r)
-        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
-    out.cellWidthM.assign(t.cellWidthM.begin() + static_cast<long>(row0), t.cellWidthM.begin() + static_cast<long>(row0 + h));
-    out.cellHeightM.assign(t.cellHeightM.begin() + static_cast<long>(row0), t.cellHeightM.begin() + static_cast<long>(row0 + h));
-    if (!t.convergence.empty()) {
-        const std::size_t step = 16;
-        out.convergence.stepCells = step;
-        out.convergence.gammaDeg = Grid<float>((w + step - 1) / step + 1, (h + step - 1) / step + 1);
-        for (std::size_t j = 0; j < out.convergence.gammaDeg.height(); ++j)
-            for (std::size_t i = 0; i < out.convergence.gammaDeg.width(); ++i)
-                out.convergence.gammaDeg(i, j) = static_cast<float>(t.convergence.at(
-                    static_cast<double>(col0 + std::min(i * step, w - 1)), static_cast<double>(row0 + std::min(j * step, h - 1))));
-    }
-    return out;
-}
-
 struct Case {
     std::string file;
     /// Crop (0 = whole DEM) to keep the test fast.
@@ -107,7 +87,7 @@ TEST_P(HorizonRealDem, SweepMatchesReference) {
     Terrain t = dem.terrain;
     if (tc.cropW > 0) {
         const std::size_t w = std::min(tc.cropW, t.width()), h = std::min(tc.cropH, t.height());
-        t = crop(t, (t.width() - w) / 2, (t.height() - h) / 2, w, h);
+        t = cropTerrain(t, (t.width() - w) / 2, (t.height() - h) / 2, w, h);
     }
     const Normals normals = computeNormals(t);
     // The scene default, capped at a quarter of the DEM's shorter side so that enough cells are
@@ -148,8 +128,8 @@ INSTANTIATE_TEST_SUITE_P(SharedDems, HorizonRealDem,
                          ::testing::Values(Case{"N44W072.hgt", 600, 600}, Case{"big_tujunga_srtm30m_utm11.tif"},
                                            Case{"mount_st_helens_1980_usgs.dem"},
                                            Case{"svalbard_longyearbyen_npi_dtm20.tif"}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
-                             std::string name = info.param.file.substr(0, info.param.file.find('.'));
+                         [](const ::testing::TestParamInfo<Case>& param) {
+                             std::string name = param.param.file.substr(0, param.param.file.find('.'));
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
                          });
