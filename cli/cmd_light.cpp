@@ -86,11 +86,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
 
     const auto start = std::chrono::steady_clock::now();
     const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{});
-    SunFrameParams sp;
-    sp.sunDiameterDeg = o.sunDiameterDeg;
-    sp.refraction = o.search.refraction;
-    sp.threads = o.search.threads;
-    sp.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
     const Normals normals = computeNormals(t, o.search.threads);
     const std::size_t sweeps = o.skyModel == "stewart-langer" ? o.skyDirections : 0;
     ProgressBar bar(!ctx.quiet);

@@ -40,11 +40,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
 
     const auto start = std::chrono::steady_clock::now();
     const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{});
-    SunFrameParams sp;
-    sp.sunDiameterDeg = o.sunDiameterDeg;
-    sp.refraction = o.search.refraction;
-    sp.threads = o.search.threads;
-    sp.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "render", t.heightsM.size() * (o.skyDirections + 1));

@@ -45,10 +45,7 @@ struct SunBands {
 
 SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
                     const SunOptions& o, const ScenePlan& plan, ProgressCounter& counter) {
-    SunFrameParams params;
-    params.sunDiameterDeg = o.sunDiameterDeg;
-    params.refraction = o.search.refraction;
-    params.threads = o.search.threads;
+    SunFrameParams params = sunFrameParams(o.search, o.sunDiameterDeg);
     // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
     params.maxDistanceM = o.search.maxDistanceM.value_or(
         plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);

@@ -257,11 +257,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     }
     const double skySeconds = seconds(clock::now() - tStart);
 
-    SunFrameParams sp;
-    sp.sunDiameterDeg = o.sunDiameterDeg;
-    sp.refraction = o.search.refraction;
-    sp.threads = o.search.threads;
-    sp.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
     PreviewParams pp;
     pp.albedo = o.albedo;
     pp.exposure = o.exposure;

@@ -81,6 +81,15 @@ HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
     return p;
 }
 
+SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
+    SunFrameParams p;
+    p.sunDiameterDeg = sunDiameterDeg;
+    p.refraction = o.refraction;
+    p.threads = o.threads;
+    p.maxDistanceM = o.maxDistanceM.value_or(0.0);
+    return p;
+}
+
 std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
     std::string reasons;
     for (const auto& r : plan.reasons) reasons += (reasons.empty() ? "" : "; ") + r;

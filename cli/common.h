@@ -6,6 +6,7 @@
 #include "geo/raster.h"
 #include "lighting/horizon.h"
 #include "lighting/quality.h"
+#include "lighting/sun_frame.h"
 
 #include <map>
 #include <optional>
@@ -41,6 +42,10 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
 
 /// HorizonParams from a plan: distance, curvature, refraction, direction tolerance, threads.
 HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan);
+
+/// Parameters of a sun frame (lighting/sun_frame.h) from the search options: --max-distance
+/// when given, else 0 (the distance this sun needs).
+SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg);
 
 /// Metadata items recording the plan (DEMLIGHT_QUALITY, DEMLIGHT_PLAN) and the expected error
 /// of the sweep against the reference (DEMLIGHT_EXPECTED_ERROR_DEG, from the measured tables
