@@ -16,14 +16,10 @@ run "$bin" info "$dem"
 run "$bin" sunpos --time "$when" --tz "$zone" --lat 46.2 --lon -122.18
 run "$bin" horizon "$dem" -o "$out/horizon_16.tif" --directions 16
 run "$bin" sun "$dem" -o "$out/sun.tif" --time "$when" --tz "$zone"
-for cmd in sky aperture; do
-  if "$bin" "$cmd" --help >/dev/null 2>&1; then
-    run "$bin" "$cmd" "$dem" -o "$out/$cmd.tif"
-  fi
-done
-if "$bin" render --help >/dev/null 2>&1; then
-  run "$bin" render "$dem" -o "$out/render.png" --time "$when" --tz "$zone"
-fi
+run "$bin" sky "$dem" -o "$out/sky.tif"
+run "$bin" aperture "$dem" -o "$out/aperture.tif"
+run "$bin" render "$dem" -o "$out/render.png" --time "$when" --tz "$zone"
+run "$bin" timelapse "$dem" -o "$out/day" --date 2024-06-21 --tz "$zone" --step 1h --formats png,gif
 echo
 echo "demo outputs in $out/:"
 ls -l "$out"
