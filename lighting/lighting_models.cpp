@@ -92,28 +92,44 @@ ApertureLight apertureLight(const EnuVector& normal, const Aperture& ap,
     return out;
 }
 
-ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
-                                     const Grid<float>& normalNorth, const Grid<float>& normalUp,
-                                     const EnuVector& sunDirection,
-                                     const ApertureLightParams& params, int threads) {
+namespace {
+
+/// Checks that the aperture and normal grids agree, then calls light(col, row, aperture, normal)
+/// for every cell that has both, in parallel over rows.
+template <class Fn>
+void forEachApertureCell(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                         const Grid<float>& normalNorth, const Grid<float>& normalUp, int threads,
+                         Fn&& light) {
     const Grid<float>& ref = aperture.radiusDeg;
     for (const Grid<float>* g : {&aperture.bentEast, &aperture.bentNorth, &aperture.bentUp,
                                  &aperture.solidAngleSr, &normalEast, &normalNorth, &normalUp})
         if (!g->sameShape(ref))
             throw Error("aperture lighting: aperture and normal grids differ in size");
-    ApertureLightMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
-                          Grid<float>(ref.width(), ref.height(), kNaNf)};
     parallelFor(0, ref.height(), threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < ref.width(); ++col) {
             Aperture ap;
             EnuVector n;
-            if (!cellAperture(aperture, normalEast, normalNorth, normalUp, col, row, ap, n))
-                continue;
-            const ApertureLight l = apertureLight(n, ap, sunDirection, params);
-            out.sun(col, row) = static_cast<float>(l.sun);
-            out.ambient(col, row) = static_cast<float>(l.ambient);
+            if (cellAperture(aperture, normalEast, normalNorth, normalUp, col, row, ap, n))
+                light(col, row, ap, n);
         }
     });
+}
+
+}  // namespace
+
+ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
+                                     const Grid<float>& normalNorth, const Grid<float>& normalUp,
+                                     const EnuVector& sunDirection,
+                                     const ApertureLightParams& params, int threads) {
+    const Grid<float>& ref = aperture.radiusDeg;
+    ApertureLightMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
+                          Grid<float>(ref.width(), ref.height(), kNaNf)};
+    forEachApertureCell(aperture, normalEast, normalNorth, normalUp, threads,
+                        [&](std::size_t col, std::size_t row, const Aperture& ap, const EnuVector& n) {
+                            const ApertureLight l = apertureLight(n, ap, sunDirection, params);
+                            out.sun(col, row) = static_cast<float>(l.sun);
+                            out.ambient(col, row) = static_cast<float>(l.ambient);
+                        });
     return out;
 }
 
@@ -122,26 +138,17 @@ ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>
                                  const SunField& field, const ApertureLightParams& params,
                                  int threads) {
     const Grid<float>& ref = aperture.radiusDeg;
-    for (const Grid<float>* g : {&aperture.bentEast, &aperture.bentNorth, &aperture.bentUp,
-                                 &aperture.solidAngleSr, &normalEast, &normalNorth, &normalUp})
-        if (!g->sameShape(ref))
-            throw Error("aperture sun: aperture and normal grids differ in size");
     ApertureSunMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
                         Grid<float>(ref.width(), ref.height(), kNaNf)};
-    parallelFor(0, ref.height(), threads, [&](std::size_t row) {
-        for (std::size_t col = 0; col < ref.width(); ++col) {
-            Aperture ap;
-            EnuVector n;
-            if (!cellAperture(aperture, normalEast, normalNorth, normalUp, col, row, ap, n))
-                continue;
-            // Per-cell sun, as computeSunFrame uses for the horizon model.
-            const auto [az, el] =
-                field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
-            const ApertureLight l = apertureLight(n, ap, directionEnu(az, el), params);
-            out.visibility(col, row) = static_cast<float>(l.sunVisible);
-            out.irradiance(col, row) = static_cast<float>(l.sun);
-        }
-    });
+    forEachApertureCell(aperture, normalEast, normalNorth, normalUp, threads,
+                        [&](std::size_t col, std::size_t row, const Aperture& ap, const EnuVector& n) {
+                            // Per-cell sun, as computeSunFrame uses for the horizon model.
+                            const auto [az, el] = field.at(static_cast<double>(col) + 0.5,
+                                                           static_cast<double>(row) + 0.5);
+                            const ApertureLight l = apertureLight(n, ap, directionEnu(az, el), params);
+                            out.visibility(col, row) = static_cast<float>(l.sunVisible);
+                            out.irradiance(col, row) = static_cast<float>(l.sun);
+                        });
     return out;
 }
 
