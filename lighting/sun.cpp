@@ -45,14 +45,19 @@ double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzim
     return sunVisibility(effective, sunElevationDeg, sunDiameterDeg);
 }
 
-double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
-                     double sunElevationDeg, double sunDiameterDeg) {
+SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                  double sunElevationDeg, double sunDiameterDeg) {
     const double o = sunVisibilityClamped(normal, horizonDeg, sunAzimuthDeg, sunElevationDeg, sunDiameterDeg);
-    if (std::isnan(o)) return o;
+    if (std::isnan(o)) return {o, o};
     const Enu s = directionEnu(sunAzimuthDeg, sunElevationDeg);
     const double cosine = normal.east * s.east + normal.north * s.north + normal.up * s.up;
     // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
-    return o * std::max(0.0, cosine);
+    return {o, o * std::max(0.0, cosine)};
+}
+
+double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                     double sunElevationDeg, double sunDiameterDeg) {
+    return sunTerms(normal, horizonDeg, sunAzimuthDeg, sunElevationDeg, sunDiameterDeg).irradiance;
 }
 
 SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizon, const Normals& normals,
@@ -76,10 +81,9 @@ SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizon, cons
             if (!terrain.valid(col, row)) continue;
             const Enu n = normals.at(col, row);
             const double h = horizon.angleDeg(col, row);
-            const double o = sunVisibilityClamped(n, h, azimuth, sunElevationDeg, sunDiameterDeg);
-            out.visibility(col, row) = static_cast<float>(o);
-            out.irradiance(col, row) =
-                static_cast<float>(sunIrradiance(n, h, azimuth, sunElevationDeg, sunDiameterDeg));
+            const SunTerms terms = sunTerms(n, h, azimuth, sunElevationDeg, sunDiameterDeg);
+            out.visibility(col, row) = static_cast<float>(terms.visibility);
+            out.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }
     }, 8);
     return out;

@@ -34,6 +34,14 @@ double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzim
 double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                      double sunElevationDeg, double sunDiameterDeg);
 
+/// Both terms of one cell at once (the grid drivers need both; the visibility is computed once).
+struct SunTerms {
+    double visibility;  ///< as sunVisibilityClamped
+    double irradiance;  ///< as sunIrradiance
+};
+SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
+                  double sunElevationDeg, double sunDiameterDeg);
+
 struct SunLight {
     /// Clamped visibility of the sun's disk in [0, 1]; NaN at nodata.
     Grid<float> visibility;

@@ -82,10 +82,9 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
             }
             const Enu n = normals.at(col, row);
             const double azimuth = wrapAzimuthDeg(az);
-            frame.light.visibility(col, row) =
-                static_cast<float>(sunVisibilityClamped(n, h, azimuth, el, params.sunDiameterDeg));
-            frame.light.irradiance(col, row) =
-                static_cast<float>(sunIrradiance(n, h, azimuth, el, params.sunDiameterDeg));
+            const SunTerms terms = sunTerms(n, h, azimuth, el, params.sunDiameterDeg);
+            frame.light.visibility(col, row) = static_cast<float>(terms.visibility);
+            frame.light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }
     });
     return frame;

@@ -45,10 +45,9 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
             const double f = u - std::floor(u);
             const double horizon = (1 - f) * stack.angleDeg[i0](col, row) + f * stack.angleDeg[i1](col, row);
             const Enu nrm = normals.at(col, row);
-            light.visibility(col, row) =
-                static_cast<float>(sunVisibilityClamped(nrm, horizon, azimuth, el, sunDiameterDeg));
-            light.irradiance(col, row) =
-                static_cast<float>(sunIrradiance(nrm, horizon, azimuth, el, sunDiameterDeg));
+            const SunTerms terms = sunTerms(nrm, horizon, azimuth, el, sunDiameterDeg);
+            light.visibility(col, row) = static_cast<float>(terms.visibility);
+            light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }
     });
     return light;
