@@ -1,6 +1,7 @@
 #include "lighting/aperture.h"
 
 #include "lighting/sky_wedge.h"
+#include "src/angles.h"
 #include "src/error.h"
 #include "src/parallel.h"
 
@@ -16,7 +17,6 @@ using detail::kPi;
 
 namespace {
 
-constexpr double kDegToRad = kPi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
 

@@ -1,6 +1,7 @@
 #include "lighting/lighting_models.h"
 
 #include "lighting/sun.h"
+#include "src/angles.h"
 #include "src/error.h"
 #include "src/parallel.h"
 
@@ -14,7 +15,6 @@ namespace demlight {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
 
 double dot(const EnuVector& a, const EnuVector& b) {

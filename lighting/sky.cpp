@@ -1,6 +1,7 @@
 #include "lighting/sky.h"
 
 #include "lighting/sky_wedge.h"
+#include "src/angles.h"
 #include "src/error.h"
 #include "src/parallel.h"
 
@@ -17,7 +18,6 @@ using detail::kPi;
 
 namespace {
 
-constexpr double kDegToRad = kPi / 180.0;
 constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
 
 double clampElevationRad(double elevationDeg) {
