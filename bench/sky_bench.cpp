@@ -35,10 +35,10 @@ int main(int argc, char** argv) {
     }
     try {
         const demlight::Dem dem = demlight::loadDem(argv[1]);
-        const auto cropW = std::min<std::size_t>(argc > 5 ? std::atol(argv[4]) : dem.terrain.width(), dem.terrain.width());
-        const auto cropH = std::min<std::size_t>(argc > 5 ? std::atol(argv[5]) : dem.terrain.height(), dem.terrain.height());
-        const demlight::Terrain t = demlight::cropTerrain(dem.terrain, (dem.terrain.width() - cropW) / 2,
-                                                          (dem.terrain.height() - cropH) / 2, cropW, cropH);
+        const demlight::Terrain t = argc > 5 ? demlight::cropTerrainCentre(dem.terrain,
+                                                                           static_cast<std::size_t>(std::atol(argv[4])),
+                                                                           static_cast<std::size_t>(std::atol(argv[5])))
+                                             : dem.terrain;
         const int threads = demlight::resolveThreadCount(argc > 2 ? std::atoi(argv[2]) : 0);
         demlight::HorizonParams p;
         p.maxDistanceM = argc > 3 && std::atof(argv[3]) > 0 ? std::atof(argv[3]) : demlight::defaultMaxDistanceM(t);

@@ -241,8 +241,8 @@ public:
     DemBench(const Options& o, const std::string& path, std::vector<Row>& rows) : o_(o), rows_(rows) {
         name_ = std::filesystem::path(path).stem().string();
         const Dem dem = loadDem(path);
-        const std::size_t w = std::min(o.cropCells, dem.terrain.width()), h = std::min(o.cropCells, dem.terrain.height());
-        t_ = cropTerrain(dem.terrain, (dem.terrain.width() - w) / 2, (dem.terrain.height() - h) / 2, w, h);
+        t_ = cropTerrainCentre(dem.terrain, o.cropCells, o.cropCells);
+        const std::size_t w = t_.width(), h = t_.height();
         cells_ = static_cast<double>(w * h);
         normals_ = computeNormals(t_, kThreads);
         const std::size_t mid = t_.height() / 2;

@@ -65,6 +65,12 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
     return out;
 }
 
+Terrain cropTerrainCentre(const Terrain& t, std::size_t w, std::size_t h) {
+    w = std::min(w, t.width());
+    h = std::min(h, t.height());
+    return cropTerrain(t, (t.width() - w) / 2, (t.height() - h) / 2, w, h);
+}
+
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM) {
     Terrain t;
     const std::size_t rows = heightsM.height();

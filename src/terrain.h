@@ -56,6 +56,9 @@ std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
 /// every 16 cells of the window.
 Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h);
 
+/// The centred window of at most w x h cells (sizes clamped to the terrain), as cropTerrain.
+Terrain cropTerrainCentre(const Terrain& t, std::size_t w, std::size_t h);
+
 /// A flat-earth, square-cell terrain for tests: every row has the same cell size.
 Terrain makeUniformTerrain(Grid<float> heightsM, double cellSizeM);
 

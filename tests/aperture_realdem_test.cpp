@@ -22,6 +22,8 @@
 #include "lighting/sun_frame.h"
 #include "lighting/surface.h"
 
+#include "shared_dem.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,7 +46,6 @@ constexpr double kLitThreshold = 0.5;
 /// Asymmetry (degrees) beyond which a cell counts as a N-S or E-W trough.
 constexpr double kTroughAsymmetryDeg = 10.0;
 
-std::string demPath(const std::string& name) { return std::string(DEMLIGHT_SHARED_DEM_DIR) + "/" + name; }
 
 /// Tallies of one class of cells.
 struct Tally {
@@ -97,7 +98,7 @@ class ApertureVsHorizon : public ::testing::TestWithParam<Day> {};
 
 TEST_P(ApertureVsHorizon, SunVisibilityOverOneDay) {
     const Day& day = GetParam();
-    const std::string path = demPath(day.file);
+    const std::string path = sharedDemPath(day.file);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
     if (day.longRun && !std::getenv("DEMLIGHT_LONG_TESTS"))
         GTEST_SKIP() << "long run; set DEMLIGHT_LONG_TESTS=1 to run it";

@@ -6,6 +6,8 @@
 #include "lighting/sun.h"
 #include "lighting/surface.h"
 
+#include "shared_dem.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,7 +26,6 @@ namespace {
 /// Cells given to the reference per DEM and azimuth.
 constexpr std::size_t kReferenceCells = 4000;
 
-std::string demPath(const std::string& name) { return std::string(DEMLIGHT_SHARED_DEM_DIR) + "/" + name; }
 
 struct Case {
     std::string file;
@@ -81,14 +82,11 @@ class HorizonRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(HorizonRealDem, SweepMatchesReference) {
     const Case& tc = GetParam();
-    const std::string path = demPath(tc.file);
+    const std::string path = sharedDemPath(tc.file);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
     const Dem dem = loadDem(path);
     Terrain t = dem.terrain;
-    if (tc.cropW > 0) {
-        const std::size_t w = std::min(tc.cropW, t.width()), h = std::min(tc.cropH, t.height());
-        t = cropTerrain(t, (t.width() - w) / 2, (t.height() - h) / 2, w, h);
-    }
+    if (tc.cropW > 0) t = cropTerrainCentre(t, tc.cropW, tc.cropH);
     const Normals normals = computeNormals(t);
     // The scene default, capped at a quarter of the DEM's shorter side so that enough cells are
     // not truncated to measure.

@@ -17,6 +17,8 @@
 #include "lighting/sky.h"
 #include "lighting/surface.h"
 
+#include "shared_dem.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,7 +47,6 @@ constexpr double kBudgetAlbedo = 0.2;
 /// Threads (the shared build machine has two cores).
 constexpr int kThreads = 2;
 
-std::string demPath(const std::string& name) { return std::string(DEMLIGHT_SHARED_DEM_DIR) + "/" + name; }
 
 struct Case {
     std::string file;
@@ -139,14 +140,11 @@ class SkyRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     const Case& tc = GetParam();
-    const std::string path = demPath(tc.file);
+    const std::string path = sharedDemPath(tc.file);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
     const Dem dem = loadDem(path);
     Terrain t = dem.terrain;
-    if (tc.cropW > 0) {
-        const std::size_t w = std::min(tc.cropW, t.width()), h = std::min(tc.cropH, t.height());
-        t = cropTerrain(t, (t.width() - w) / 2, (t.height() - h) / 2, w, h);
-    }
+    if (tc.cropW > 0) t = cropTerrainCentre(t, tc.cropW, tc.cropH);
     const Normals normals = computeNormals(t, kThreads);
     const std::size_t mid = t.height() / 2;
     const double sideM = std::min(t.cellWidthM[mid] * static_cast<double>(t.width()),
