@@ -17,6 +17,7 @@
 #include "src/error.h"
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 
 namespace demlight::cli {
@@ -32,7 +33,7 @@ struct SunOptions {
     double pressureHpa = 1013.25;
     double temperatureC = 15;
     std::string model = "horizon";
-    int directions = static_cast<int>(kDefaultSkyDirections);
+    std::optional<int> directions;  ///< aperture models; default: the scene plan's
 };
 
 /// The two output bands and how they were made, for either model.
@@ -55,13 +56,10 @@ SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& fi
 }
 
 SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& field,
-                     const SunOptions& o, bool smooth, ProgressCounter& counter) {
-    // The aperture does not depend on the sun: the search distance is the sky's default.
-    HorizonParams hp;
-    hp.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
-    hp.refraction = o.search.refraction;
-    hp.threads = o.search.threads;
-    const auto d = static_cast<std::size_t>(o.directions);
+                     const SunOptions& o, const ScenePlan& plan, std::size_t d, bool smooth,
+                     ProgressCounter& counter) {
+    // The aperture does not depend on the sun: search distance and directions are the sky's.
+    const HorizonParams hp = horizonParams(o.search, plan);
     ApertureAccumulator acc(normals.east, normals.north, normals.up, d, o.search.threads);
     sweepDirections(t, hp, d, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
                     &counter);
@@ -95,10 +93,11 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
-    const std::size_t work = t.heightsM.size() * (horizon ? 1 : static_cast<std::size_t>(o.directions));
+    const auto directions = static_cast<std::size_t>(o.directions.value_or(plan.skyDirections));
+    const std::size_t work = t.heightsM.size() * (horizon ? 1 : directions);
     ProgressCounter counter(bar.callback(), "sun", work);
     const SunBands out = horizon ? horizonSun(t, normals, field, o, plan, counter)
-                                 : apertureSun(t, normals, field, o,
+                                 : apertureSun(t, normals, field, o, plan, directions,
                                                model == LightingModel::ApertureSmooth, counter);
     bar.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -116,7 +115,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
         {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_METHOD", "sweep"},
-        {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(o.directions)},
+        {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(directions)},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(out.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(o.search.refraction)},
     });
@@ -167,9 +166,9 @@ void registerSun(CLI::App& app, CliContext& ctx) {
                     "the smoothstep intersection)")
         ->capture_default_str();
     cmd->add_option("--directions", o->directions,
-                    "Aperture models: number of horizon directions integrated into the aperture")
-        ->check(CLI::Range(4, 1024))
-        ->capture_default_str();
+                    "Aperture models: number of horizon directions integrated into the aperture "
+                    "(default: 16 with --quality auto, 64 with full)")
+        ->check(CLI::Range(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runSun(*o, ctx); });
 }
