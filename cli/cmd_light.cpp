@@ -6,10 +6,13 @@
 //   hemisphere      (1 + N_up)/2 + C (1 − N_up)/2 (Hargreaves; no shadows)
 //   none            0
 // One band, or three (R, G, B) when --sun-color or --sky-color is given.
+// Search distance, curvature, sky directions and the sun lattice come from the scene plan
+// (--quality, --tolerance; lighting/quality.h), recorded in the metadata and printed with -v.
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "geo/sun_field.h"
 #include "geo/time.h"
+#include "lighting/directions.h"
 #include "lighting/horizon.h"
 #include "lighting/lighting_models.h"
 #include "lighting/sky.h"
@@ -20,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace demlight::cli {
@@ -34,7 +38,7 @@ struct LightOptions {
     std::string sunColor, skyColor;
     double albedo = 0.2;
     std::string albedoRaster, cloudShadow;
-    std::size_t skyDirections = 16;
+    std::optional<int> skyDirections;  ///< default: the scene plan's
     double sunDiameterDeg = kSunDiameterDeg;
 };
 
@@ -84,11 +88,16 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     if (!o.albedoRaster.empty()) albedoGrid = loadGridFor(o.albedoRaster, dem, "--albedo-raster");
     if (!o.cloudShadow.empty()) cloud = loadGridFor(o.cloudShadow, dem, "--cloud-shadow");
 
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
     const auto start = std::chrono::steady_clock::now();
-    const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{});
-    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
+    const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{}, plan.sunLatticeStepCells);
+    SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
+    // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
+    sp.maxDistanceM = o.search.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
     const Normals normals = computeNormals(t, o.search.threads);
-    const std::size_t sweeps = o.skyModel == "stewart-langer" ? o.skyDirections : 0;
+    const std::size_t sweeps =
+        o.skyModel == "stewart-langer" ? static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections)) : 0;
+    const HorizonParams hp = horizonParams(o.search, plan);
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "light", t.heightsM.size() * (sweeps + 1));
     const SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
@@ -97,19 +106,13 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     Grid<float> sky(t.width(), t.height(), 0.0f);
     if (o.skyModel == "stewart-langer") {
         SkyAccumulator acc(normals.east, normals.north, normals.up, sweeps, {}, o.search.threads);
-        HorizonParams hp;
-        hp.maxDistanceM = o.search.maxDistanceM.value_or(defaultMaxDistanceM(t));
-        hp.refraction = o.search.refraction;
-        hp.threads = o.search.threads;
-        for (std::size_t i = 0; i < sweeps; ++i) {
-            hp.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(sweeps);
-            acc.addDirection(i, sweepHorizon(t, hp, &counter).angleDeg);
-        }
+        sweepDirections(t, hp, sweeps, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
+                        &counter);
         sky = (albedoGrid.empty() ? acc.finish(o.albedo) : acc.finish(albedoGrid)).skyFactor;
     } else if (o.skyModel == "hemisphere") {
-        HemisphereParams hp;
-        hp.albedo = o.albedo;
-        sky = applyHemisphereLight(normals.up, hp, albedoGrid.empty() ? nullptr : &albedoGrid,
+        HemisphereParams hemi;
+        hemi.albedo = o.albedo;
+        sky = applyHemisphereLight(normals.up, hemi, albedoGrid.empty() ? nullptr : &albedoGrid,
                                    o.search.threads);
     }
     bar.finish();
@@ -129,7 +132,8 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "light"},
         {"DEMLIGHT_TIME_UTC", formatInstant(when.utc, std::string())},
         {"DEMLIGHT_TIME_LOCAL", formatInstant(when.utc, when.zone)},
@@ -142,8 +146,9 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_ALBEDO", o.albedoRaster.empty() ? formatNumber(o.albedo) : o.albedoRaster},
         {"DEMLIGHT_CLOUD_SHADOW", o.cloudShadow},
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", sweeps > 0 ? formatNumber(hp.maxDistanceM) : std::string()},
         {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
-    };
+    });
     const std::string unit = "normalised irradiance (1 = unit zenith sun, or unit sky, on open flat ground)";
     std::vector<OutputBand> bands;
     if (colour) {
@@ -168,9 +173,10 @@ void registerLight(CLI::App& app, CliContext& ctx) {
         ->required();
     cmd->add_option("--tz", o->tz, "IANA time zone for a local --time");
     cmd->add_option("--sky-model", o->skyModel, "stewart-langer, hemisphere or none")->capture_default_str();
-    cmd->add_option("--sky-directions", o->skyDirections, "Horizon directions for stewart-langer")
-        ->check(CLI::Range(1, 360))
-        ->capture_default_str();
+    cmd->add_option("--sky-directions", o->skyDirections,
+                    "Horizon directions for stewart-langer (default: 16 with --quality auto, 64 "
+                    "with full)")
+        ->check(CLI::Range(1, 360));
     cmd->add_option("--sun-color", o->sunColor, "Linear sun radiance R,G,B (gives three bands)");
     cmd->add_option("--sky-color", o->skyColor, "Linear sky radiance R,G,B (gives three bands)");
     cmd->add_option("--albedo", o->albedo, "Albedo C for interreflection (0-1)")

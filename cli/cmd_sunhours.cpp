@@ -3,7 +3,8 @@
 //
 // Instants every --step minutes from local midnight of the first day to local midnight after
 // the last (inclusive), integrated with the trapezoid rule (lighting/sunhours.h). The default
-// step of 10 min was measured against a 1-minute integral (README, `sunhours`).
+// step of 10 min was measured against a 1-minute integral (README, `sunhours`). The sun lattice
+// and, with --quality full, the search distance come from the scene plan (lighting/quality.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "geo/sun_field.h"
@@ -76,11 +77,12 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const Terrain& t = dem.terrain;
     const Sequence seq = makeSequence(localDay(d0, zone), localDay(d1, zone), zone, o.stepMin);
 
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
     SunHoursParams params;
-    params.frame.sunDiameterDeg = o.sunDiameterDeg;
-    params.frame.refraction = o.search.refraction;
-    params.frame.threads = o.search.threads;
-    params.frame.maxDistanceM = o.search.maxDistanceM.value_or(0.0);
+    params.frame = sunFrameParams(o.search, o.sunDiameterDeg);
+    // auto: each instant's sun sets its own distance (sunSearchDistanceM); full: the DEM diagonal.
+    params.frame.maxDistanceM =
+        o.search.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
     const SolarSite site;  // default pressure and temperature; position from each lattice node
 
     const auto start = std::chrono::steady_clock::now();
@@ -89,13 +91,16 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     ProgressCounter counter(bar.callback(), "sunhours", seq.instants.size());
     const SunHoursMaps maps = integrateSunHours(
         t, normals, seq.instants,
-        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], site, SpaOptions{}); },
+        [&](std::size_t i) {
+            return computeSunField(dem, seq.utc[i], site, SpaOptions{}, plan.sunLatticeStepCells);
+        },
         params, &counter);
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "sunhours"},
         {"DEMLIGHT_FIRST_DATE", formatDate(d0)},
         {"DEMLIGHT_LAST_DATE", formatDate(d1)},
@@ -110,7 +115,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
-    };
+    });
     writeRaster(o.out.path,
                 {{&maps.sunHours, nullptr, "sun_hours", "hours of direct sun weighted by visibility (h)"},
                  {&maps.sunIrradiation, nullptr, "sun_irradiation",
