@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -44,6 +45,33 @@ protected:
 
     fs::path dir_;
 };
+
+const std::string kUtm10Wkt = R"(PROJCS["WGS 84 / UTM zone 10N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",-123],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1],AUTHORITY["EPSG","32610"]])";
+
+/// Synthetic DEM near Mount St Helens (46.2 N): a flat plain at 1000 m, 30 m cells, with a
+/// block kHillTop m high over cells [kHill0, kHill1) in both axes.
+constexpr std::size_t kPlain = 200, kHill0 = 90, kHill1 = 110;
+constexpr float kPlainM = 1000.0f, kHillTopM = 1300.0f;
+std::string writeHillDem(const std::string& path) {
+    Grid<float> h(kPlain, kPlain, kPlainM);
+    for (std::size_t r = kHill0; r < kHill1; ++r)
+        for (std::size_t c = kHill0; c < kHill1; ++c) h(c, r) = kHillTopM;
+    GeoReference ref;
+    ref.geoTransform = {560000, 30, 0, 5120000, 0, -30};
+    ref.crsWkt = kUtm10Wkt;
+    writeRaster(path, {{&h, nullptr, "height", "m"}}, ref, WriteOptions{});
+    return path;
+}
+
+/// A raster on the DEM's own grid whose band b is the constant values[b].
+void writeConstantRaster(const std::string& path, const std::string& demPath, const std::vector<float>& values) {
+    const RasterBand dem = readRasterBand(demPath);
+    std::vector<Grid<float>> grids;
+    for (float v : values) grids.emplace_back(dem.values.width(), dem.values.height(), v);
+    std::vector<OutputBand> bands;
+    for (const auto& g : grids) bands.push_back({&g, nullptr, "albedo", "1"});
+    writeRaster(path, bands, dem.ref, WriteOptions{});
+}
 
 /// Number of valid cells whose values differ by more than `tolerance`.
 std::size_t cellsDiffering(const Grid<float>& a, const Grid<float>& b, float tolerance) {
@@ -110,6 +138,113 @@ TEST_F(OptionsCli, SunhoursQualityFullChangesTheSunLatticeAndIsRecorded) {
     // only where a shadow edge moves (the search distance is the DEM diagonal with full).
     EXPECT_GT(cellsDiffering(ba[1], bf[1], 0.0f), ba[1].size() / 10);
     EXPECT_LT(cellsDiffering(ba[1], bf[1], 0.05f), ba[1].size() / 1000);
+}
+
+// --model aperture must reach the sun term. With the sky off the output is the sun term alone:
+// on open flat ground both models give sin(sun elevation) (the sun cap lies inside an almost
+// hemispherical aperture); in the hill's cast shadow the horizon model gives 0 while a single
+// cap, barely narrowed by a compact hill 1-2 km away, still holds the sun.
+TEST_F(OptionsCli, LightApertureModelAgreesOnOpenGroundDiffersInShadow) {
+    const std::string dem = writeHillDem(path("hill.tif"));
+    const std::string args = " --time 2024-03-20T08:30 --tz America/Los_Angeles --sky-model none --threads 2";
+    run("-q light " + dem + " -o " + path("horizon.tif") + args);
+    run("-q light " + dem + " -o " + path("aperture.tif") + args + " --model aperture");
+    run("-q light " + dem + " -o " + path("smooth.tif") + args + " --model aperture-smooth");
+    const RasterSummary meta = inspectRaster(path("aperture.tif"));
+    EXPECT_EQ(meta.metadata.at("DEMLIGHT_MODEL"), "aperture");
+    EXPECT_EQ(meta.metadata.at("DEMLIGHT_DIRECTIONS"), "16");
+    EXPECT_EQ(inspectRaster(path("horizon.tif")).metadata.at("DEMLIGHT_MODEL"), "horizon");
+    const double elevationDeg = std::stod(meta.metadata.at("DEMLIGHT_SUN_ELEVATION_DEG"));
+    ASSERT_GT(elevationDeg, 8.0);  // a morning sun in the east-south-east
+    const double flatSun = std::sin(elevationDeg * M_PI / 180.0);
+    const Grid<float> hz = readRasterBands(path("horizon.tif"))[0];
+    const Grid<float> ap = readRasterBands(path("aperture.tif"))[0];
+    const Grid<float> sm = readRasterBands(path("smooth.tif"))[0];
+    // Open flat ground: the strip on the sun's side, 40+ cells from the hill, away from the
+    // DEM edge the normals are one-sided at.
+    std::size_t open = 0;
+    for (std::size_t r = 1; r + 1 < kPlain; ++r)
+        for (std::size_t c = kHill1 + 40; c + 1 < kPlain; ++c) {
+            ++open;
+            EXPECT_NEAR(hz(c, r), flatSun, 2e-3) << c << "," << r;
+            EXPECT_NEAR(ap(c, r), hz(c, r), 2e-3) << c << "," << r;
+            EXPECT_NEAR(sm(c, r), hz(c, r), 2e-3) << c << "," << r;
+        }
+    EXPECT_GT(open, 5000u);
+    // The cast shadow: flat cells west of the hill that the horizon model leaves dark.
+    std::size_t shadow = 0, apertureLit = 0;
+    for (std::size_t r = 1; r + 1 < kPlain; ++r)
+        for (std::size_t c = 1; c + 2 < kHill0; ++c)
+            if (hz(c, r) == 0.0f) {
+                ++shadow;
+                if (ap(c, r) > 0.5 * flatSun) ++apertureLit;
+            }
+    EXPECT_GT(shadow, 300u);
+    EXPECT_GT(apertureLit, shadow / 2) << shadow;
+}
+
+// --color-raster: the output is albedo_c x (sun + f_sky(K, albedo_c)) per channel. Checked
+// against the sun term (a --sky-model none run) and K (a run with albedo 0, where f_sky = K),
+// so on open cells (K ~ 1) the bands are proportional to the albedos.
+TEST_F(OptionsCli, LightColorRasterIsPerChannelAlbedo) {
+    const std::vector<float> albedo = {0.1f, 0.3f, 0.6f};
+    writeConstantRaster(path("rgb.tif"), kHelens, albedo);
+    const std::string args = " " + kLightArgs + " --sky-directions 8";
+    run("-q light " + kHelens + " -o " + path("sun.tif") + args + " --sky-model none");
+    run("-q light " + kHelens + " -o " + path("k.tif") + args + " --albedo 0");
+    run("-q light " + kHelens + " -o " + path("rgb_out.tif") + args + " --color-raster " + path("rgb.tif"));
+    const RasterSummary meta = inspectRaster(path("rgb_out.tif"));
+    EXPECT_EQ(meta.descriptions, (std::vector<std::string>{"reflected_r", "reflected_g", "reflected_b"}));
+    const Grid<float> sun = readRasterBands(path("sun.tif"))[0];
+    const Grid<float> sunPlusK = readRasterBands(path("k.tif"))[0];
+    const auto rgb = readRasterBands(path("rgb_out.tif"));
+    ASSERT_EQ(rgb.size(), 3u);
+    std::size_t checked = 0, open = 0;
+    for (std::size_t k = 0; k < sun.size(); ++k) {
+        const double s = sun.data()[k];
+        if (std::isnan(s)) continue;
+        const double skyK = sunPlusK.data()[k] - s;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double expected = albedo[c] * (s + skyK / (1.0 - albedo[c] * (1.0 - skyK)));
+            ASSERT_NEAR(rgb[c].data()[k], expected, 2e-5) << k << " channel " << c;
+        }
+        ++checked;
+        if (skyK > 0.999) {
+            ++open;
+            // Interreflection lifts the brighter channels by at most (1 - K)(a_c - a_r) ~ 0.05 %.
+            for (std::size_t c = 1; c < 3; ++c) {
+                const double ratio = albedo[c] / albedo[0];
+                EXPECT_NEAR(rgb[c].data()[k] / rgb[0].data()[k], ratio, 1e-3 * ratio);
+            }
+        }
+    }
+    EXPECT_GT(checked, sun.size() / 2);
+    EXPECT_GT(open, 100u) << "open cells (K > 0.999)";
+}
+
+TEST_F(OptionsCli, LightColorRasterBadInputFailsCleanly) {
+    writeConstantRaster(path("two.tif"), kHelens, {0.2f, 0.3f});
+    writeConstantRaster(path("bytes.tif"), kHelens, {200.0f, 120.0f, 60.0f});
+    writeConstantRaster(path("rgb.tif"), kHelens, {0.2f, 0.3f, 0.4f});
+    const std::string base = "light " + kHelens + " " + kLightArgs + " --sky-directions 4 -o " + path("out.tif");
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {" --color-raster " + path("two.tif"), "expected 3 bands (R, G, B linear albedo), found 2"},
+        {" --color-raster " + path("bytes.tif"), "expected linear albedo 0-1"},
+        {" --color-raster " + path("rgb.tif") + " --albedo 0.3", "do not combine it with --albedo"},
+        {" --color-raster " + path("rgb.tif") + " --albedo-raster " + path("rgb.tif"),
+         "do not combine it with --albedo-raster"},
+    };
+    for (const auto& c : cases) {
+        const auto r = runDemlight(base + c.args);
+        EXPECT_EQ(r.exitCode, 1) << c.args;
+        EXPECT_NE(r.err.find("--color-raster"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(path("out.tif"))) << c.args;
+        const auto leftovers = std::distance(fs::directory_iterator(dir_), fs::directory_iterator{});
+        EXPECT_EQ(leftovers, 3) << "only the three input rasters stay: " << c.args;
+    }
 }
 
 }  // namespace
