@@ -12,9 +12,12 @@ void sweepDirections(const Terrain& terrain, HorizonParams params, std::size_t d
                      const std::function<void(std::size_t, const HorizonMap&)>& consume,
                      ProgressCounter* progress) {
     if (directions == 0) throw Error("the number of directions must be at least 1");
+    HorizonMap horizon;
+    SweepBuffers buffers;
     for (std::size_t i = 0; i < directions; ++i) {
         params.azimuthDeg = directionAzimuthDeg(i, directions);
-        consume(i, sweepHorizon(terrain, params, progress));
+        sweepHorizonInto(terrain, params, horizon, buffers, progress);
+        consume(i, horizon);
     }
 }
 

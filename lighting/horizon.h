@@ -122,6 +122,17 @@ std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParam
 HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params,
                         ProgressCounter* progress = nullptr);
 
+/// Scratch grids a sweep needs besides its output, kept between sweeps by callers that run
+/// many (sky and aperture directions, sun frames) so each sweep refills memory already mapped.
+struct SweepBuffers {
+    Grid<float> planeB;
+};
+
+/// sweepHorizon() writing into `out` (resized to the terrain if its shape differs) and reusing
+/// `buffers`; the result is identical.
+void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
+                      SweepBuffers& buffers, ProgressCounter* progress = nullptr);
+
 /// The reference method: a ray march from every cell centre in steps of a quarter of the smaller
 /// cell side, bilinear heights (nodata corners dropped and weights renormalised), re-evaluating
 /// the grid direction from the local gamma and cell sizes at every step, up to maxDistanceM or the

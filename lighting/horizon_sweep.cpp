@@ -4,6 +4,7 @@
 
 #include "src/angles.h"
 #include "src/error.h"
+#include "src/fast_math.h"
 #include "src/parallel.h"
 
 #include <algorithm>
@@ -531,34 +532,6 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     return geo;
 }
 
-/// atan(x) (radians) to within 3e-9 rad, well below a float's resolution in degrees, at a
-/// fraction of the cost of std::atan: fold |x| into [0, 1] (atan x = π/2 - atan 1/x), then into
-/// |u| <= tan(π/8) (atan t = π/4 + atan((t-1)/(t+1))), then the Taylor series to u^17, whose
-/// remainder is below tan(π/8)^19 / 19.
-inline double fastAtan(double x) {
-    constexpr double kTanPi8 = 0.41421356237309503;
-    constexpr double kPi4 = std::numbers::pi / 4.0, kPi2 = std::numbers::pi / 2.0;
-    const double ax = std::abs(x);
-    const bool invert = ax > 1.0;
-    const double t = invert ? 1.0 / ax : ax;
-    const bool shift = t > kTanPi8;
-    const double u = shift ? (t - 1.0) / (t + 1.0) : t;
-    const double u2 = u * u;
-    double p = 1.0 / 17.0;
-    p = p * u2 - 1.0 / 15.0;
-    p = p * u2 + 1.0 / 13.0;
-    p = p * u2 - 1.0 / 11.0;
-    p = p * u2 + 1.0 / 9.0;
-    p = p * u2 - 1.0 / 7.0;
-    p = p * u2 + 1.0 / 5.0;
-    p = p * u2 - 1.0 / 3.0;
-    p = p * u2 + 1.0;
-    double r = p * u;
-    if (shift) r += kPi4;
-    if (invert) r = kPi2 - r;
-    return std::copysign(r, x);
-}
-
 /// Turns the two planes of tangents into angles for the region's window, and sets the
 /// truncation flag from the distance to the DEM edge along the region's direction.
 void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, std::size_t row,
@@ -668,15 +641,31 @@ std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParam
 }
 
 HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params, ProgressCounter* progress) {
+    HorizonMap out;
+    SweepBuffers buffers;
+    sweepHorizonInto(terrain, params, out, buffers, progress);
+    return out;
+}
+
+void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
+                      SweepBuffers& buffers, ProgressCounter* progress) {
     const std::vector<SweepRegion> regions = sweepRegions(terrain, params);
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
 
-    HorizonMap out;
-    out.angleDeg = Grid<float>(terrain.width(), terrain.height(), std::numeric_limits<float>::quiet_NaN());
-    out.truncated = Grid<std::uint8_t>(terrain.width(), terrain.height(), 0);
+    // Reused grids are refilled in place (no fresh pages to fault in and clear).
+    const auto reset = [&](auto& grid, auto fill) {
+        if (grid.width() == terrain.width() && grid.height() == terrain.height()) {
+            std::fill(grid.values().begin(), grid.values().end(), fill);
+        } else {
+            grid = std::remove_reference_t<decltype(grid)>(terrain.width(), terrain.height(), fill);
+        }
+    };
+    reset(out.angleDeg, std::numeric_limits<float>::quiet_NaN());
+    reset(out.truncated, std::uint8_t{0});
     // NaN until written, so a cell no line served would show up as NaN in the tests.
-    Grid<float> planeB(terrain.width(), terrain.height(), std::numeric_limits<float>::quiet_NaN());
+    Grid<float>& planeB = buffers.planeB;
+    reset(planeB, std::numeric_limits<float>::quiet_NaN());
 
     for (const SweepRegion& region : regions) {
         const LineGeometry geo = makeGeometry(terrain, region, params.maxDistanceM);
@@ -709,7 +698,6 @@ HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params, Pro
             progress->throwIfCancelled();
         }
     }
-    return out;
 }
 
 }  // namespace demlight

@@ -2,6 +2,7 @@
 // key, sky and indirect lights, coloured penumbra, gamma at the end.
 #include "lighting/preview.h"
 
+#include "lighting/directions.h"
 #include "lighting/horizon.h"
 #include "lighting/sky.h"
 #include "lighting/sun.h"
@@ -34,10 +35,9 @@ Grid<float> previewSkyLight(const Terrain& terrain, const Normals& normals, std:
     hp.maxDistanceM = maxDistanceM > 0 ? maxDistanceM : defaultMaxDistanceM(terrain);
     hp.refraction = refraction;
     hp.threads = threads;
-    for (std::size_t i = 0; i < directions; ++i) {
-        hp.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(directions);
-        acc.addDirection(i, sweepHorizon(terrain, hp, progress).angleDeg);
-    }
+    sweepDirections(terrain, hp, directions,
+                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
+                    progress);
     return acc.finish(0.0).skyK;
 }
 

@@ -3,6 +3,7 @@
 #include "lighting/sky_wedge.h"
 #include "src/angles.h"
 #include "src/error.h"
+#include "src/fast_math.h"
 #include "src/parallel.h"
 
 #include <algorithm>
@@ -372,7 +373,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             // NaN inputs propagate into the sums, so nodata stays NaN.
             const double hRad = std::isnan(h[col]) ? std::numeric_limits<double>::quiet_NaN()
                                                    : clampElevationRad(h[col]);
-            const double sinH = std::sin(hRad), cosH = std::cos(hRad);  // NaN stays NaN
+            const auto [sinH, cosH] = fastSinCosElevation(hRad);  // NaN stays NaN
             const double sPos = hRad > 0.0 ? sinH : (std::isnan(hRad) ? hRad : 0.0);
             s1[col] += sPos;
             s2[col] += sPos * sPos;

@@ -12,6 +12,42 @@ namespace {
 /// Floor of the elevation used to size the search distance (degrees).
 constexpr double kLowestShadowElevationDeg = 0.25;
 
+/// Side of the blocks (cells) in which sweepWindows() bounds the cells of each sweep.
+constexpr std::size_t kWindowBlockCells = 64;
+
+/// For each sweep azimuth a_i, the bounding window of the cells whose own sun azimuth lies in
+/// [a_(i-1), a_(i+1)], the only cells that interpolate with sweep i; empty (col0 == col1) when
+/// no cell needs it. Taken over blocks of kWindowBlockCells with the field's exact range in each.
+std::vector<CellWindow> sweepWindows(const SunField& field, const std::vector<double>& azimuths,
+                                     std::size_t width, std::size_t height) {
+    const std::size_t n = azimuths.size();
+    std::vector<CellWindow> windows(n);
+    if (n == 1) {
+        windows[0] = {0, 0, width, height};
+        return windows;
+    }
+    for (std::size_t r0 = 0; r0 < height; r0 += kWindowBlockCells) {
+        const std::size_t r1 = std::min(r0 + kWindowBlockCells, height);
+        for (std::size_t c0 = 0; c0 < width; c0 += kWindowBlockCells) {
+            const std::size_t c1 = std::min(c0 + kWindowBlockCells, width);
+            const auto [lo, hi] = field.azimuthRange(c0, r0, c1, r1);
+            for (std::size_t i = 0; i < n; ++i) {
+                const double below = i == 0 ? -1e300 : azimuths[i - 1];
+                const double above = i + 1 == n ? 1e300 : azimuths[i + 1];
+                if (hi < below || lo > above) continue;
+                CellWindow& w = windows[i];
+                if (w.col0 == w.col1) {
+                    w = {c0, r0, c1, r1};
+                } else {
+                    w = {std::min(w.col0, c0), std::min(w.row0, r0), std::max(w.col1, c1),
+                         std::max(w.row1, r1)};
+                }
+            }
+        }
+    }
+    return windows;
+}
+
 }  // namespace
 
 std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width, std::size_t height) {
@@ -61,18 +97,37 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.maxDistanceM = frame.maxDistanceM;
     frame.sweepAzimuthsDeg = sunSweepAzimuthsDeg(field, t.width(), t.height());
     const std::vector<double>& azimuths = frame.sweepAzimuthsDeg;
-    std::vector<HorizonMap> horizons;
-    for (double az : azimuths) {
-        hp.azimuthDeg = wrapAzimuthDeg(az);
-        horizons.push_back(sweepHorizon(t, hp, progress));
+    // Each sweep covers only the cells that interpolate with it, so a frame costs about two
+    // DEM-wide sweeps however many azimuths it spans. Progress: the frame counts as one pass
+    // over the cells, shared among the sweeps by their window areas.
+    const std::vector<CellWindow> windows = sweepWindows(field, azimuths, t.width(), t.height());
+    const auto area = [](const CellWindow& w) { return (w.col1 - w.col0) * (w.row1 - w.row0); };
+    std::size_t totalArea = 0;
+    for (const CellWindow& w : windows) totalArea += area(w);
+    std::vector<HorizonMap> horizons(azimuths.size());
+    SweepBuffers buffers;
+    std::size_t areaDone = 0, reported = 0;
+    for (std::size_t i = 0; i < azimuths.size(); ++i) {
+        if (area(windows[i]) == 0) continue;
+        hp.azimuthDeg = wrapAzimuthDeg(azimuths[i]);
+        hp.window = windows[i];
+        sweepHorizonInto(t, hp, horizons[i], buffers);
+        if (progress) {
+            areaDone += area(windows[i]);
+            const std::size_t target = t.heightsM.size() * areaDone / totalArea;
+            progress->advance(target - reported);
+            reported = target;
+            progress->throwIfCancelled();
+        }
     }
     const double spacing = azimuths.size() > 1 ? azimuths[1] - azimuths[0] : 1.0;
     parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < t.width(); ++col) {
-            if (std::isnan(horizons[0].angleDeg(col, row))) continue;
+            if (std::isnan(t.heightsM(col, row))) continue;
             const auto [az, el] = field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
             // Horizon at this cell's own sun azimuth, linear between the bracketing sweeps.
-            double h = horizons[0].angleDeg(col, row);
+            // Both bracketing sweeps' windows contain this cell (sweepWindows).
+            double h = horizons[0].angleDeg.empty() ? 0.0 : horizons[0].angleDeg(col, row);
             if (azimuths.size() > 1) {
                 const double u = std::clamp((az - azimuths[0]) / spacing, 0.0,
                                             static_cast<double>(azimuths.size() - 1));

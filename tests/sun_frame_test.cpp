@@ -1,0 +1,99 @@
+// computeSunFrame over a DEM whose sun azimuth varies from cell to cell: the windowed sweeps
+// at a few azimuths, interpolated per cell, against the reference horizon taken at every sampled
+// cell's own sun azimuth (DESIGN §4), on a real DEM.
+#include "geo/dem.h"
+#include "lighting/horizon.h"
+#include "lighting/sun.h"
+#include "lighting/sun_frame.h"
+#include "lighting/surface.h"
+
+#include "shared_dem.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+/// A field whose azimuth runs linearly across the columns from az0 to az1 (and a little down
+/// the rows), at a fixed elevation: a DEM far wider than any real one, so that the frame needs
+/// several sweep azimuths.
+SunField slantedField(std::size_t width, std::size_t height, double az0, double az1, double elevationDeg) {
+    SunField f;
+    f.stepCells = 32;
+    const std::size_t nw = width / f.stepCells + 2, nh = height / f.stepCells + 2;
+    f.azimuthDeg = Grid<float>(nw, nh, 0.0f);
+    f.elevationDeg = Grid<float>(nw, nh, static_cast<float>(elevationDeg));
+    for (std::size_t j = 0; j < nh; ++j)
+        for (std::size_t i = 0; i < nw; ++i) {
+            const double u = static_cast<double>(i * f.stepCells) / static_cast<double>(width);
+            const double v = static_cast<double>(j * f.stepCells) / static_cast<double>(height);
+            f.azimuthDeg(i, j) = static_cast<float>(az0 + (az1 - az0) * u + 0.3 * v);
+        }
+    f.centreAzimuthDeg = 0.5 * (az0 + az1);
+    f.centreElevationDeg = elevationDeg;
+    return f;
+}
+
+TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
+    const std::string path = sharedDemPath("big_tujunga_srtm30m_utm11.tif");
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+    const Terrain t = cropTerrainCentre(loadDem(path).terrain, 400, 400);
+    const Normals normals = computeNormals(t, 0);
+    const SunField field = slantedField(t.width(), t.height(), 150.0, 153.2, 12.0);
+
+    SunFrameParams params;
+    params.maxDistanceM = 8000;
+    const SunFrame frame = computeSunFrame(t, normals, field, params);
+    // 3.5 deg of spread at <= 0.5 deg spacing.
+    ASSERT_GE(frame.sweepAzimuthsDeg.size(), 8u);
+
+    // Reference: every sampled cell at its own sun azimuth.
+    std::vector<CellIndex> cells;
+    for (std::size_t r = 0; r < t.height(); ++r)
+        for (std::size_t c = 0; c < t.width(); ++c)
+            if (t.valid(c, r)) cells.push_back({c, r});
+    std::mt19937_64 rng(7);
+    std::shuffle(cells.begin(), cells.end(), rng);
+    cells.resize(1500);
+    double visError = 0;
+    std::size_t visWrong = 0;
+    for (const CellIndex& cell : cells) {
+        const auto [az, el] = field.at(static_cast<double>(cell.col) + 0.5, static_cast<double>(cell.row) + 0.5);
+        HorizonParams hp;
+        hp.azimuthDeg = az;
+        hp.maxDistanceM = params.maxDistanceM;
+        const HorizonSample ref = referenceHorizonAt(t, hp, std::span<const CellIndex>(&cell, 1))[0];
+        const SunTerms exact = sunTerms(normals.at(cell.col, cell.row), ref.angleDeg, az, el, params.sunDiameterDeg);
+        const double got = frame.light.visibility(cell.col, cell.row);
+        ASSERT_TRUE(std::isfinite(got));
+        visError += std::abs(got - exact.visibility);
+        if (std::abs(got - exact.visibility) > 0.5) ++visWrong;
+    }
+    const double n = static_cast<double>(cells.size());
+    // Same budget as the sweep itself against the reference (tests/horizon_realdem_test.cpp).
+    EXPECT_LT(visError / n, 0.01);
+    EXPECT_LT(static_cast<double>(visWrong) / n, 0.01);
+}
+
+TEST(SunFrame, ProgressCountsTheFrameOnceWhateverTheSweeps) {
+    const Terrain t = makeUniformTerrain(Grid<float>(200, 150, 100.0f), 30.0);
+    const Normals normals = computeNormals(t, 1);
+    const SunField field = slantedField(t.width(), t.height(), 100.0, 104.0, 20.0);
+    double lastFraction = 0;
+    ProgressCounter counter([&](double f, const std::string&) { lastFraction = f; return true; }, "frame",
+                            t.heightsM.size(), 1000);
+    const SunFrame frame = computeSunFrame(t, normals, field, SunFrameParams{}, &counter);
+    EXPECT_GE(frame.sweepAzimuthsDeg.size(), 8u);
+    EXPECT_NEAR(lastFraction, 1.0, 1e-9);
+    // Flat open ground: fully lit everywhere.
+    for (float v : frame.light.visibility.values()) ASSERT_FLOAT_EQ(v, 1.0f);
+}
+
+}  // namespace
+}  // namespace demlight
