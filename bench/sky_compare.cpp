@@ -377,7 +377,7 @@ int main(int argc, char** argv) {
                     "MAE (bias):\n\n");
         std::printf("| N | SVF: formula on exact horizons at N azimuths | SVF: on SAGA-style stepping horizons "
                     "| SVF: SAGA output | VISIBLE/100: exact horizons | VISIBLE/100: stepping | VISIBLE/100: SAGA output "
-                    "| stepping − exact horizon (deg): mean, p99 "
+                    "| stepping − exact horizon (deg): mean, p99 of the absolute difference "
                     "| SAGA output vs re-implementation: SVF MAE / max, VISIBLE/100 MAE / max |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|\n");
         const double cellSizeM = dem.band.ref.geoTransform[1];  // map units, as SAGA
