@@ -2,6 +2,9 @@
 // with the preview rig (lighting/preview.h; DESIGN §3 after Quilez): sun key light with a
 // coloured penumbra, sky fill weighted by K from exact horizon sweeps, bounce from opposite the
 // sun, albedo 0.2 or a colour raster, gamma only at the end. One pixel per DEM cell.
+// The scene plan (--quality, lighting/quality.h) sets the sun-position lattice, the sun's search
+// distance (full: the DEM diagonal), and the sky's directions, distance, curvature and
+// scan-direction tolerance.
 #include "cli/common.h"
 #include "cli/image_out.h"
 #include "cli/progress_bar.h"
@@ -12,6 +15,8 @@
 #include "src/error.h"
 
 #include <chrono>
+#include <cmath>
+#include <optional>
 
 namespace demlight::cli {
 namespace {
@@ -25,7 +30,7 @@ struct RenderOptions {
     std::string colorRaster;
     double albedo = PreviewParams{}.albedo;
     double exposure = 1.0;
-    std::size_t skyDirections = kPreviewSkyDirections;
+    std::optional<std::size_t> skyDirections;  ///< default: the scene plan's
     double sunDiameterDeg = kSunDiameterDeg;
 };
 
@@ -39,15 +44,16 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
     if (!o.colorRaster.empty()) albedo = loadAlbedoRaster(o.colorRaster, dem, "--color-raster");
 
     const auto start = std::chrono::steady_clock::now();
-    const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{});
-    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
+    const std::size_t skyDirections = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams skyParams = horizonParams(o.search, plan);
+    const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{}, plan.sunLatticeStepCells);
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "render", t.heightsM.size() * (o.skyDirections + 1));
-    const SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
-    const Grid<float> sky = previewSkyLight(t, normals, o.skyDirections,
-                                            o.search.maxDistanceM.value_or(0.0),
-                                            o.search.refraction, o.search.threads, &counter);
+    ProgressCounter counter(bar.callback(), "render", t.heightsM.size() * (skyDirections + 1));
+    const SunFrame frame =
+        computeSunFrame(t, normals, field, sunFrameParams(o.search, o.sunDiameterDeg, plan), &counter);
+    const Grid<float> sky = planSkyLight(t, normals, skyDirections, skyParams, &counter);
     bar.finish();
     PreviewParams pp;
     pp.albedo = o.albedo;
@@ -63,7 +69,10 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
                   formatInstant(when.utc, when.zone) + ")" +
                   (field.centreElevationDeg < 0 ? "; sun below the horizon: twilight sky fill only" : ""));
     note(ctx, "wrote " + o.outPath + " (" + std::to_string(image.width) + " x " +
-                  std::to_string(image.height) + "), " + formatNumber(seconds) + " s");
+                  std::to_string(image.height) + "); quality " + std::string(qualityName(plan.quality)) +
+                  ": sun max distance " + formatNumber(std::round(frame.maxDistanceM)) + " m, " +
+                  std::to_string(skyDirections) + " sky directions to " +
+                  formatNumber(std::round(skyParams.maxDistanceM)) + " m; " + formatNumber(seconds) + " s");
 }
 
 }  // namespace
@@ -87,9 +96,10 @@ void registerRender(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--exposure", o->exposure, "Multiplies linear light before gamma")
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
-    cmd->add_option("--sky-directions", o->skyDirections, "Horizon directions for the sky fill")
-        ->check(CLI::Range(1, 360))
-        ->capture_default_str();
+    cmd->add_option("--sky-directions", o->skyDirections,
+                    "Horizon directions for the sky fill (default: " + std::to_string(kAutoSkyDirections) +
+                        " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
+        ->check(CLI::Range(1, 360));
     cmd->add_option("--sun-diameter", o->sunDiameterDeg,
                     "Angular diameter of the sun disk (degrees); larger = softer shadows")
         ->check(CLI::Range(0.0, 20.0))

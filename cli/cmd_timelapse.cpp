@@ -4,6 +4,9 @@
 //   DIR/frame_NNN.tif  lightmaps: sun_irradiance, sun_visibility, sky_k (Float32, linear)
 //   DIR/frame_NNN.png  previews with the render rig (lighting/preview.h)
 //   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
+// The scene plan (--quality, lighting/quality.h) sets the sun-position lattice, the sun's search
+// distance (full: the DEM diagonal) and the sky's directions, distance, curvature and
+// scan-direction tolerance; frames record it in their metadata.
 #include "cli/common.h"
 #include "cli/image_out.h"
 #include "cli/progress_bar.h"
@@ -22,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -40,7 +44,7 @@ struct TimelapseOptions {
     std::string horizonMode = "exact";
     int fps = 8;
     std::size_t gifSize = 800;
-    std::size_t skyDirections = kPreviewSkyDirections;
+    std::optional<std::size_t> skyDirections;  ///< default: the scene plan's
     double exposure = 1.0;
     double albedo = PreviewParams{}.albedo;
     std::string colorRaster;
@@ -233,31 +237,34 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     using clock = std::chrono::steady_clock;
     const auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
     const auto tStart = clock::now();
+    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
+    HorizonParams skyParams = horizonParams(o.search, plan);
+    const std::size_t skyDirections =
+        stackDirections > 0 ? stackDirections : o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t n = frames.instants.size();
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "timelapse",
-                            t.heightsM.size() * ((stackDirections > 0 ? stackDirections : o.skyDirections) + n));
+    ProgressCounter counter(bar.callback(), "timelapse", t.heightsM.size() * (skyDirections + n));
 
     // Sky once; with interpolated horizons, from the same precomputed directions.
     const Normals normals = computeNormals(t, o.search.threads);
     HorizonStack stack;
     Grid<float> sky;
     if (stackDirections > 0) {
-        HorizonParams hp;
-        hp.maxDistanceM = o.search.maxDistanceM.value_or(sunSearchDistanceM(t, 0.0, o.sunDiameterDeg));
-        hp.refraction = o.search.refraction;
-        hp.threads = o.search.threads;
-        stack = computeHorizonStack(t, stackDirections, hp, &counter);
+        // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's
+        // distance (full).
+        if (!o.search.maxDistanceM)
+            skyParams.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM
+                                                                   : sunSearchDistanceM(t, 0.0, o.sunDiameterDeg);
+        stack = computeHorizonStack(t, stackDirections, skyParams, &counter);
         SkyAccumulator acc(normals.east, normals.north, normals.up, stackDirections, {}, o.search.threads);
         for (std::size_t i = 0; i < stackDirections; ++i) acc.addDirection(i, stack.angleDeg[i]);
         sky = acc.finish(0.0).skyK;
     } else {
-        sky = previewSkyLight(t, normals, o.skyDirections, o.search.maxDistanceM.value_or(0.0),
-                              o.search.refraction, o.search.threads, &counter);
+        sky = planSkyLight(t, normals, skyDirections, skyParams, &counter);
     }
     const double skySeconds = seconds(clock::now() - tStart);
 
-    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
+    const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg, plan);
     PreviewParams pp;
     pp.albedo = o.albedo;
     pp.exposure = o.exposure;
@@ -276,7 +283,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = frames.instants[i];
         const auto c0 = clock::now();
-        const SunField field = computeSunField(dem, when, SolarSite{}, SpaOptions{});
+        const SunField field = computeSunField(dem, when, SolarSite{}, SpaOptions{}, plan.sunLatticeStepCells);
         SunFrame frame;
         if (stackDirections > 0) {
             frame.light = sunLightFromStack(t, normals, stack, field, o.sunDiameterDeg, o.search.threads);
@@ -296,7 +303,11 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         const auto c1 = clock::now();
         computeS += seconds(c1 - c0);
         if (formats.count("tif")) {
-            const std::map<std::string, std::string> meta = {
+            // The horizons of this frame resolve what its own search distance reaches.
+            ScenePlan framePlan = plan;
+            framePlan.expectedError.aboveElevationDeg = resolvedElevationDeg(t, frame.maxDistanceM);
+            std::map<std::string, std::string> meta = planMetadata(framePlan);
+            meta.insert({
                 {"DEMLIGHT_PRODUCT", "timelapse frame"},
                 {"DEMLIGHT_FRAME", std::to_string(i)},
                 {"DEMLIGHT_TIME_UTC", formatInstant(when, std::string())},
@@ -307,8 +318,9 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                 {"DEMLIGHT_METHOD", stackDirections > 0 ? "sweep, interpolated:" + std::to_string(stackDirections) : "sweep"},
                 {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
                 {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
-                {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(stackDirections > 0 ? stackDirections : o.skyDirections)},
-            };
+                {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
+                {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(skyParams.maxDistanceM)},
+            });
             OutputOptions out;
             out.path = (fs::path(o.outDir) / frameName(i, n, "tif")).string();
             writeRaster(out.path,
@@ -339,8 +351,10 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   formatInstant(frames.instants.back(), frames.zone) + ", step " + o.step +
                   "), " + std::to_string(sunUp) + " with the sun up");
     note(ctx, "time: sky " + formatNumber(std::round(skySeconds * 1000)) + " ms once (" +
-                  std::to_string(stackDirections > 0 ? stackDirections : o.skyDirections) +
-                  " directions" + (stackDirections > 0 ? ", also the interpolated sun horizons" : "") +
+                  std::to_string(skyDirections) + " directions to " +
+                  formatNumber(std::round(skyParams.maxDistanceM)) + " m, quality " +
+                  std::string(qualityName(plan.quality)) +
+                  (stackDirections > 0 ? ", also the interpolated sun horizons" : "") +
                   "); per frame " +
                   formatNumber(std::round(computeS * 1000 / n)) + " ms compute + " +
                   formatNumber(std::round(writeS * 1000 / n)) + " ms writing; total " +
@@ -375,9 +389,11 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
         ->check(CLI::Range(16, 100000))
         ->capture_default_str();
-    cmd->add_option("--sky-directions", o->skyDirections, "Horizon directions for the sky term")
-        ->check(CLI::Range(1, 360))
-        ->capture_default_str();
+    cmd->add_option("--sky-directions", o->skyDirections,
+                    "Horizon directions for the sky term (default: " + std::to_string(kAutoSkyDirections) +
+                        " with --quality auto, " + std::to_string(kFullSkyDirections) +
+                        " with full; --horizon-mode interpolated:N uses its N)")
+        ->check(CLI::Range(1, 360));
     cmd->add_option("--color-raster", o->colorRaster, "RGB raster used as preview albedo")
         ->check(CLI::ExistingFile);
     cmd->add_option("--albedo", o->albedo, "Linear preview albedo without a colour raster")

@@ -1,5 +1,7 @@
 #include "cli/common.h"
 
+#include "lighting/directions.h"
+#include "lighting/sky.h"
 #include "src/error.h"
 
 #include <cmath>
@@ -49,10 +51,6 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
 }
 
-/// The sweep's measured error against the reference on real DEMs (README, "How the horizon is
-/// computed"): median and 99th percentile of the absolute horizon error, degrees.
-constexpr const char* kSweepExpectedErrorDeg = "median 0.07, p99 5.2 (sweep vs reference, real DEMs)";
-
 ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestElevationDeg,
                   const CliContext& ctx) {
     QualityBudget budget;
@@ -63,22 +61,18 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
     if (o.maxDistanceM) {
         plan.maxDistanceM = *o.maxDistanceM;
         plan.reasons[0] = "max_distance_m=" + formatNumber(*o.maxDistanceM) + " (--max-distance)";
+        plan.expectedError.aboveElevationDeg = resolvedElevationDeg(terrain, *o.maxDistanceM);
     }
     if (o.verbose && !ctx.quiet) {
         note(ctx, "scene plan (--quality " + o.quality + "):");
         for (const auto& r : plan.reasons) note(ctx, "  " + r);
+        note(ctx, "  expected horizon error: " + describeExpectedError(plan.expectedError));
     }
     return plan;
 }
 
 HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
-    HorizonParams p;
-    p.maxDistanceM = plan.maxDistanceM;
-    p.curvature = plan.curvature;
-    p.refraction = o.refraction;
-    p.directionToleranceDeg = plan.directionToleranceDeg;
-    p.threads = o.threads;
-    return p;
+    return planHorizonParams(plan, o.refraction, o.threads);
 }
 
 SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
@@ -90,13 +84,27 @@ SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
     return p;
 }
 
+SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg, const ScenePlan& plan) {
+    SunFrameParams p = sunFrameParams(o, sunDiameterDeg);
+    p.maxDistanceM = o.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
+    return p;
+}
+
+Grid<float> planSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
+                         const HorizonParams& params, ProgressCounter* progress) {
+    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
+    sweepDirections(terrain, params, directions,
+                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
+    return acc.finish(0.0).skyK;
+}
+
 std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
     std::string reasons;
     for (const auto& r : plan.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
     return {{"DEMLIGHT_QUALITY", std::string(qualityName(plan.quality))},
             {"DEMLIGHT_PLAN", reasons},
             {"DEMLIGHT_CURVATURE", plan.curvature ? "on" : "off"},
-            {"DEMLIGHT_EXPECTED_ERROR_DEG", kSweepExpectedErrorDeg}};
+            {"DEMLIGHT_EXPECTED_ERROR_DEG", describeExpectedError(plan.expectedError)}};
 }
 
 double outputNodata(const Dem& dem) {

@@ -7,6 +7,7 @@
 #include "lighting/horizon.h"
 #include "lighting/quality.h"
 #include "lighting/sun_frame.h"
+#include "lighting/surface.h"
 
 #include <map>
 #include <optional>
@@ -47,9 +48,18 @@ HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan);
 /// when given, else 0 (the distance this sun needs).
 SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg);
 
-/// Metadata items recording the plan (DEMLIGHT_QUALITY, DEMLIGHT_PLAN) and the expected error
-/// of the sweep against the reference (DEMLIGHT_EXPECTED_ERROR_DEG, from the measured tables
-/// in the README).
+/// The same with the plan's distance: --max-distance when given; with --quality full the plan's
+/// (the DEM diagonal); with auto 0, the distance this sun needs (sunSearchDistanceM).
+SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg, const ScenePlan& plan);
+
+/// Sky light K of the preview rig (lighting/preview.h) from `directions` evenly spaced sweeps
+/// with `params` (the plan's distance, curvature and direction tolerance). NaN at nodata.
+Grid<float> planSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
+                         const HorizonParams& params, ProgressCounter* progress);
+
+/// Metadata items recording the plan (DEMLIGHT_QUALITY, DEMLIGHT_PLAN, DEMLIGHT_CURVATURE) and
+/// its expected horizon error against the reference (DEMLIGHT_EXPECTED_ERROR_DEG, measured
+/// figures cited in lighting/quality.cpp).
 std::map<std::string, std::string> planMetadata(const ScenePlan& plan);
 
 /// The nodata value written for nodata cells of Float32 outputs: the input's own value when it

@@ -3,7 +3,9 @@
 #include "src/angles.h"
 #include "src/error.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace demlight {
@@ -14,6 +16,26 @@ constexpr std::size_t kAutoSunLatticeCells = 64;
 constexpr std::size_t kFullSunLatticeCells = 16;
 /// Curvature is dropped only when its largest effect is below this share of the tolerance.
 constexpr double kCurvatureShareOfTolerance = 0.1;
+/// Line slopes below this are grid-aligned directions off by rounding (the sweep snaps them too).
+constexpr double kSlopeSnap = 1e-12;
+
+/// The sweep's horizon error against the reference, measured (the largest over DEMs and
+/// azimuths): tests/horizon_realdem_test.cpp HorizonRealDem, 4000 cells x 6 azimuths per DEM
+/// (README "How the horizon is computed": mount_st_helens median 0.047-0.072 deg, p99 2.6-5.2
+/// deg; big_tujunga, N44W072, svalbard lower), consistent with the tradeoff bench row
+/// "exact sweep,2xD0,...,horizon_median_abs_deg" (docs/bench/tradeoff.csv) and, for `auto`,
+/// the clamped errors of tests/quality_realdem_test.cpp.
+constexpr double kSweepMedianErrorDeg = 0.072;
+constexpr double kSweepP99ErrorDeg = 5.2;
+constexpr const char* kSweepErrorSource = "sweep vs reference on real DEMs, tests/horizon_realdem_test.cpp";
+/// Cells longer than wide (or wider than long) by this ratio or more have a larger sweep error:
+/// docs/stability.md row "78 N lat/lon cells (6.4 x 30.9 m) | sweep vs reference", median 0.19
+/// deg, p99 10.2 deg (the 4.8:1 cells of 1" lat/lon data at 78 deg N).
+constexpr double kAnisotropicCellRatio = 3.0;
+constexpr double kAnisotropicMedianErrorDeg = 0.19;
+constexpr double kAnisotropicP99ErrorDeg = 10.2;
+constexpr const char* kAnisotropicErrorSource =
+    "sweep vs reference on 4.8:1 lat/lon cells at 78 N, docs/stability.md";
 
 std::string describe(const std::string& name, double value, const std::string& why) {
     std::ostringstream s;
@@ -31,7 +53,43 @@ double diagonalM(const Terrain& t) {
     return std::hypot(widthM, heightM);
 }
 
+/// Largest ratio of the longer to the shorter cell side over the rows.
+double cellAspectRatio(const Terrain& t) {
+    double ratio = 1;
+    for (std::size_t r = 0; r < t.height(); ++r) {
+        const double w = t.cellWidthM[r], h = t.cellHeightM[r];
+        if (w > 0 && h > 0) ratio = std::max(ratio, std::max(w / h, h / w));
+    }
+    return ratio;
+}
+
+ExpectedError sweepExpectedError(const Terrain& t, double maxDistanceM) {
+    const bool anisotropic = cellAspectRatio(t) >= kAnisotropicCellRatio;
+    ExpectedError e;
+    e.medianDeg = anisotropic ? kAnisotropicMedianErrorDeg : kSweepMedianErrorDeg;
+    e.p99Deg = anisotropic ? kAnisotropicP99ErrorDeg : kSweepP99ErrorDeg;
+    e.source = anisotropic ? kAnisotropicErrorSource : kSweepErrorSource;
+    e.aboveElevationDeg = resolvedElevationDeg(t, maxDistanceM);
+    return e;
+}
+
 }  // namespace
+
+std::string describeExpectedError(const ExpectedError& e) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "median " << e.medianDeg << ", p99 " << e.p99Deg << " deg";
+    if (e.aboveElevationDeg > -90) s << " for horizons at or above " << e.aboveElevationDeg << " deg";
+    s << " (" << e.source << ")";
+    return s.str();
+}
+
+double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM) {
+    if (maxDistanceM >= diagonalM(terrain)) return -90;
+    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    const double relief = std::isfinite(lo) ? static_cast<double>(hi - lo) : 0.0;
+    return std::atan(relief / maxDistanceM) * kRadToDeg;
+}
 
 Quality parseQuality(std::string_view name) {
     if (name == "auto") return Quality::Auto;
@@ -62,6 +120,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                         describe("direction_tolerance_deg", plan.directionToleranceDeg, "full"),
                         describe("sky_directions", plan.skyDirections, "full"),
                         describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), "full")};
+        plan.expectedError = sweepExpectedError(terrain, plan.maxDistanceM);
         return plan;
     }
 
@@ -85,7 +144,87 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     describe("sky_directions", plan.skyDirections, "measured sky error budget"),
                     describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells),
                              "sun direction changes by < 0.01 deg over 64 cells of 30 m")};
+    plan.expectedError = sweepExpectedError(terrain, plan.maxDistanceM);
     return plan;
+}
+
+HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads) {
+    HorizonParams p;
+    p.maxDistanceM = plan.maxDistanceM;
+    p.curvature = plan.curvature;
+    p.refraction = refraction;
+    p.directionToleranceDeg = plan.directionToleranceDeg;
+    p.threads = threads;
+    return p;
+}
+
+double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
+    double steps = 0;
+    for (const SweepRegion& region : sweepRegions(terrain, params)) {
+        const CellWindow& w = region.window;
+        steps += static_cast<double>((w.col1 - w.col0) * (w.row1 - w.row0));  // combine pass
+        // Line geometry: one step per cell along the major axis; a line k lies at minor
+        // coordinate k + slope * m.
+        const bool xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
+        const double major = xMajor ? region.dirCol : region.dirRow;
+        double slope = (xMajor ? region.dirRow : region.dirCol) / major;
+        if (std::abs(slope) < kSlopeSnap) slope = 0;  // on-axis, as the sweep snaps it
+        const int farSign = major >= 0 ? 1 : -1;
+        const double majorSize = static_cast<double>(xMajor ? terrain.width() : terrain.height());
+        const double minorSize = static_cast<double>(xMajor ? terrain.height() : terrain.width());
+        const double a0 = static_cast<double>(xMajor ? w.col0 : w.row0);
+        const double a1 = static_cast<double>(xMajor ? w.col1 : w.row1) - 1;
+        const double b0 = static_cast<double>(xMajor ? w.row0 : w.col0);
+        const double b1 = static_cast<double>(xMajor ? w.row1 : w.col1) - 1;
+        double minStepM = std::numeric_limits<double>::infinity();
+        for (std::size_t r = 0; r < terrain.height(); ++r)
+            minStepM = std::min(minStepM, std::hypot((xMajor ? 1.0 : slope) * terrain.cellWidthM[r],
+                                                     (xMajor ? slope : 1.0) * terrain.cellHeightM[r]));
+        const double extension = std::isfinite(params.maxDistanceM)
+                                     ? std::min(majorSize, std::ceil(params.maxDistanceM / minStepM) + 1)
+                                     : majorSize;
+        // The major interval on which a line's minor coordinate k + slope * m lies in (lo, hi]
+        // (a line at x uses cells floor(x) and floor(x) + 1, the second only when x is not whole).
+        const auto within = [&](double k, double lo, double hi, double& m0, double& m1) {
+            if (slope == 0) {
+                m0 = -std::numeric_limits<double>::infinity();
+                m1 = (k > lo && k <= hi) ? -m0 : m0;
+                return;
+            }
+            const double u = (lo - k) / slope, v = (hi - k) / slope;
+            m0 = std::min(u, v), m1 = std::max(u, v);
+        };
+        const double kFirst = std::floor(b0 - std::max(slope * a0, slope * a1)) - 1;
+        const double kLast = std::ceil(b1 - std::min(slope * a0, slope * a1)) + 1;
+        for (double k = kFirst; k <= kLast; ++k) {
+            // Steps where the line serves a window cell.
+            double s0, s1;
+            within(k, b0 - 1, b1, s0, s1);
+            s0 = std::max(std::ceil(s0), a0), s1 = std::min(std::floor(s1), a1);
+            if (s0 > s1) continue;
+            // Walked from maxDistanceM beyond the farthest served step to the nearest one ...
+            double m0 = farSign > 0 ? s0 : s0 - extension;
+            double m1 = farSign > 0 ? s1 + extension : s1;
+            // ... on the grid only.
+            double g0, g1;
+            within(k, -1, minorSize - 1, g0, g1);
+            m0 = std::max({m0, std::ceil(g0), 0.0});
+            m1 = std::min({m1, std::floor(g1), majorSize - 1});
+            if (m1 >= m0) steps += m1 - m0 + 1;
+        }
+    }
+    return steps;
+}
+
+double estimateSweepWork(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
+                         double refraction) {
+    HorizonParams p = planHorizonParams(plan, refraction);
+    double work = 0;
+    for (std::size_t i = 0; i < directions; ++i) {
+        p.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(directions);
+        work += estimateSweepSteps(terrain, p);
+    }
+    return work;
 }
 
 }  // namespace demlight

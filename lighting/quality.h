@@ -4,6 +4,7 @@
 // finest setting. The plan is recorded in output metadata and printed with --verbose.
 #pragma once
 
+#include "lighting/horizon.h"
 #include "lighting/sky.h"
 #include "src/terrain.h"
 
@@ -34,6 +35,26 @@ struct QualityBudget {
     double refraction = 0.13;
 };
 
+/// The horizon error a plan states (DEMLIGHT_EXPECTED_ERROR_DEG): the sweep's measured |error|
+/// against the full-physics reference (ray march, curvature on, whole DEM) over cells and
+/// azimuths of real DEMs. Where the search distance is shorter than the DEM, only horizons at
+/// or above `aboveElevationDeg` are bounded: a cell's error is |max(h, e) - max(h_ref, e)|, i.e.
+/// the horizon as seen by a sun or sky patch at elevation e or higher (terrain beyond the
+/// distance can only appear below e).
+struct ExpectedError {
+    double medianDeg = 0;  ///< median |error| (degrees)
+    double p99Deg = 0;     ///< 99th percentile of |error| (degrees)
+    double aboveElevationDeg = -90;  ///< -90 = every horizon is bounded
+    std::string source;    ///< where the figures were measured
+};
+
+/// "median M, p99 P deg[ for horizons at or above E deg] (source)".
+std::string describeExpectedError(const ExpectedError& e);
+
+/// Elevation (degrees) above which a search distance sees every occluder: atan(relief / d).
+/// Terrain farther than d cannot rise above it. -90 when d covers the DEM diagonal.
+double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM);
+
 struct ScenePlan {
     Quality quality = Quality::Auto;
     double maxDistanceM = 0;          ///< horizon search distance (metres)
@@ -41,6 +62,7 @@ struct ScenePlan {
     double directionToleranceDeg = 0; ///< sweep region split tolerance (0 = the sweep's automatic rule)
     int skyDirections = kAutoSkyDirections;           ///< sectors for sky and aperture integrals
     std::size_t sunLatticeStepCells = 64;  ///< SPA evaluated every this many cells
+    ExpectedError expectedError;           ///< what the horizons of this plan are within
     /// One line per choice, "name=value (why)", for metadata and --verbose.
     std::vector<std::string> reasons;
 };
@@ -55,6 +77,27 @@ struct ScenePlan {
 ///  - sky directions: kAutoSkyDirections; sun lattice: 64 cells (the sun moves 0.004 deg per km).
 /// `full`: the DEM diagonal as distance, curvature on, 0.01 deg direction tolerance,
 /// kFullSkyDirections, a 16-cell sun lattice.
+/// Budget: with these rules the modelling choices of `auto` add at most budget.toleranceDeg to
+/// the median and the 99th percentile of the horizon error of `full` (both measured against the
+/// full-physics reference, horizons clamped at budget.lowestElevationDeg), and both stay within
+/// expectedError (tests/quality_realdem_test.cpp checks this on real DEMs).
 ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget& budget);
+
+/// HorizonParams of the plan's sweeps: its search distance, curvature and direction tolerance,
+/// with the given refraction coefficient and threads (azimuthDeg left at 0).
+HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads = 0);
+
+/// Deterministic estimate of the work of one sweepHorizon(terrain, params) call, in line steps
+/// (one step = one interpolated line sample fed to a hull), plus one per output cell for the
+/// combine pass. Follows the sweep's documented geometry (lighting/horizon.h): the regions of
+/// sweepRegions(), lines one cell apart along the minor axis, each walked from the cells it
+/// serves in its region to maxDistanceM beyond them (clipped to the grid). Used to compare the
+/// cost of plans without timing; the bench checks that it tracks wall time.
+double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params);
+
+/// estimateSweepSteps summed over `directions` evenly spaced azimuths (0, 360/directions, ...)
+/// with the plan's parameters: the cost of a sky or aperture integral under the plan.
+double estimateSweepWork(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
+                         double refraction);
 
 }  // namespace demlight

@@ -41,6 +41,49 @@ TEST(Quality, FullTurnsEverythingOn) {
     EXPECT_LT(p.sunLatticeStepCells, 64u);
 }
 
+TEST(Quality, ExpectedErrorScopeFollowsTheSearchDistance) {
+    QualityBudget b;
+    b.lowestElevationDeg = 2;
+    // Relief 50 m: 1432 m of search on an 8.5 km DEM resolves horizons from 2 deg up only.
+    const ScenePlan shortSearch = planScene(cone(200, 30, 50), Quality::Auto, b);
+    EXPECT_NEAR(shortSearch.expectedError.aboveElevationDeg, 2.0, 1e-9);
+    EXPECT_NE(describeExpectedError(shortSearch.expectedError).find("at or above 2 deg"), std::string::npos);
+    // Capped by the diagonal, and full: every horizon.
+    EXPECT_EQ(planScene(cone(200, 30, 1000, 10), Quality::Auto, b).expectedError.aboveElevationDeg, -90.0);
+    EXPECT_EQ(planScene(cone(200, 30, 50), Quality::Full, b).expectedError.aboveElevationDeg, -90.0);
+    // atan(relief / d): 50 m seen from 500 m.
+    EXPECT_NEAR(resolvedElevationDeg(cone(200, 30, 50), 500), std::atan(0.1) * 180 / M_PI, 1e-9);
+}
+
+TEST(Quality, ExpectedErrorIsLargerOnElongatedCells) {
+    // The stability suite measured a larger sweep error on 4.8:1 cells (78 N lat/lon).
+    Terrain elongated = cone(100, 30, 50);
+    for (double& w : elongated.cellWidthM) w = 6.4;
+    const ScenePlan square = planScene(cone(100, 30, 50), Quality::Auto, {});
+    const ScenePlan thin = planScene(elongated, Quality::Auto, {});
+    EXPECT_GT(thin.expectedError.medianDeg, square.expectedError.medianDeg);
+    EXPECT_GT(thin.expectedError.p99Deg, square.expectedError.p99Deg);
+}
+
+TEST(Quality, SweepWorkOfAnOnAxisSweepIsOneStepPerCellPlusTheCombine) {
+    // One region (uniform projected grid, on-axis): every line walks the whole grid once (the
+    // distance reaches across it) and every cell is combined once: 2 x cells.
+    const Terrain t = cone(100, 30, 50);
+    HorizonParams p;
+    p.maxDistanceM = 1e6;
+    for (double az : {0.0, 90.0, 180.0, 270.0}) {
+        p.azimuthDeg = az;
+        EXPECT_EQ(estimateSweepSteps(t, p), 2.0 * 100 * 100) << az;
+    }
+    // A short distance on a tall grid: lines still walk from the far window end to the near one.
+    p.azimuthDeg = 0;
+    p.maxDistanceM = 300;  // 10 cells
+    EXPECT_EQ(estimateSweepSteps(t, p), 2.0 * 100 * 100);
+    // More directions cost proportionally more.
+    const ScenePlan plan = planScene(t, Quality::Auto, {});
+    EXPECT_EQ(estimateSweepWork(t, plan, 4, 0.13), 4 * 2.0 * 100 * 100);
+}
+
 TEST(Quality, RejectsBadBudgetsAndNames) {
     QualityBudget b;
     b.toleranceDeg = 0;

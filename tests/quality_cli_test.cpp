@@ -1,0 +1,124 @@
+// End-to-end: `render` and `timelapse` follow the scene plan of --quality / --tolerance / -v.
+// Each is checked against a command whose plan wiring is independent of theirs: a timelapse
+// frame must hold exactly the bands `sun` and `sky` write under the same options, and a render
+// must be exactly the timelapse preview of the same instant. A command that ignored the plan
+// would fail these (auto and full differ in sky directions, distances and the sun lattice).
+#include "cli_runner.h"
+#include "geo/raster.h"
+#include "lighting/quality.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::runDemlight;
+
+const std::string kRocky = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
+const std::string kTime = "2024-06-21T08:00-06:00";
+
+fs::path scratch(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("demlight_quality_cli_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::vector<char> fileBytes(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+/// Same shape and the same value (or both NaN) in every cell.
+bool sameGrid(const Grid<float>& a, const Grid<float>& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const float x = a.data()[i], y = b.data()[i];
+        if (!(x == y || (std::isnan(x) && std::isnan(y)))) return false;
+    }
+    return true;
+}
+
+/// Runs `timelapse` for the one instant kTime with `options`; returns the frame's path.
+fs::path timelapseFrame(const fs::path& dir, const std::string& options) {
+    const auto r = runDemlight("-q timelapse " + kRocky + " -o " + dir.string() + " --start " + kTime + " --end " +
+                               kTime + " --formats tif,png " + options);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return dir / "frame_000.tif";
+}
+
+TEST(QualityCli, TimelapseFramesHoldTheSunAndSkyOfTheSamePlan) {
+    const fs::path d = scratch("timelapse");
+    std::vector<Grid<float>> skyK;
+    for (const std::string options : {"--quality auto", "--quality full", "--tolerance 5"}) {
+        SCOPED_TRACE(options);
+        const fs::path dir = d / std::to_string(skyK.size());
+        const fs::path frame = timelapseFrame(dir, options);
+        const std::string sun = (dir / "sun.tif").string(), sky = (dir / "sky.tif").string();
+        auto r = runDemlight("-q sun " + kRocky + " -o " + sun + " --time " + kTime + " " + options);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        r = runDemlight("-q sky " + kRocky + " -o " + sky + " " + options);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+
+        RasterSummary summary;
+        const std::vector<Grid<float>> f = readRasterBands(frame.string(), &summary);
+        const std::vector<Grid<float>> s = readRasterBands(sun), k = readRasterBands(sky);
+        ASSERT_EQ(f.size(), 3u);  // sun_irradiance, sun_visibility, sky_k
+        EXPECT_TRUE(sameGrid(f[0], s[1])) << "sun_irradiance differs from `sun`";
+        EXPECT_TRUE(sameGrid(f[1], s[0])) << "sun_visibility differs from `sun`";
+        EXPECT_TRUE(sameGrid(f[2], k[2])) << "sky_k differs from `sky`'s sky_K";
+        skyK.push_back(f[2]);
+
+        const auto& meta = summary.metadata;
+        const bool full = options == "--quality full";
+        EXPECT_EQ(meta.at("DEMLIGHT_QUALITY"), full ? "full" : "auto");
+        EXPECT_EQ(meta.at("DEMLIGHT_SKY_DIRECTIONS"), std::to_string(full ? kFullSkyDirections : kAutoSkyDirections));
+        EXPECT_NE(meta.at("DEMLIGHT_EXPECTED_ERROR_DEG").find("median"), std::string::npos);
+        EXPECT_NE(meta.at("DEMLIGHT_PLAN").find("sky_directions="), std::string::npos);
+        // Rocky Mountain: 56 km search; the curvature drop 0.22 deg is above a tenth of the
+        // default 0.1 deg tolerance and below a tenth of 5 deg.
+        EXPECT_EQ(meta.at("DEMLIGHT_CURVATURE"), options == "--tolerance 5" ? "off" : "on");
+    }
+    EXPECT_FALSE(sameGrid(skyK[0], skyK[1])) << "auto and full gave the same sky";
+    EXPECT_FALSE(sameGrid(skyK[0], skyK[2])) << "--tolerance 5 (curvature off) gave the default sky";
+}
+
+TEST(QualityCli, RenderIsTheTimelapsePreviewOfTheSamePlan) {
+    const fs::path d = scratch("render");
+    std::vector<std::vector<char>> pictures;
+    for (const std::string quality : {"auto", "full"}) {
+        SCOPED_TRACE(quality);
+        const fs::path png = d / (quality + ".png");
+        const auto r = runDemlight("render " + kRocky + " -o " + png.string() + " --time " + kTime +
+                                   " --quality " + quality + " -v");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        // -v prints the plan; the closing note says what was used.
+        const std::string directions = std::to_string(quality == "full" ? kFullSkyDirections : kAutoSkyDirections);
+        EXPECT_NE(r.err.find("scene plan (--quality " + quality + ")"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("sky_directions=" + directions), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("expected horizon error: median"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(directions + " sky directions"), std::string::npos) << r.err;
+
+        timelapseFrame(d / ("tl_" + quality), "--quality " + quality);
+        pictures.push_back(fileBytes(png));
+        EXPECT_EQ(pictures.back(), fileBytes(d / ("tl_" + quality) / "frame_000.png"))
+            << "render differs from the timelapse preview";
+    }
+    EXPECT_NE(pictures[0], pictures[1]) << "auto and full gave the same picture";
+
+    // Without -v nothing of the plan is printed.
+    const auto r = runDemlight("render " + kRocky + " -o " + (d / "quiet.png").string() + " --time " + kTime);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("scene plan"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace demlight

@@ -1,0 +1,168 @@
+// --quality auto against full and the full-physics reference on real DEMs (issue 6 part 3).
+//
+// What a plan states (ScenePlan::expectedError, written as DEMLIGHT_EXPECTED_ERROR_DEG): the
+// median and the 99th percentile, over cells and azimuths, of |horizon - reference horizon|,
+// the reference being a ray march with curvature on over the whole DEM. When the plan's search
+// distance is shorter than the DEM, only horizons at or above the lowest relevant elevation e
+// are in scope and a cell's error is |max(h, e) - max(h_ref, e)| (the horizon as any sun or sky
+// patch at or above e sees it). What the budget states (QualityBudget::toleranceDeg): auto's
+// modelling choices - search distance, curvature, scan-direction tolerance - add at most the
+// tolerance to full's median and 99th percentile. Cost: deterministic work counts
+// (estimateSweepWork), not wall time; the bench checks that they track wall time.
+#include "geo/dem.h"
+#include "lighting/horizon.h"
+#include "lighting/quality.h"
+
+#include "shared_dem.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+/// Crop side (cells): a few hundred, so the test runs in seconds.
+constexpr std::size_t kCropCells = 300;
+/// Reference cells per DEM (fixed pseudo-random sample of valid cells).
+constexpr std::size_t kSampleCells = 400;
+constexpr std::uint64_t kSampleSeed = 20240621;
+/// Azimuths on and off the grid axes (degrees).
+constexpr double kAzimuthsDeg[] = {0.0, 37.0, 90.0, 123.4, 200.0, 301.7};
+
+struct Case {
+    std::string file;
+};
+void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
+
+struct ErrorStats {
+    /// Of |error| over cells and azimuths (degrees).
+    double median = 0, p99 = 0, max = 0;
+};
+
+ErrorStats stats(std::vector<double> e) {
+    std::sort(e.begin(), e.end());
+    ErrorStats s;
+    if (e.empty()) return s;
+    s.median = e[e.size() / 2];
+    s.p99 = e[std::min(e.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(e.size())))];
+    s.max = e.back();
+    return s;
+}
+
+/// Sweep horizons of a plan at the sample cells, azimuth by azimuth (kAzimuthsDeg order).
+std::vector<double> planHorizons(const Terrain& t, const ScenePlan& plan, double refraction,
+                                 const std::vector<CellIndex>& cells) {
+    std::vector<double> h;
+    HorizonParams p = planHorizonParams(plan, refraction);
+    for (double az : kAzimuthsDeg) {
+        p.azimuthDeg = az;
+        const HorizonMap m = sweepHorizon(t, p);
+        for (const CellIndex& c : cells) h.push_back(m.angleDeg(c.col, c.row));
+    }
+    return h;
+}
+
+/// |max(h, e) - max(ref, e)| per sample.
+std::vector<double> clampedErrors(const std::vector<double>& h, const std::vector<double>& ref, double e) {
+    std::vector<double> err;
+    for (std::size_t i = 0; i < h.size(); ++i) err.push_back(std::abs(std::max(h[i], e) - std::max(ref[i], e)));
+    return err;
+}
+
+class QualityRealDem : public ::testing::TestWithParam<Case> {};
+
+TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull) {
+    const std::string path = sharedDemPath(GetParam().file);
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
+    const Terrain t = cropTerrainCentre(loadDem(path).terrain, kCropCells, kCropCells);
+
+    // A fixed pseudo-random sample of valid cells, anywhere in the crop (all methods see the
+    // same DEM, so cells near the edge are as fair as any).
+    std::vector<CellIndex> cells;
+    for (std::size_t r = 0; r < t.height(); ++r)
+        for (std::size_t c = 0; c < t.width(); ++c)
+            if (t.valid(c, r)) cells.push_back({c, r});
+    std::mt19937_64 rng(kSampleSeed);
+    std::shuffle(cells.begin(), cells.end(), rng);
+    cells.resize(std::min(cells.size(), kSampleCells));
+    ASSERT_EQ(cells.size(), kSampleCells);
+
+    // The reference: full physics (curvature on, refraction 0.13, the whole DEM).
+    const QualityBudget defaults;
+    HorizonParams reference;
+    reference.maxDistanceM = std::numeric_limits<double>::infinity();
+    reference.curvature = true;
+    reference.refraction = defaults.refraction;
+    std::vector<double> ref;
+    for (double az : kAzimuthsDeg) {
+        reference.azimuthDeg = az;
+        for (const HorizonSample& s : referenceHorizonAt(t, reference, cells)) ref.push_back(s.angleDeg);
+    }
+
+    const ScenePlan full = planScene(t, Quality::Full, defaults);
+    const std::vector<double> fullH = planHorizons(t, full, defaults.refraction, cells);
+    // full's claim covers every horizon (its distance is the DEM diagonal).
+    ASSERT_EQ(full.expectedError.aboveElevationDeg, -90.0);
+    const ErrorStats fullStats = stats(clampedErrors(fullH, ref, -90.0));
+    std::printf("%s: %zu x %zu cells, %zu cells x %zu azimuths\n  full: distance %.0f m; |error| median %.4f, "
+                "p99 %.3f, max %.2f deg (claim: %s)\n",
+                GetParam().file.c_str(), t.width(), t.height(), cells.size(), std::size(kAzimuthsDeg),
+                full.maxDistanceM, fullStats.median, fullStats.p99, fullStats.max,
+                describeExpectedError(full.expectedError).c_str());
+    EXPECT_LE(fullStats.median, full.expectedError.medianDeg);
+    EXPECT_LE(fullStats.p99, full.expectedError.p99Deg);
+
+    // The default budget, and a loose one under which auto also drops curvature.
+    for (const double toleranceDeg : {0.1, 2.0}) {
+        SCOPED_TRACE("tolerance " + std::to_string(toleranceDeg));
+        QualityBudget budget = defaults;
+        budget.toleranceDeg = toleranceDeg;
+        const ScenePlan plan = planScene(t, Quality::Auto, budget);
+        const double e = plan.expectedError.aboveElevationDeg;  // the claim's scope
+        const std::vector<double> autoH = planHorizons(t, plan, budget.refraction, cells);
+        const ErrorStats a = stats(clampedErrors(autoH, ref, e)), f = stats(clampedErrors(fullH, ref, e));
+        std::printf("  auto, tolerance %.1f: distance %.0f m, curvature %s; clamped at %.2f deg: auto median %.4f "
+                    "p99 %.3f max %.2f, full median %.4f p99 %.3f (claim: %s)\n",
+                    toleranceDeg, plan.maxDistanceM, plan.curvature ? "on" : "off", e, a.median, a.p99, a.max, f.median,
+                    f.p99, describeExpectedError(plan.expectedError).c_str());
+        // The stated error, and the modelling choices within the tolerance of full.
+        EXPECT_LE(a.median, plan.expectedError.medianDeg);
+        EXPECT_LE(a.p99, plan.expectedError.p99Deg);
+        EXPECT_LE(a.median, f.median + toleranceDeg);
+        EXPECT_LE(a.p99, f.p99 + toleranceDeg);
+    }
+
+    // Cost in work units (estimateSweepSteps: line steps + combined cells), not wall time.
+    // A sky or aperture integral: directions x sweeps. auto must cost at most half of full.
+    const ScenePlan plan = planScene(t, Quality::Auto, defaults);
+    const auto autoDirections = static_cast<std::size_t>(plan.skyDirections);
+    const auto fullDirections = static_cast<std::size_t>(full.skyDirections);
+    const double autoSky = estimateSweepWork(t, plan, autoDirections, defaults.refraction);
+    const double fullSky = estimateSweepWork(t, full, fullDirections, defaults.refraction);
+    // One horizon direction (mean over the 16 sky azimuths): here auto's distance reaches about
+    // the crop's far side, so it saves only full's extra regions (0.01 deg direction tolerance).
+    const double autoOne = estimateSweepWork(t, plan, autoDirections, defaults.refraction) / static_cast<double>(autoDirections);
+    const double fullOne = estimateSweepWork(t, full, autoDirections, defaults.refraction) / static_cast<double>(autoDirections);
+    std::printf("  work: sky auto %.3g, full %.3g (full/auto %.2f); one direction auto %.3g, full %.3g (%.2f)\n", autoSky,
+                fullSky, fullSky / autoSky, autoOne, fullOne, fullOne / autoOne);
+    EXPECT_LE(autoSky, fullSky / 2);
+    EXPECT_LT(autoOne, fullOne);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedDems, QualityRealDem,
+                         ::testing::Values(Case{"N44W072.hgt"}, Case{"big_tujunga_srtm30m_utm11.tif"}),
+                         [](const ::testing::TestParamInfo<Case>& param) {
+                             return param.param.file.substr(0, param.param.file.find('.'));
+                         });
+
+}  // namespace
+}  // namespace demlight
