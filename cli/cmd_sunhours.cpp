@@ -1,5 +1,7 @@
 // demlight sunhours DEM -o OUT.tif (--date D | --start D --end D) [--tz ZONE] [--step MIN]:
-// hours of direct sun, sun irradiation and the cell's own sunrise/sunset over local days.
+// hours of direct sun, sun and sky irradiation and the cell's own sunrise/sunset over local days.
+// The sky term f_sky = K / (1 - C(1 - K)) is computed once from the plan's direction sweeps and
+// integrated over the cell's daylight hours (lighting/sunhours.h skyIrradiation).
 //
 // Instants every --step minutes from local midnight of the first day to local midnight after
 // the last (inclusive), integrated with the trapezoid rule (lighting/sunhours.h). The default
@@ -9,11 +11,14 @@
 #include "cli/progress_bar.h"
 #include "geo/sun_field.h"
 #include "geo/time.h"
+#include "lighting/directions.h"
+#include "lighting/sky.h"
 #include "lighting/sunhours.h"
 #include "src/error.h"
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace demlight::cli {
 namespace {
@@ -30,6 +35,8 @@ struct SunhoursOptions {
     std::string tz;
     double stepMin = kDefaultStepMin;
     double sunDiameterDeg = kSunDiameterDeg;
+    double albedo = 0.2;  ///< C of the sky term's interreflection
+    std::optional<int> skyDirections;  ///< default: the scene plan's
 };
 
 struct Sequence {
@@ -88,6 +95,16 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
+
+    // Sky term once: it does not depend on the sun's position.
+    const auto skyDirections = static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections));
+    const HorizonParams hp = horizonParams(o.search, plan);
+    SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, o.search.threads);
+    ProgressCounter skyCounter(bar.callback(), "sky", t.heightsM.size() * skyDirections);
+    sweepDirections(t, hp, skyDirections,
+                    [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); }, &skyCounter);
+    const Grid<float> skyFactor = skyAcc.finish(o.albedo).skyFactor;
+
     ProgressCounter counter(bar.callback(), "sunhours", seq.instants.size());
     const SunHoursMaps maps = integrateSunHours(
         t, normals, seq.instants,
@@ -95,6 +112,16 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
             return computeSunField(dem, seq.utc[i], site, SpaOptions{}, plan.sunLatticeStepCells);
         },
         params, &counter);
+    // Daylight from the sun's geometric elevation (no refraction: pressure 0), SPA's sunrise/sunset.
+    SolarSite geometric = site;
+    geometric.pressureHpa = 0;
+    const Grid<float> daylight = integrateDaylight(
+        t, seq.instants,
+        [&](std::size_t i) {
+            return computeSunField(dem, seq.utc[i], geometric, SpaOptions{}, plan.sunLatticeStepCells);
+        },
+        o.search.threads);
+    const Grid<float> skyIrr = skyIrradiation(skyFactor, daylight);
     bar.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -115,17 +142,26 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
+        {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
+        {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(hp.maxDistanceM)},
+        {"DEMLIGHT_ALBEDO", formatNumber(o.albedo)},
+        {"DEMLIGHT_DAYLIGHT", "SPA sunrise to sunset at the cell, no terrain (geometric elevation of the "
+                              "sun's centre > " + formatNumber(kSunriseGeometricElevationDeg) + " deg)"},
     });
     writeRaster(o.out.path,
                 {{&maps.sunHours, nullptr, "sun_hours", "hours of direct sun weighted by visibility (h)"},
                  {&maps.sunIrradiation, nullptr, "sun_irradiation",
                   "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)"},
+                 {&skyIrr, nullptr, "sky_irradiation",
+                  "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
+                  "(1 h of unit sky on open flat ground = 1)"},
                  {&maps.firstLitClock, nullptr, "first_lit",
                   "local clock hours (" + zone.describe() + ") when half the sun first shows; NaN = never"},
                  {&maps.lastLitClock, nullptr, "last_lit",
                   "local clock hours (" + zone.describe() + ") when half the sun last shows; NaN = never"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
-    note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, first_lit, last_lit): " +
+    note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(seq.instants.size()) + " instants every " +
                   formatNumber(o.stepMin) + " min, " + std::to_string(maps.instantsSwept) +
                   " with the sun up, " + formatNumber(seconds) + " s compute");
@@ -136,7 +172,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
 void registerSunhours(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<SunhoursOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "sunhours", "Hours of direct sun, sun irradiation and first/last lit time over local days");
+        "sunhours", "Hours of direct sun, sun and sky irradiation and first/last lit time over local days");
     cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
     addOutputOptions(cmd, o->out);
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
@@ -150,6 +186,13 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
                     "Angular diameter of the sun disk (degrees)")
         ->check(CLI::Range(0.0, 20.0))
         ->capture_default_str();
+    cmd->add_option("--albedo", o->albedo,
+                    "Ground albedo C of the sky term f_sky = K / (1 - C(1 - K)) (0-1)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--sky-directions", o->skyDirections,
+                    "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
+        ->check(CLI::Range(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runSunhours(*o, ctx); });
 }

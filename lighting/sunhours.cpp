@@ -5,10 +5,30 @@
 #include "src/error.h"
 #include "src/parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace demlight {
+namespace {
+
+/// Share of [0, 1] on which the linear function from e0 to e1 exceeds `threshold`.
+double fractionAbove(double e0, double e1, double threshold) {
+    const bool up0 = e0 > threshold, up1 = e1 > threshold;
+    if (up0 == up1) return up0 ? 1.0 : 0.0;
+    const double crossing = (threshold - e0) / (e1 - e0);  // in [0, 1]: the ends straddle it
+    return up0 ? crossing : 1.0 - crossing;
+}
+
+void checkInstants(std::span<const SunInstant> instants, const char* what) {
+    if (instants.size() < 2) throw Error(std::string(what) + ": need at least two instants");
+    for (std::size_t i = 1; i < instants.size(); ++i)
+        if (!(instants[i].hours > instants[i - 1].hours))
+            throw Error(std::string(what) + ": instants must be strictly increasing");
+}
+
+}  // namespace
 
 HorizonStack computeHorizonStack(const Terrain& t, std::size_t directions,
                                  const HorizonParams& params, ProgressCounter* progress) {
@@ -56,10 +76,7 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
 SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
                                std::span<const SunInstant> instants, const SunFieldAt& fieldAt,
                                const SunHoursParams& params, ProgressCounter* progress) {
-    if (instants.size() < 2) throw Error("sun hours: need at least two instants");
-    for (std::size_t i = 1; i < instants.size(); ++i)
-        if (!(instants[i].hours > instants[i - 1].hours))
-            throw Error("sun hours: instants must be strictly increasing");
+    checkInstants(instants, "sun hours");
 
     const std::size_t w = t.width(), h = t.height();
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -122,6 +139,52 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
         out.sunHours.data()[k] = static_cast<float>(sumVis.data()[k]);
         out.sunIrradiation.data()[k] = static_cast<float>(sumIrr.data()[k]);
     }
+    return out;
+}
+
+Grid<float> integrateDaylight(const Terrain& t, std::span<const SunInstant> instants,
+                              const SunFieldAt& geometricFieldAt, int threads) {
+    checkInstants(instants, "daylight");
+    const std::size_t w = t.width(), h = t.height();
+    Grid<double> sum(w, h, 0.0);
+    SunField prev = geometricFieldAt(0);
+    for (std::size_t i = 1; i < instants.size(); ++i) {
+        SunField cur = geometricFieldAt(i);
+        const double interval = instants[i].hours - instants[i - 1].hours;
+        // The whole interval when the sun is up at both ends everywhere, none when it is down at
+        // both ends everywhere (bilinear interpolation stays inside the lattice's range); else
+        // per cell.
+        const auto [lo0, hi0] = prev.elevationRange();
+        const auto [lo1, hi1] = cur.elevationRange();
+        const bool allUp = std::min(lo0, lo1) > kSunriseGeometricElevationDeg;
+        const bool allDown = std::max(hi0, hi1) <= kSunriseGeometricElevationDeg;
+        parallelFor(0, h, threads, [&](std::size_t row) {
+            const double y = static_cast<double>(row) + 0.5;
+            for (std::size_t col = 0; col < w; ++col) {
+                if (!t.valid(col, row) || allDown) continue;
+                if (allUp) {
+                    sum(col, row) += interval;
+                    continue;
+                }
+                const double x = static_cast<double>(col) + 0.5;
+                sum(col, row) += interval * fractionAbove(prev.at(x, y).second, cur.at(x, y).second,
+                                                          kSunriseGeometricElevationDeg);
+            }
+        });
+        prev = std::move(cur);
+    }
+    Grid<float> out(w, h, std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t k = 0; k < out.size(); ++k)
+        if (!std::isnan(t.heightsM.data()[k])) out.data()[k] = static_cast<float>(sum.data()[k]);
+    return out;
+}
+
+Grid<float> skyIrradiation(const Grid<float>& skyTerm, const Grid<float>& daylightHours) {
+    if (skyTerm.width() != daylightHours.width() || skyTerm.height() != daylightHours.height())
+        throw Error("sky irradiation: the sky term and the daylight hours differ in size");
+    Grid<float> out(skyTerm.width(), skyTerm.height());
+    for (std::size_t k = 0; k < out.size(); ++k)
+        out.data()[k] = skyTerm.data()[k] * daylightHours.data()[k];  // NaN propagates
     return out;
 }
 

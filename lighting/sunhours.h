@@ -1,10 +1,22 @@
 // Integrals of direct sun over a sequence of instants (DESIGN §3 "Time-lapse and integrals"):
-// hours of direct sun, normalised sun irradiation, and the first and last time each cell is lit.
+// hours of direct sun, normalised sun irradiation, and the first and last time each cell is lit;
+// and the hours of daylight, from which the sky irradiation follows.
 //
 // Quadrature: the trapezoid rule over the given instants (any spacing), so a quantity that is
 // constant over [t0, tN] integrates to exactly its value times (tN - t0). Instants where the
 // sun's upper limb is below the horizon everywhere (field elevation < kSunDownElevationDeg) are
 // not swept: every valid cell gets visibility 0 there.
+//
+// Sky irradiation: the sky is a uniform sky of unit radiance (DESIGN §1: a flat open cell gets
+// 1) while the sun is up, and dark otherwise. The sky term does not depend on the sun's position,
+// so its integral is the cell's sky term (computed once: K, or f_sky) times the cell's hours of
+// daylight (skyIrradiation). Daylight is SPA's sunrise-to-sunset at the cell, with no terrain:
+// the GEOMETRIC elevation of the sun's centre above kSunriseGeometricElevationDeg. It is
+// interpolated linearly between instants and each crossing integrated exactly (geometric, not
+// apparent, elevation: SPA switches refraction on at that elevation, so the apparent elevation
+// jumps by ~0.6 deg there and cannot be interpolated across). Neither the sun's elevation nor
+// the atmosphere modulates the sky (no diffuse-share model): scale by a measured diffuse
+// radiation for absolute units.
 #pragma once
 
 #include "lighting/sun_frame.h"
@@ -25,6 +37,11 @@ namespace demlight {
 /// saves the frame set-up. (A cell on a steep slope at a summit could in reality see a sun a
 /// little below level; neither driver models that.)
 inline constexpr double kSunDownElevationDeg = -1.0;
+
+/// Geometric (unrefracted) elevation of the sun's centre at sunrise and sunset (degrees): the
+/// upper limb on the horizon under the standard 0.5667 deg of refraction, SPA's convention
+/// (Reda & Andreas A.2: -(0.26667 + 0.5667)).
+inline constexpr double kSunriseGeometricElevationDeg = -0.8333;
 
 /// Visibility at which a cell counts as lit for first_lit / last_lit: half the sun's disk above
 /// the cell's horizon (the cell's own sunrise / sunset, as SPA's is for the sun's centre).
@@ -70,6 +87,19 @@ SunLight sunLightFromStack(const Terrain& terrain, const Normals& normals,
 
 /// Returns the sun across the DEM at instant i of the sequence.
 using SunFieldAt = std::function<SunField(std::size_t instantIndex)>;
+
+/// Hours of daylight of every valid cell over `instants` (at least 2, strictly increasing; NaN at
+/// nodata): the time the sun's geometric elevation, interpolated linearly between instants, is
+/// above kSunriseGeometricElevationDeg. `geometricFieldAt(i)` must give the sun at instant i
+/// WITHOUT refraction (elevationDeg geometric). Deterministic for any thread count.
+Grid<float> integrateDaylight(const Terrain& terrain, std::span<const SunInstant> instants,
+                              const SunFieldAt& geometricFieldAt, int threads = 0);
+
+/// Sky irradiation: skyTerm × daylightHours per cell, in the units of
+/// SunHoursMaps::sunIrradiation (1 h of a unit sky on open flat ground = 1). `skyTerm` is the
+/// sky's normalised irradiance under a unit uniform sky (K, or f_sky with interreflection).
+/// NaN where either is NaN. Throws Error on different shapes.
+Grid<float> skyIrradiation(const Grid<float>& skyTerm, const Grid<float>& daylightHours);
 
 /// Integrates direct sun over `instants` (at least 2). first/last lit are interpolated linearly
 /// between samples where visibility crosses kLitVisibility; a cell lit at the first (last)

@@ -138,6 +138,47 @@ TEST_F(OptionsCli, SunhoursQualityFullChangesTheSunLatticeAndIsRecorded) {
     // only where a shadow edge moves (the search distance is the DEM diagonal with full).
     EXPECT_GT(cellsDiffering(ba[1], bf[1], 0.0f), ba[1].size() / 10);
     EXPECT_LT(cellsDiffering(ba[1], bf[1], 0.05f), ba[1].size() / 1000);
+    // sky_irradiation: the sky term from the plan's 64 directions instead of 16.
+    EXPECT_EQ(a.metadata.at("DEMLIGHT_SKY_DIRECTIONS"), "16");
+    EXPECT_EQ(f.metadata.at("DEMLIGHT_SKY_DIRECTIONS"), "64");
+    EXPECT_GT(cellsDiffering(ba[2], bf[2], 1e-3f), ba[2].size() / 10);
+}
+
+/// Clock hours of "...THH:MM:SS..." in `json` after `"key": "`.
+double clockHoursOf(const std::string& json, const std::string& key) {
+    const std::size_t at = json.find("\"" + key + "\": \"");
+    if (at == std::string::npos) return std::nan("");
+    const std::size_t t = json.find('T', at + key.size() + 4);
+    return std::stod(json.substr(t + 1, 2)) + std::stod(json.substr(t + 4, 2)) / 60 +
+           std::stod(json.substr(t + 7, 2)) / 3600;
+}
+
+// Band 3: sky_irradiation = f_sky × daylight. f_sky is `demlight sky`'s sky_factor with the same
+// plan and albedo; daylight is SPA's sunrise to sunset, taken here from `demlight sunpos` at the
+// DEM centre (SPA's rise/set routine, not the per-instant positions sunhours integrates). The DEM
+// spans 0.13 deg of latitude, so day lengths differ by +-35 s across it; the 20 min step's linear
+// interpolation of the elevation adds ~10 s.
+TEST_F(OptionsCli, SunhoursSkyIrradiationIsSkyFactorTimesDayLength) {
+    run("-q sunhours " + kHelens + " -o " + path("sh.tif") +
+        " --date 2024-06-21 --tz America/Los_Angeles --step 20 --threads 2 --albedo 0.3");
+    run("-q sky " + kHelens + " -o " + path("sky.tif") + " --threads 2 --albedo 0.3");
+    const RasterSummary s = inspectRaster(path("sh.tif"));
+    EXPECT_EQ(s.descriptions,
+              (std::vector<std::string>{"sun_hours", "sun_irradiation", "sky_irradiation", "first_lit", "last_lit"}));
+    const auto sunpos = run("sunpos --time 2024-06-21T12:00 --tz America/Los_Angeles --lat 46.1875 "
+                            "--lon -122.1873 --json");
+    const double dayHours = clockHoursOf(sunpos.out, "sunset") - clockHoursOf(sunpos.out, "sunrise");
+    ASSERT_NEAR(dayHours, 15.78, 0.05);
+    const Grid<float> skyIrr = readRasterBands(path("sh.tif"))[2];
+    const Grid<float> skyFactor = readRasterBands(path("sky.tif"))[3];
+    std::size_t checked = 0;
+    for (std::size_t k = 0; k < skyIrr.size(); ++k) {
+        if (std::isnan(skyFactor.data()[k])) continue;
+        ASSERT_GT(skyFactor.data()[k], 0.1f);
+        ASSERT_NEAR(skyIrr.data()[k] / skyFactor.data()[k], dayHours, 60.0 / 3600) << k;
+        ++checked;
+    }
+    EXPECT_GT(checked, skyIrr.size() / 2);
 }
 
 // --model aperture must reach the sun term. With the sky off the output is the sun term alone:
