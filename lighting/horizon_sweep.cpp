@@ -243,6 +243,7 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
 /// has the larger major index.
 struct LineGeometry {
     bool xMajor;
+    bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
     int farSign;
     double slope;
     std::size_t majorSize, minorSize;
@@ -408,9 +409,15 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // exact hit (frac == 0) cell n0 into plane A.
                 // (n0 in [minorWin0 - 1, minorWin1 - 1]: n1 or n0 is a window cell.)
                 if (inWindow && n0 >= minorWin0 - 1 && n0 < minorWin1) {
-                    const long servedCell[2] = {frac > 0.0 ? n1 : n0, n0};
+                    long servedCell[2] = {frac > 0.0 ? n1 : n0, n0};
                     float* const servedPlane[2] = {planeA, planeB};
-                    const int nServed = frac > 0.0 ? 2 : 1;
+                    int nServed = frac > 0.0 ? 2 : 1;
+                    if (geo.nearestLine) {
+                        // Only the cell this line is nearest to (frac is the same for every line
+                        // at this step, so exactly one line serves each cell).
+                        servedCell[0] = frac > 0.5 ? n1 : n0;
+                        nServed = 1;
+                    }
                     for (int s = 0; s < nServed; ++s) {
                         const long j = servedCell[s];
                         if (j < minorWin0 || j >= minorWin1) continue;
@@ -464,8 +471,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     }
 }
 
-LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double maxDistanceM) {
+LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double maxDistanceM,
+                          bool nearestLine) {
     LineGeometry geo;
+    geo.nearestLine = nearestLine;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
     const double major = geo.xMajor ? region.dirCol : region.dirRow;
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
@@ -554,7 +563,7 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
         const double frac = geo.frac[m];
         const float a = planeA[idx];
         float slope = a;
-        if (frac > 0.0) {
+        if (frac > 0.0 && !geo.nearestLine) {
             const float b = planeB[idx];
             if (a == none) {
                 slope = b;
@@ -653,22 +662,25 @@ void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, Horiz
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
 
-    // Reused grids are refilled in place (no fresh pages to fault in and clear).
+    // Reused grids are refilled in place, by rows in parallel (no fresh pages to fault in).
     const auto reset = [&](auto& grid, auto fill) {
         if (grid.width() == terrain.width() && grid.height() == terrain.height()) {
-            std::fill(grid.values().begin(), grid.values().end(), fill);
+            parallelFor(0, grid.height(), threads, [&](std::size_t row) {
+                std::fill_n(grid.rowPtr(row), grid.width(), fill);
+            }, 64);
         } else {
             grid = std::remove_reference_t<decltype(grid)>(terrain.width(), terrain.height(), fill);
         }
     };
     reset(out.angleDeg, std::numeric_limits<float>::quiet_NaN());
     reset(out.truncated, std::uint8_t{0});
-    // NaN until written, so a cell no line served would show up as NaN in the tests.
+    // NaN until written, so a cell no line served would show up as NaN in the tests. Plane B is
+    // read only where two lines serve a cell.
     Grid<float>& planeB = buffers.planeB;
-    reset(planeB, std::numeric_limits<float>::quiet_NaN());
+    if (!params.nearestLine) reset(planeB, std::numeric_limits<float>::quiet_NaN());
 
     for (const SweepRegion& region : regions) {
-        const LineGeometry geo = makeGeometry(terrain, region, params.maxDistanceM);
+        const LineGeometry geo = makeGeometry(terrain, region, params.maxDistanceM, params.nearestLine);
         const long nLines = geo.kLast - geo.kFirst + 1;
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
