@@ -339,13 +339,13 @@ SkyAccumulator::SkyAccumulator(const Grid<float>& normalEast, const Grid<float>&
       patches_(std::move(patches)),
       threads_(threads),
       added_(directions, false),
-      sumK_(normalEast.width(), normalEast.height(), 0.0),
-      sumSin_(normalEast.width(), normalEast.height(), 0.0),
-      sumSin2_(normalEast.width(), normalEast.height(), 0.0) {
+      sumK_(normalEast.width(), normalEast.height(), 0.0f),
+      sumSin_(normalEast.width(), normalEast.height(), 0.0f),
+      sumSin2_(normalEast.width(), normalEast.height(), 0.0f) {
     checkCellInputs(east_, north_, up_);
     if (directions == 0) throw Error("sky: the number of directions must be at least 1");
     for (std::size_t p = 0; p < patches_.size(); ++p)
-        sumPatch_.emplace_back(east_.width(), east_.height(), 0.0);
+        sumPatch_.emplace_back(east_.width(), east_.height(), 0.0f);
 }
 
 void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
@@ -366,32 +366,31 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         const float* e = east_.rowPtr(row);
         const float* n = north_.rowPtr(row);
         const float* u = up_.rowPtr(row);
-        double* k = sumK_.rowPtr(row);
-        double* s1 = sumSin_.rowPtr(row);
-        double* s2 = sumSin2_.rowPtr(row);
+        float* k = sumK_.rowPtr(row);
+        float* s1 = sumSin_.rowPtr(row);
+        float* s2 = sumSin2_.rowPtr(row);
         for (std::size_t col = 0; col < width; ++col) {
             // NaN inputs propagate into the sums, so nodata stays NaN.
             const double hRad = std::isnan(h[col]) ? std::numeric_limits<double>::quiet_NaN()
                                                    : clampElevationRad(h[col]);
             const auto [sinH, cosH] = fastSinCosElevation(hRad);  // NaN stays NaN
             const double sPos = hRad > 0.0 ? sinH : (std::isnan(hRad) ? hRad : 0.0);
-            s1[col] += sPos;
-            s2[col] += sPos * sPos;
+            s1[col] += static_cast<float>(sPos);
+            s2[col] += static_cast<float>(sPos * sPos);
             if (std::isnan(hRad) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
-                k[col] = std::numeric_limits<double>::quiet_NaN();
-                for (std::size_t p = 0; p < patches_.size(); ++p)
-                    sumPatch_[p].rowPtr(row)[col] = std::numeric_limits<double>::quiet_NaN();
+                k[col] = kNaNf;
+                for (std::size_t p = 0; p < patches_.size(); ++p) sumPatch_[p].rowPtr(row)[col] = kNaNf;
                 continue;
             }
             const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
             if (normal.east * normal.east + normal.north * normal.north >=
                 detail::kFlatNormalEps * detail::kFlatNormalEps)  // flat: K from the SVF sum
-                k[col] += wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
+                k[col] += static_cast<float>(wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi));
             for (const PatchPiece& p : pieces)
-                sumPatch_[p.patch].rowPtr(row)[col] +=
+                sumPatch_[p.patch].rowPtr(row)[col] += static_cast<float>(
                     hRad >= p.lowerRad
                         ? wedgeKFast(normal, p.range, hRad, sinH, cosH, p.upperRad)
-                        : wedgeKFast(normal, p.range, p.lowerRad, p.upperRad);
+                        : wedgeKFast(normal, p.range, p.lowerRad, p.upperRad));
         }
     });
 }
