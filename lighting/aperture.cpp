@@ -3,6 +3,7 @@
 #include "lighting/sky_wedge.h"
 #include "src/angles.h"
 #include "src/error.h"
+#include "src/fast_math.h"
 #include "src/parallel.h"
 
 #include <algorithm>
@@ -38,7 +39,7 @@ void addApertureSector(const EnuVector& n, const detail::AzimuthRange& r, double
                        ApertureSums& s) {
     const double cos2Top = detail::cos2Antiderivative(kHalfPi);
     const double sinCosTop = detail::sinCosAntiderivative(kHalfPi);
-    const double sinL = std::sin(lower), cosL = std::cos(lower);
+    const auto [sinL, cosL] = fastSinCosElevation(lower);  // lower is an elevation
     if (detail::planeBelowAcross(r, n.east, n.north, n.up, sinL, cosL)) {
         // Fast path: constant lower limit across the sector, ends' trig precomputed.
         const double width = r.phi2 - r.phi1;
