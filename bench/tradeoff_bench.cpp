@@ -5,23 +5,34 @@
 // Usage: demlight_tradeoff_bench [--dem PATH ...] [--out DIR] [--quick]
 //   Writes DIR/tradeoff.csv (method, params, dem, ns_per_cell, error_metric, error_value, pareto,
 //   notes); scripts/bench.sh draws the chart from it with bench/tradeoff_chart.gnuplot.
+//   The rows "quality auto" and "quality full" are the scene plans of --quality (lighting/
+//   quality.h) on the crop: what `demlight sun` and `demlight sky` run by default and with full.
+// Usage: demlight_tradeoff_bench --auto-vs-full [--dem PATH ...] [--out DIR] [--quick]
+//   Whole DEMs (default: the bundled samples): wall time and error of --quality auto against
+//   full for horizon, sun and sky; writes DIR/auto_vs_full.csv and prints a markdown table.
 //
-// References (DESIGN §4):
-//  - Sun horizon: referenceHorizonAt (ray march, curvature on) at the sun azimuth with twice the
-//    default search distance D0, so the rows that vary the distance have a truth beyond them.
+// References (DESIGN §4), full physics: the ray march (referenceHorizonAt, curvature on,
+// refraction 0.13) over the whole crop, i.e. everything the DEM knows; the same reference as
+// DEMLIGHT_EXPECTED_ERROR_DEG and tests/quality_realdem_test.cpp.
+//  - Sun horizon: the reference at the sun azimuth.
 //  - Sun visibility / irradiance: the horizon method (seed Eq. 3, 5-7) on the reference horizons
 //    with the exact normals.
-//  - Sky K: the dense reference (referenceHorizonAt in M azimuths at D0, integrated by
-//    referenceSky), as in tests/sky_realdem_test.cpp.
-// Cells: a fixed pseudo-random sample of valid cells at least 2 D0 from every crop edge, minus any
-// cell whose reference horizon is truncated in any azimuth.
+//  - Sky K: the dense reference (the reference in M azimuths, integrated by referenceSky), as in
+//    tests/sky_realdem_test.cpp.
+// D0 is the scene's default search distance on the crop (defaultMaxDistanceM: relief / tan 2 deg
+// capped by the crop's diagonal); the rows that vary the distance are fractions of it.
+// Cells: a fixed pseudo-random sample of valid cells at least 2 M from every crop edge, M = D0
+// capped at a sixth of the crop's shorter side, so that every cell has terrain around it (the
+// whole-crop reference is cut by the crop edge beyond that, as every method is).
 #include "geo/dem.h"
 #include "lighting/aperture.h"
 #include "lighting/directions.h"
 #include "lighting/horizon.h"
 #include "lighting/lighting_models.h"
+#include "lighting/quality.h"
 #include "lighting/sky.h"
 #include "lighting/sun.h"
+#include "lighting/sun_frame.h"
 #include "lighting/sunhours.h"
 #include "lighting/surface.h"
 #include "src/error.h"
@@ -36,6 +47,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -48,9 +60,9 @@ namespace {
 constexpr double kSunAzimuthDeg = 123.4;
 /// A low sun, so that shadows are long and horizons matter.
 constexpr double kSunElevationDeg = 5.0;
-/// Default search distance D0 is capped at this fraction of the crop's shorter side so that a
-/// sample of cells 2 D0 from every edge remains.
-constexpr double kMaxDistanceSideFraction = 1.0 / 6.0;
+/// The sampling margin M is D0 capped at this fraction of the crop's shorter side, so that a
+/// sample of cells 2 M from every edge remains.
+constexpr double kMarginSideFraction = 1.0 / 6.0;
 /// Timed runs use one thread: the figure is cost per core, comparable with GRASS r.horizon.
 constexpr int kThreads = 1;
 /// Palette normals: the seed's table size.
@@ -70,6 +82,7 @@ struct Options {
     std::vector<std::string> dems;
     std::string outDir = "docs/bench";
     bool quick = false;
+    bool autoVsFull = false;           ///< the auto-vs-full table on whole DEMs instead
     std::size_t cropCells = 400;       ///< centred crop, cells a side
     std::size_t sampleCells = 1000;    ///< reference cells before truncation filtering
     int referenceAzimuths = 360;       ///< dense sky reference
@@ -247,12 +260,13 @@ public:
         normals_ = computeNormals(t_, kThreads);
         const std::size_t mid = t_.height() / 2;
         const double sideM = std::min(t_.cellWidthM[mid] * static_cast<double>(w), t_.cellHeightM[mid] * static_cast<double>(h));
-        d0_ = std::min(defaultMaxDistanceM(t_), kMaxDistanceSideFraction * sideM);
+        d0_ = defaultMaxDistanceM(t_);
+        marginM_ = std::min(d0_, kMarginSideFraction * sideM);
         base_.azimuthDeg = kSunAzimuthDeg;
         base_.maxDistanceM = d0_;
         base_.threads = kThreads;
-        std::printf("%s: crop %zu x %zu cells (%.0f x %.0f m cells), D0 = %.0f m (scene default %.0f m)\n", name_.c_str(), w, h,
-                    t_.cellWidthM[mid], t_.cellHeightM[mid], d0_, defaultMaxDistanceM(t_));
+        std::printf("%s: crop %zu x %zu cells (%.0f x %.0f m cells), D0 = %.0f m, sample margin %.0f m\n", name_.c_str(), w, h,
+                    t_.cellWidthM[mid], t_.cellHeightM[mid], d0_, 2 * marginM_);
     }
 
     void run() {
@@ -271,12 +285,12 @@ private:
         rows_.push_back({std::move(method), std::move(params), name_, ns, std::move(metric), error, std::move(notes), false});
     }
 
-    /// Sample cells, drop truncated ones, compute the sun and sky references.
+    /// Sample cells; compute the sun and sky references (full physics, the whole crop).
     void sampleAndReference() {
         const std::size_t mid = t_.height() / 2;
-        const double truthM = 2 * d0_;
-        const auto mc = static_cast<std::size_t>(std::ceil(truthM / t_.cellWidthM[mid])) + 2;
-        const auto mr = static_cast<std::size_t>(std::ceil(truthM / t_.cellHeightM[mid])) + 2;
+        const double marginM = 2 * marginM_;
+        const auto mc = static_cast<std::size_t>(std::ceil(marginM / t_.cellWidthM[mid])) + 2;
+        const auto mr = static_cast<std::size_t>(std::ceil(marginM / t_.cellHeightM[mid])) + 2;
         std::vector<CellIndex> cand;
         for (std::size_t r = mr; r + mr < t_.height(); ++r)
             for (std::size_t c = mc; c + mc < t_.width(); ++c)
@@ -284,11 +298,12 @@ private:
         std::mt19937_64 rng(kSampleSeed);
         std::shuffle(cand.begin(), cand.end(), rng);
         if (cand.size() > o_.sampleCells) cand.resize(o_.sampleCells);
-        if (cand.empty()) throw Error(name_ + ": no cells 2 D0 from the crop edge; use a larger crop");
+        if (cand.empty()) throw Error(name_ + ": no cells 2 M from the crop edge; use a larger crop");
 
-        // Sun truth at 2 D0 and the reference at D0 (timed: one azimuth per cell).
+        // Sun truth over the whole crop, and the reference limited to D0 (timed: one azimuth per
+        // cell).
         HorizonParams p = base_;
-        p.maxDistanceM = truthM;
+        p.maxDistanceM = std::numeric_limits<double>::infinity();
         auto t0 = std::chrono::steady_clock::now();
         const auto truth = referenceHorizonAt(t_, p, cand);
         refTruthS_ = seconds(t0) / static_cast<double>(cand.size()) * cells_;
@@ -296,25 +311,20 @@ private:
         const auto atD0 = referenceHorizonAt(t_, base_, cand);
         refD0S_ = seconds(t0) / static_cast<double>(cand.size()) * cells_;
 
-        // Dense sky reference at D0.
+        // Dense sky reference over the whole crop.
         const int m = o_.referenceAzimuths;
         std::vector<std::vector<HorizonSample>> sky(static_cast<std::size_t>(m));
         t0 = std::chrono::steady_clock::now();
         HorizonParams sp = base_;
+        sp.maxDistanceM = std::numeric_limits<double>::infinity();
         for (int j = 0; j < m; ++j) {
             sp.azimuthDeg = (j + 0.5) * 360.0 / m;
             sky[static_cast<std::size_t>(j)] = referenceHorizonAt(t_, sp, cand);
         }
         const double skyHorizonS = seconds(t0);
 
-        std::vector<std::size_t> keep;
-        for (std::size_t i = 0; i < cand.size(); ++i) {
-            bool truncated = truth[i].truncated || atD0[i].truncated;
-            for (const auto& az : sky) truncated = truncated || az[i].truncated;
-            if (!truncated) keep.push_back(i);
-        }
         t0 = std::chrono::steady_clock::now();
-        for (std::size_t i : keep) {
+        for (std::size_t i = 0; i < cand.size(); ++i) {
             const CellIndex c = cand[i];
             const Enu n = normals_.at(c.col, c.row);
             sample_.push_back(c);
@@ -329,8 +339,7 @@ private:
             refK_.push_back(referenceSky(horizon, n, m).skyK);
         }
         refSkyS_ = (skyHorizonS + seconds(t0)) / static_cast<double>(cand.size()) * cells_;
-        std::printf("  %zu sampled cells, %zu not truncated; sky reference %d azimuths\n", cand.size(), sample_.size(), m);
-        if (sample_.size() < cand.size() / 2) throw Error(name_ + ": most sampled cells are truncated");
+        std::printf("  %zu sampled cells; sky reference %d azimuths\n", sample_.size(), m);
     }
 
     std::vector<float> sampleOf(const Grid<float>& g) const {
@@ -367,10 +376,11 @@ private:
     void sunRows() {
         const SunField field = SunField::uniform(kSunAzimuthDeg, kSunElevationDeg);
         const std::string floorNote = "reference itself: error 0 by definition; plotted at the chart floor";
-        add("reference", "2xD0", refTruthS_, "horizon_median_abs_deg", 0, floorNote + "; ray march timed on the sample");
-        add("reference", "2xD0", refTruthS_, "sun_visibility_mae", 0, floorNote);
-        add("reference", "2xD0", refTruthS_, "sun_irradiance_mae", 0, floorNote);
+        add("reference", "whole crop", refTruthS_, "horizon_median_abs_deg", 0, floorNote + "; ray march timed on the sample");
+        add("reference", "whole crop", refTruthS_, "sun_visibility_mae", 0, floorNote);
+        add("reference", "whole crop", refTruthS_, "sun_irradiance_mae", 0, floorNote);
         sunPair("reference", "D0", refD0S_, refD0H_, visibilityFromHorizons(refD0H_), "ray march at the default distance");
+        qualitySunRows(field);
 
         // Exact per-instant sweep at the sun azimuth, and its irradiance.
         HorizonMap exact;
@@ -403,7 +413,7 @@ private:
         }
 
         // Maximum search distance.
-        for (double f : {0.25, 0.5, 2.0}) {
+        for (double f : {0.1, 0.25, 0.5}) {
             HorizonParams p = base_;
             p.maxDistanceM = f * d0_;
             HorizonMap m;
@@ -504,7 +514,51 @@ private:
         }
     }
 
+    /// The sun under --quality auto and full, as `demlight sun` runs it: computeSunFrame with the
+    /// distance this sun needs (auto) or the plan's DEM diagonal (full). One sun azimuth over the
+    /// crop, so the frame is one sweep at that azimuth; its horizons (for the horizon panel) are
+    /// that sweep, repeated untimed.
+    void qualitySunRows(const SunField& field) {
+        const ScenePlan full = planScene(t_, Quality::Full, QualityBudget{});
+        for (const Quality q : {Quality::Auto, Quality::Full}) {
+            SunFrameParams fp;
+            fp.threads = kThreads;
+            fp.maxDistanceM = q == Quality::Full ? full.maxDistanceM : 0.0;
+            SunFrame frame;
+            const double s = medianSeconds(o_.repeats, [&] { frame = computeSunFrame(t_, normals_, field, fp); });
+            HorizonParams hp = base_;
+            hp.maxDistanceM = frame.maxDistanceM;
+            const std::vector<float> h = sampleOf(sweepHorizon(t_, hp).angleDeg);
+            const std::string method = "quality " + std::string(qualityName(q));
+            const std::string params = fmt("sun %.1f km", frame.maxDistanceM / 1000);
+            const std::string notes = q == Quality::Auto ? "default: the distance this sun needs (sunSearchDistanceM)"
+                                                         : "full: the DEM diagonal";
+            sunPair(method, params, s, h, sampleOf(frame.light.visibility), notes);
+            add(method, params, s, "sun_irradiance_mae", maeAgainst(sampleOf(frame.light.irradiance), truthIrr_), notes);
+        }
+    }
+
+    /// The sky under --quality auto and full, as `demlight sky` runs it: the plan's directions,
+    /// distance, curvature and scan-direction tolerance.
+    void qualitySkyRows() {
+        for (const Quality q : {Quality::Auto, Quality::Full}) {
+            const ScenePlan plan = planScene(t_, q, QualityBudget{});
+            const auto n = static_cast<std::size_t>(plan.skyDirections);
+            HorizonParams hp = planHorizonParams(plan, base_.refraction, kThreads);
+            SkyMaps maps;
+            const double s = medianSeconds(o_.repeats, [&] {
+                SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
+                sweepDirections(t_, hp, n, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
+                maps = acc.finish(0.2);
+            });
+            add("quality " + std::string(qualityName(q)), fmt("sky N=%.0f ", static_cast<double>(n)) + fmt("%.1f km", plan.maxDistanceM / 1000),
+                s, "sky_K_mae", maeAgainst(sampleOf(maps.skyK), refK_),
+                q == Quality::Auto ? "default: scene plan" : "full: DEM diagonal, 0.01 deg scan tolerance");
+        }
+    }
+
     void skyRows() {
+        qualitySkyRows();
         add("sky reference", "dense", refSkyS_, "sky_K_mae", 0,
             "reference itself: error 0 by definition; plotted at the chart floor; " + std::to_string(o_.referenceAzimuths) +
                 " ray-marched azimuths timed on the sample");
@@ -545,7 +599,7 @@ private:
     std::string name_;
     Terrain t_;
     Normals normals_;
-    double cells_ = 0, d0_ = 0;
+    double cells_ = 0, d0_ = 0, marginM_ = 0;
     HorizonParams base_;
     std::vector<CellIndex> sample_;
     std::vector<double> truthH_, truthVis_, truthIrr_, refK_;
@@ -588,6 +642,166 @@ void writeCsv(const std::vector<Row>& rows, const std::string& path) {
     }
 }
 
+// ---- --auto-vs-full: the default plan against full on whole DEMs ------------------------------
+
+/// Whole DEMs larger than this (cells a side) are cropped to their centre.
+constexpr std::size_t kAutoVsFullMaxSide = 600;
+/// Cells sampled for the errors (anywhere in the DEM: every method sees the same DEM).
+constexpr std::size_t kAutoVsFullCells = 300;
+/// Horizon azimuths: on and off the grid axes, as tests/horizon_realdem_test.cpp.
+constexpr double kAutoVsFullAzimuthsDeg[] = {0.0, 37.0, 90.0, 123.4, 200.0, 301.7};
+/// Sun elevations of the sun rows (degrees): a low sun that needs a long search, and a high one.
+constexpr double kAutoVsFullSunElevationsDeg[] = {5.0, 30.0};
+
+struct AutoVsFullRow {
+    std::string dem, product, metric;
+    double autoS = 0, fullS = 0;
+    double workRatio = 0;  ///< full / auto estimateSweepWork (0 = not estimated)
+    double autoError = 0, fullError = 0;
+    std::string notes;
+};
+
+/// Median and 99th percentile of |max(h, e) - max(ref, e)| where both meet terrain: the statistic
+/// of ExpectedError (lighting/quality.h).
+std::pair<double, double> clampedMedianP99(const std::vector<double>& h, const std::vector<double>& ref, double e) {
+    std::vector<double> err;
+    for (std::size_t i = 0; i < h.size(); ++i)
+        if (h[i] > kNoHorizonDeg && ref[i] > kNoHorizonDeg)
+            err.push_back(std::abs(std::max(h[i], e) - std::max(ref[i], e)));
+    std::sort(err.begin(), err.end());
+    if (err.empty()) return {0, 0};
+    return {err[err.size() / 2], err[std::min(err.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(err.size())))]};
+}
+
+void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFullRow>& rows) {
+    const std::string name = std::filesystem::path(path).stem().string();
+    const Terrain t = cropTerrainCentre(loadDem(path).terrain, kAutoVsFullMaxSide, kAutoVsFullMaxSide);
+    const Normals normals = computeNormals(t, kThreads);
+    const QualityBudget budget;
+    const ScenePlan plans[2] = {planScene(t, Quality::Auto, budget), planScene(t, Quality::Full, budget)};
+    std::printf("%s: %zu x %zu cells; auto distance %.0f m, full %.0f m\n", name.c_str(), t.width(), t.height(),
+                plans[0].maxDistanceM, plans[1].maxDistanceM);
+
+    std::vector<CellIndex> cells;
+    for (std::size_t r = 0; r < t.height(); ++r)
+        for (std::size_t c = 0; c < t.width(); ++c)
+            if (t.valid(c, r)) cells.push_back({c, r});
+    std::mt19937_64 rng(kSampleSeed);
+    std::shuffle(cells.begin(), cells.end(), rng);
+    cells.resize(std::min(cells.size(), kAutoVsFullCells));
+    HorizonParams reference;  // full physics: curvature on, the whole DEM
+    reference.maxDistanceM = std::numeric_limits<double>::infinity();
+    reference.threads = kThreads;
+
+    // Horizon: one sweep per azimuth with each plan's parameters.
+    {
+        std::vector<double> ref, h[2];
+        double s[2] = {0, 0}, work[2] = {0, 0};
+        for (double az : kAutoVsFullAzimuthsDeg) {
+            reference.azimuthDeg = az;
+            for (const HorizonSample& x : referenceHorizonAt(t, reference, cells)) ref.push_back(x.angleDeg);
+            for (int q = 0; q < 2; ++q) {
+                HorizonParams p = planHorizonParams(plans[q], budget.refraction, kThreads);
+                p.azimuthDeg = az;
+                HorizonMap m;
+                s[q] += medianSeconds(o.repeats, [&] { m = sweepHorizon(t, p); });
+                work[q] += estimateSweepSteps(t, p);
+                for (const CellIndex& c : cells) h[q].push_back(m.angleDeg(c.col, c.row));
+            }
+        }
+        // Both plans in auto's scope, and full in its own (every horizon).
+        const double e = plans[0].expectedError.aboveElevationDeg;
+        const auto [am, ap] = clampedMedianP99(h[0], ref, e);
+        const auto [fm, fp] = clampedMedianP99(h[1], ref, e);
+        const auto [fam, fap] = clampedMedianP99(h[1], ref, plans[1].expectedError.aboveElevationDeg);
+        const double n = static_cast<double>(std::size(kAutoVsFullAzimuthsDeg));
+        rows.push_back({name, "horizon (1 azimuth)", fmt("median abs deg (h >= %g deg)", e), s[0] / n, s[1] / n,
+                        work[1] / work[0], am, fm,
+                        fmt("p99 auto %.2f", ap) + fmt(" full %.2f deg", fp) +
+                            fmt("; full on every horizon: median %.3f", fam) + fmt(" p99 %.2f deg", fap)});
+    }
+
+    // Sun: a frame as `demlight sun` computes it, at a low and a high sun.
+    for (double elevation : kAutoVsFullSunElevationsDeg) {
+        const SunField field = SunField::uniform(kSunAzimuthDeg, elevation);
+        reference.azimuthDeg = kSunAzimuthDeg;
+        const std::vector<HorizonSample> ref = referenceHorizonAt(t, reference, cells);
+        double s[2], mae[2], distance[2];
+        for (int q = 0; q < 2; ++q) {
+            SunFrameParams fp;
+            fp.threads = kThreads;
+            fp.maxDistanceM = q == 1 ? plans[1].maxDistanceM : 0.0;
+            SunFrame frame;
+            s[q] = medianSeconds(o.repeats, [&] { frame = computeSunFrame(t, normals, field, fp); });
+            double sum = 0;
+            for (std::size_t i = 0; i < cells.size(); ++i) {
+                const Enu nrm = normals.at(cells[i].col, cells[i].row);
+                sum += std::abs(frame.light.visibility(cells[i].col, cells[i].row) -
+                                sunVisibilityClamped(nrm, ref[i].angleDeg, kSunAzimuthDeg, elevation, kSunDiameterDeg));
+            }
+            mae[q] = sum / static_cast<double>(cells.size());
+            distance[q] = frame.maxDistanceM;
+        }
+        rows.push_back({name, fmt("sun at %.0f deg", elevation), "visibility MAE", s[0], s[1], 0, mae[0], mae[1],
+                        fmt("distance auto %.1f km", distance[0] / 1000) + fmt(", full %.1f km", distance[1] / 1000)});
+    }
+
+    // Sky: the plan's directions, as `demlight sky` computes it.
+    {
+        const int m = o.referenceAzimuths;
+        std::vector<std::vector<HorizonSample>> dense(static_cast<std::size_t>(m));
+        for (int j = 0; j < m; ++j) {
+            reference.azimuthDeg = (j + 0.5) * 360.0 / m;
+            dense[static_cast<std::size_t>(j)] = referenceHorizonAt(t, reference, cells);
+        }
+        std::vector<double> refK;
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            const auto horizon = [&](double azDeg) {
+                const auto j = std::min(static_cast<std::size_t>(azDeg / (360.0 / m)), static_cast<std::size_t>(m - 1));
+                return static_cast<double>(dense[j][i].angleDeg);
+            };
+            refK.push_back(referenceSky(horizon, normals.at(cells[i].col, cells[i].row), m).skyK);
+        }
+        double s[2], mae[2], work[2];
+        for (int q = 0; q < 2; ++q) {
+            const auto n = static_cast<std::size_t>(plans[q].skyDirections);
+            const HorizonParams hp = planHorizonParams(plans[q], budget.refraction, kThreads);
+            SkyMaps maps;
+            s[q] = medianSeconds(o.repeats, [&] {
+                SkyAccumulator acc(normals.east, normals.north, normals.up, n, {}, kThreads);
+                sweepDirections(t, hp, n, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); });
+                maps = acc.finish(0.2);
+            });
+            work[q] = estimateSweepWork(t, plans[q], n, budget.refraction);
+            double sum = 0;
+            for (std::size_t i = 0; i < cells.size(); ++i) sum += std::abs(maps.skyK(cells[i].col, cells[i].row) - refK[i]);
+            mae[q] = sum / static_cast<double>(cells.size());
+        }
+        rows.push_back({name, "sky", "K MAE", s[0], s[1], work[1] / work[0], mae[0], mae[1],
+                        fmt("directions auto %.0f", plans[0].skyDirections) + fmt(", full %.0f", plans[1].skyDirections) +
+                            fmt("; reference %.0f azimuths", m)});
+    }
+}
+
+void writeAutoVsFull(const std::vector<AutoVsFullRow>& rows, const std::string& path) {
+    std::ofstream f(path);
+    if (!f) throw Error("--out: cannot write " + path);
+    f << "dem,product,auto_ms,full_ms,speedup,work_ratio,error_metric,auto_error,full_error,notes\n";
+    char line[512];
+    std::printf("\n| DEM | product | auto ms | full ms | full/auto time | full/auto work | error | auto | full | notes |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const AutoVsFullRow& r : rows) {
+        const std::string work = r.workRatio > 0 ? fmt("%.2f", r.workRatio) : "";
+        std::snprintf(line, sizeof line, "%s,%s,%.4g,%.4g,%.3g,%s,%s,%.4g,%.4g,%s\n", csvField(r.dem).c_str(),
+                      csvField(r.product).c_str(), r.autoS * 1e3, r.fullS * 1e3, r.fullS / r.autoS, work.c_str(),
+                      r.metric.c_str(), r.autoError, r.fullError, csvField(r.notes).c_str());
+        f << line;
+        std::printf("| %s | %s | %.1f | %.1f | %.2f | %s | %s | %.4g | %.4g | %s |\n", r.dem.c_str(), r.product.c_str(),
+                    r.autoS * 1e3, r.fullS * 1e3, r.fullS / r.autoS, work.c_str(), r.metric.c_str(), r.autoError,
+                    r.fullError, r.notes.c_str());
+    }
+}
+
 }  // namespace
 }  // namespace demlight
 
@@ -602,14 +816,28 @@ int main(int argc, char** argv) {
             o.outDir = argv[++i];
         } else if (a == "--quick") {
             o.quick = true;
+        } else if (a == "--auto-vs-full") {
+            o.autoVsFull = true;
         } else {
-            std::fprintf(stderr, "usage: %s [--dem PATH ...] [--out DIR] [--quick]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--auto-vs-full] [--dem PATH ...] [--out DIR] [--quick]\n", argv[0]);
             return 2;
         }
     }
     if (o.quick) o.cropCells = 200, o.sampleCells = 300, o.referenceAzimuths = 120;
-    if (o.dems.empty()) o.dems = {"samples/mount_st_helens_1980_usgs.dem"};
     try {
+        if (o.autoVsFull) {
+            if (o.dems.empty())
+                o.dems = {"samples/mount_st_helens_1980_usgs.dem", "samples/rocky_mountain_np_dem.tif",
+                          "samples/luxembourg_elev_terra.tif"};
+            std::vector<AutoVsFullRow> rows;
+            for (const std::string& path : o.dems) autoVsFull(o, path, rows);
+            std::filesystem::create_directories(o.outDir);
+            const std::string csv = o.outDir + "/auto_vs_full.csv";
+            writeAutoVsFull(rows, csv);
+            std::printf("wrote %s (%zu rows)\n", csv.c_str(), rows.size());
+            return 0;
+        }
+        if (o.dems.empty()) o.dems = {"samples/mount_st_helens_1980_usgs.dem"};
         std::vector<Row> rows;
         for (const std::string& path : o.dems) DemBench(o, path, rows).run();
         markPareto(rows);

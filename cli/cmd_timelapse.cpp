@@ -20,6 +20,7 @@
 #include "lighting/sunhours.h"
 #include "src/error.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -305,7 +306,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         if (formats.count("tif")) {
             // The horizons of this frame resolve what its own search distance reaches.
             ScenePlan framePlan = plan;
-            framePlan.expectedError.aboveElevationDeg = resolvedElevationDeg(t, frame.maxDistanceM);
+            framePlan.expectedError.aboveElevationDeg =
+                std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(t, frame.maxDistanceM));
             std::map<std::string, std::string> meta = planMetadata(framePlan);
             meta.insert({
                 {"DEMLIGHT_PRODUCT", "timelapse frame"},

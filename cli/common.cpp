@@ -4,6 +4,7 @@
 #include "lighting/sky.h"
 #include "src/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,8 +29,8 @@ void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--max-distance", o.maxDistanceM,
-                    "Horizon search distance (metres). Default: relief / tan(2 deg), capped by the "
-                    "DEM diagonal")
+                    "Horizon search distance (metres). Default (--quality auto): relief / tan(2 deg), "
+                    "or the whole DEM when that is half its diagonal or more; full: the whole DEM")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--refraction", o.refraction,
                     "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
@@ -61,7 +62,8 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
     if (o.maxDistanceM) {
         plan.maxDistanceM = *o.maxDistanceM;
         plan.reasons[0] = "max_distance_m=" + formatNumber(*o.maxDistanceM) + " (--max-distance)";
-        plan.expectedError.aboveElevationDeg = resolvedElevationDeg(terrain, *o.maxDistanceM);
+        plan.expectedError.aboveElevationDeg =
+            std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, *o.maxDistanceM));
     }
     if (o.verbose && !ctx.quiet) {
         note(ctx, "scene plan (--quality " + o.quality + "):");

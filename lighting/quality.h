@@ -36,11 +36,12 @@ struct QualityBudget {
 };
 
 /// The horizon error a plan states (DEMLIGHT_EXPECTED_ERROR_DEG): the sweep's measured |error|
-/// against the full-physics reference (ray march, curvature on, whole DEM) over cells and
-/// azimuths of real DEMs. Where the search distance is shorter than the DEM, only horizons at
-/// or above `aboveElevationDeg` are bounded: a cell's error is |max(h, e) - max(h_ref, e)|, i.e.
-/// the horizon as seen by a sun or sky patch at elevation e or higher (terrain beyond the
-/// distance can only appear below e).
+/// against the full-physics reference (ray march, curvature on, whole DEM), over cells and
+/// azimuths of real DEMs where both meet terrain (a horizon of kNoHorizonDeg, no terrain before
+/// the DEM edge, says nothing about accuracy). Only horizons at or above `aboveElevationDeg` are
+/// in scope: a cell's error is |max(h, e) - max(h_ref, e)|, i.e. the horizon as seen by a sun or
+/// sky patch at elevation e or higher. For auto e is the lowest relevant elevation of the budget
+/// (its search distance resolves everything above it); for full e = -90 (every horizon).
 struct ExpectedError {
     double medianDeg = 0;  ///< median |error| (degrees)
     double p99Deg = 0;     ///< 99th percentile of |error| (degrees)
@@ -68,8 +69,9 @@ struct ScenePlan {
 };
 
 /// Chooses the plan. Rules for `auto`:
-///  - search distance: relief / tan(lowestElevation), capped by the DEM diagonal: terrain
-///    farther away cannot rise above that elevation;
+///  - search distance: relief / tan(lowestElevation): terrain farther away cannot rise above
+///    that elevation; the whole DEM (its diagonal) when that is half the diagonal or more, where
+///    a range limit saves no sweep work;
 ///  - curvature: on unless the drop over the whole search distance, d / (2 R_eff), is below a
 ///    tenth of the tolerance (it costs nothing in the sweep, so only tiny scenes turn it off);
 ///  - direction tolerance: the sweep's automatic rule (one cell of sideways drift at the search
@@ -92,7 +94,10 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
 /// combine pass. Follows the sweep's documented geometry (lighting/horizon.h): the regions of
 /// sweepRegions(), lines one cell apart along the minor axis, each walked from the cells it
 /// serves in its region to maxDistanceM beyond them (clipped to the grid). Used to compare the
-/// cost of plans without timing; the bench checks that it tracks wall time.
+/// cost of plans without timing. It leaves out the range-limit pass, which makes a step up to
+/// ~1.8x dearer when maxDistanceM is a small fraction of the line length (see
+/// kWholeDemShareOfDiagonal in quality.cpp); `demlight_tradeoff_bench --auto-vs-full` prints it
+/// beside measured times.
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params);
 
 /// estimateSweepSteps summed over `directions` evenly spaced azimuths (0, 360/directions, ...)

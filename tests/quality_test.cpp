@@ -33,6 +33,15 @@ TEST(Quality, AutoDistanceIsReliefOverTanLowestElevationCappedByDiagonal) {
     EXPECT_FALSE(p.reasons.empty());
 }
 
+TEST(Quality, AutoSearchesTheWholeDemWhenTheDistanceIsHalfTheDiagonalOrMore) {
+    // Relief 200 m: 200 / tan 2 deg = 5727 m, two thirds of the 8485 m diagonal: a range limit
+    // that long saves no sweep work, so auto searches the whole DEM.
+    const ScenePlan p = planScene(cone(200, 30, 200, 2), Quality::Auto, {});
+    EXPECT_NEAR(p.maxDistanceM, std::hypot(6000.0, 6000.0), 1e-6);
+    // Relief 100 m: 2864 m, a third of the diagonal: kept.
+    EXPECT_NEAR(planScene(cone(200, 30, 100), Quality::Auto, {}).maxDistanceM, 100 / std::tan(2 * M_PI / 180), 1e-6);
+}
+
 TEST(Quality, FullTurnsEverythingOn) {
     const ScenePlan p = planScene(cone(100, 10, 5), Quality::Full, {});
     EXPECT_NEAR(p.maxDistanceM, std::hypot(1000.0, 1000.0), 1e-6);
@@ -41,18 +50,22 @@ TEST(Quality, FullTurnsEverythingOn) {
     EXPECT_LT(p.sunLatticeStepCells, 64u);
 }
 
-TEST(Quality, ExpectedErrorScopeFollowsTheSearchDistance) {
+TEST(Quality, ExpectedErrorScope) {
     QualityBudget b;
-    b.lowestElevationDeg = 2;
-    // Relief 50 m: 1432 m of search on an 8.5 km DEM resolves horizons from 2 deg up only.
+    b.lowestElevationDeg = 3;
+    // auto: horizons from the budget's lowest elevation up, whether or not its distance is
+    // capped by the diagonal; full: every horizon.
     const ScenePlan shortSearch = planScene(cone(200, 30, 50), Quality::Auto, b);
-    EXPECT_NEAR(shortSearch.expectedError.aboveElevationDeg, 2.0, 1e-9);
-    EXPECT_NE(describeExpectedError(shortSearch.expectedError).find("at or above 2 deg"), std::string::npos);
-    // Capped by the diagonal, and full: every horizon.
-    EXPECT_EQ(planScene(cone(200, 30, 1000, 10), Quality::Auto, b).expectedError.aboveElevationDeg, -90.0);
+    EXPECT_EQ(shortSearch.expectedError.aboveElevationDeg, 3.0);
+    EXPECT_NE(describeExpectedError(shortSearch.expectedError).find("at or above 3 deg"), std::string::npos);
+    EXPECT_EQ(planScene(cone(200, 30, 1000, 10), Quality::Auto, b).expectedError.aboveElevationDeg, 3.0);
     EXPECT_EQ(planScene(cone(200, 30, 50), Quality::Full, b).expectedError.aboveElevationDeg, -90.0);
-    // atan(relief / d): 50 m seen from 500 m.
+    EXPECT_EQ(describeExpectedError(planScene(cone(200, 30, 50), Quality::Full, b).expectedError).find("at or above"),
+              std::string::npos);
+    // What a shorter --max-distance resolves: atan(relief / d), 50 m seen from 500 m; -90 when d
+    // covers the diagonal (8485 m).
     EXPECT_NEAR(resolvedElevationDeg(cone(200, 30, 50), 500), std::atan(0.1) * 180 / M_PI, 1e-9);
+    EXPECT_EQ(resolvedElevationDeg(cone(200, 30, 50), 9000), -90.0);
 }
 
 TEST(Quality, ExpectedErrorIsLargerOnElongatedCells) {
