@@ -519,15 +519,15 @@ private:
     /// crop, so the frame is one sweep at that azimuth; its horizons (for the horizon panel) are
     /// that sweep, repeated untimed.
     void qualitySunRows(const SunField& field) {
-        const ScenePlan full = planScene(t_, Quality::Full, QualityBudget{});
         for (const Quality q : {Quality::Auto, Quality::Full}) {
-            SunFrameParams fp;
-            fp.threads = kThreads;
-            fp.maxDistanceM = q == Quality::Full ? full.maxDistanceM : 0.0;
+            const SunFrameParams fp =
+                planSunFrameParams(planScene(t_, q, QualityBudget{}), kSunDiameterDeg, base_.refraction, kThreads);
             SunFrame frame;
             const double s = medianSeconds(o_.repeats, [&] { frame = computeSunFrame(t_, normals_, field, fp); });
             HorizonParams hp = base_;
             hp.maxDistanceM = frame.maxDistanceM;
+            hp.curvature = fp.curvature;
+            hp.directionToleranceDeg = fp.directionToleranceDeg;
             const std::vector<float> h = sampleOf(sweepHorizon(t_, hp).angleDeg);
             const std::string method = "quality " + std::string(qualityName(q));
             const std::string params = fmt("sun %.1f km", frame.maxDistanceM / 1000);
@@ -544,7 +544,7 @@ private:
         for (const Quality q : {Quality::Auto, Quality::Full}) {
             const ScenePlan plan = planScene(t_, q, QualityBudget{});
             const auto n = static_cast<std::size_t>(plan.skyDirections);
-            HorizonParams hp = planHorizonParams(plan, base_.refraction, kThreads);
+            HorizonParams hp = planIntegralParams(plan, base_.refraction, kThreads);
             SkyMaps maps;
             const double s = medianSeconds(o_.repeats, [&] {
                 SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
@@ -728,9 +728,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         const std::vector<HorizonSample> ref = referenceHorizonAt(t, reference, cells);
         double s[2], mae[2], distance[2];
         for (int q = 0; q < 2; ++q) {
-            SunFrameParams fp;
-            fp.threads = kThreads;
-            fp.maxDistanceM = q == 1 ? plans[1].maxDistanceM : 0.0;
+            const SunFrameParams fp = planSunFrameParams(plans[q], kSunDiameterDeg, budget.refraction, kThreads);
             SunFrame frame;
             s[q] = medianSeconds(o.repeats, [&] { frame = computeSunFrame(t, normals, field, fp); });
             double sum = 0;
@@ -765,7 +763,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         double s[2], mae[2], work[2];
         for (int q = 0; q < 2; ++q) {
             const auto n = static_cast<std::size_t>(plans[q].skyDirections);
-            const HorizonParams hp = planHorizonParams(plans[q], budget.refraction, kThreads);
+            const HorizonParams hp = planIntegralParams(plans[q], budget.refraction, kThreads);
             SkyMaps maps;
             s[q] = medianSeconds(o.repeats, [&] {
                 SkyAccumulator acc(normals.east, normals.north, normals.up, n, {}, kThreads);

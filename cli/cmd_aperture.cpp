@@ -29,7 +29,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    const HorizonParams params = horizonParams(o.search, plan);
+    const HorizonParams params = integralParams(o.search, plan);
     const int directions = o.directions.value_or(plan.skyDirections);
 
     const auto start = std::chrono::steady_clock::now();

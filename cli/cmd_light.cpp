@@ -151,7 +151,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     const bool skySweeps = o.skyModel == "stewart-langer";
     const auto directions = static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections));
     const std::size_t sweeps = skySweeps || aperture ? directions : 0;
-    const HorizonParams hp = horizonParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan);
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "light", t.heightsM.size() * (sweeps + (aperture ? 0 : 1)));
 
@@ -176,9 +176,8 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
                                           lp, o.search.threads).irradiance;
         sun.maxDistanceM = hp.maxDistanceM;  // the aperture is the sky's: the sky's distance
     } else {
-        SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg);
         // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
-        sp.maxDistanceM = o.search.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
+        const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg, plan);
         SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
         sun = {std::move(frame.light.irradiance), frame.maxDistanceM, frame.sweepAzimuthsDeg.size()};
     }

@@ -46,7 +46,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
     const auto start = std::chrono::steady_clock::now();
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
     const std::size_t skyDirections = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams skyParams = horizonParams(o.search, plan);
+    const HorizonParams skyParams = integralParams(o.search, plan);
     const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{}, plan.sunLatticeStepCells);
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);

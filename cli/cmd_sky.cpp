@@ -70,7 +70,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     }
 
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    const HorizonParams params = horizonParams(o.search, plan);
+    const HorizonParams params = integralParams(o.search, plan);
     const int directions = o.directions.value_or(plan.skyDirections);
 
     const auto start = std::chrono::steady_clock::now();

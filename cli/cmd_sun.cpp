@@ -46,10 +46,8 @@ struct SunBands {
 
 SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
                     const SunOptions& o, const ScenePlan& plan, ProgressCounter& counter) {
-    SunFrameParams params = sunFrameParams(o.search, o.sunDiameterDeg);
     // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
-    params.maxDistanceM = o.search.maxDistanceM.value_or(
-        plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
+    const SunFrameParams params = sunFrameParams(o.search, o.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
     return {std::move(frame.light.visibility), std::move(frame.light.irradiance), frame.maxDistanceM,
             std::to_string(frame.sweepAzimuthsDeg.size()) + " sweep azimuth(s)", frame.sweepAzimuthsDeg.size()};
@@ -59,7 +57,7 @@ SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& f
                      const SunOptions& o, const ScenePlan& plan, std::size_t d, bool smooth,
                      ProgressCounter& counter) {
     // The aperture does not depend on the sun: search distance and directions are the sky's.
-    const HorizonParams hp = horizonParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan);
     ApertureAccumulator acc(normals.east, normals.north, normals.up, d, o.search.threads);
     sweepDirections(t, hp, d, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
                     &counter);

@@ -86,10 +86,8 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
 
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
     SunHoursParams params;
-    params.frame = sunFrameParams(o.search, o.sunDiameterDeg);
     // auto: each instant's sun sets its own distance (sunSearchDistanceM); full: the DEM diagonal.
-    params.frame.maxDistanceM =
-        o.search.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
+    params.frame = sunFrameParams(o.search, o.sunDiameterDeg, plan);
     const SolarSite site;  // default pressure and temperature; position from each lattice node
 
     const auto start = std::chrono::steady_clock::now();
@@ -98,7 +96,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
 
     // Sky term once: it does not depend on the sun's position.
     const auto skyDirections = static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections));
-    const HorizonParams hp = horizonParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan);
     SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, o.search.threads);
     ProgressCounter skyCounter(bar.callback(), "sky", t.heightsM.size() * skyDirections);
     sweepDirections(t, hp, skyDirections,

@@ -239,7 +239,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
     const auto tStart = clock::now();
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    HorizonParams skyParams = horizonParams(o.search, plan);
+    HorizonParams skyParams = integralParams(o.search, plan);
     const std::size_t skyDirections =
         stackDirections > 0 ? stackDirections : o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t n = frames.instants.size();
@@ -256,7 +256,10 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         if (!o.search.maxDistanceM)
             skyParams.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM
                                                                    : sunSearchDistanceM(t, 0.0, o.sunDiameterDeg);
-        stack = computeHorizonStack(t, stackDirections, skyParams, &counter);
+        // The stack also gives every frame's sun horizon: two scan lines per cell.
+        HorizonParams stackParams = skyParams;
+        stackParams.nearestLine = false;
+        stack = computeHorizonStack(t, stackDirections, stackParams, &counter);
         SkyAccumulator acc(normals.east, normals.north, normals.up, stackDirections, {}, o.search.threads);
         for (std::size_t i = 0; i < stackDirections; ++i) acc.addDirection(i, stack.angleDeg[i]);
         sky = acc.finish(0.0).skyK;

@@ -77,6 +77,10 @@ HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
     return planHorizonParams(plan, o.refraction, o.threads);
 }
 
+HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan) {
+    return planIntegralParams(plan, o.refraction, o.threads);
+}
+
 SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
     SunFrameParams p;
     p.sunDiameterDeg = sunDiameterDeg;
@@ -87,8 +91,8 @@ SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
 }
 
 SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg, const ScenePlan& plan) {
-    SunFrameParams p = sunFrameParams(o, sunDiameterDeg);
-    p.maxDistanceM = o.maxDistanceM.value_or(plan.quality == Quality::Full ? plan.maxDistanceM : 0.0);
+    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, o.refraction, o.threads);
+    if (o.maxDistanceM) p.maxDistanceM = *o.maxDistanceM;
     return p;
 }
 

@@ -43,6 +43,8 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
 
 /// HorizonParams from a plan: distance, curvature, refraction, direction tolerance, threads.
 HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan);
+/// horizonParams() for the sweeps of sky and aperture integrals (planIntegralParams).
+HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan);
 
 /// Parameters of a sun frame (lighting/sun_frame.h) from the search options: --max-distance
 /// when given, else 0 (the distance this sun needs).

@@ -6,6 +6,7 @@
 
 #include "lighting/horizon.h"
 #include "lighting/sky.h"
+#include "lighting/sun_frame.h"
 #include "src/terrain.h"
 
 #include <cstddef>
@@ -62,6 +63,10 @@ struct ScenePlan {
     bool curvature = true;            ///< earth curvature and refraction in sight lines
     double directionToleranceDeg = 0; ///< sweep region split tolerance (0 = the sweep's automatic rule)
     int skyDirections = kAutoSkyDirections;           ///< sectors for sky and aperture integrals
+    /// Sky and aperture integrals sweep with HorizonParams::nearestLine (one scan line per cell):
+    /// auto, where the integral's error budget holds with it; full interpolates two lines.
+    /// Horizon maps and sun frames always use two lines.
+    bool integralNearestLine = true;
     std::size_t sunLatticeStepCells = 64;  ///< SPA evaluated every this many cells
     ExpectedError expectedError;           ///< what the horizons of this plan are within
     /// One line per choice, "name=value (why)", for metadata and --verbose.
@@ -86,8 +91,17 @@ struct ScenePlan {
 ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget& budget);
 
 /// HorizonParams of the plan's sweeps: its search distance, curvature and direction tolerance,
-/// with the given refraction coefficient and threads (azimuthDeg left at 0).
+/// with the given refraction coefficient and threads (azimuthDeg left at 0), two scan lines per
+/// cell.
 HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads = 0);
+
+/// SunFrameParams of the plan: its curvature and direction tolerance; the search distance is
+/// the plan's (full) or left to the sun (auto: sunSearchDistanceM for the frame's lowest sun).
+SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction,
+                                  int threads = 0);
+
+/// planHorizonParams() for the sweeps of a sky or aperture integral: nearestLine as the plan says.
+HorizonParams planIntegralParams(const ScenePlan& plan, double refraction, int threads = 0);
 
 /// Deterministic estimate of the work of one sweepHorizon(terrain, params) call, in line steps
 /// (one step = one interpolated line sample fed to a hull), plus one per output cell for the

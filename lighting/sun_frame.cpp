@@ -68,7 +68,8 @@ double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double
     for (double h : t.cellHeightM) heightM += h;
     const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
     const double byRelief = static_cast<double>(hi - lo) / std::tan(angle * kDegToRad);
-    return std::max(t.cellHeightM.front(), std::min(byRelief, std::hypot(widthM, heightM)));
+    const double diagonal = std::hypot(widthM, heightM);
+    return std::max(t.cellHeightM.front(), byRelief >= kWholeDemShareOfDiagonal * diagonal ? diagonal : byRelief);
 }
 
 SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
@@ -93,6 +94,8 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
 
     HorizonParams hp;
     hp.refraction = params.refraction;
+    hp.curvature = params.curvature;
+    hp.directionToleranceDeg = params.directionToleranceDeg;
     hp.threads = params.threads;
     hp.maxDistanceM = frame.maxDistanceM;
     frame.sweepAzimuthsDeg = sunSweepAzimuthsDeg(field, t.width(), t.height());

@@ -31,6 +31,9 @@ struct SunFrameParams {
     /// Search distance (metres); <= 0 means sunSearchDistanceM() for the field's lowest sun.
     double maxDistanceM = 0;
     double refraction = 0.13;
+    /// As HorizonParams::curvature and HorizonParams::directionToleranceDeg (the scene plan's).
+    bool curvature = true;
+    double directionToleranceDeg = 0;
     int threads = 0;
 };
 
@@ -46,7 +49,8 @@ struct SunFrame {
 std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width, std::size_t height);
 
 /// Search distance that catches every shadow at this sun: relief / tan(lowest elevation minus
-/// the disk radius, at least 0.25 deg), capped by the DEM diagonal, at least one cell.
+/// the disk radius, at least 0.25 deg), at least one cell; the DEM diagonal when that is
+/// kWholeDemShareOfDiagonal of it or more.
 double sunSearchDistanceM(const Terrain& terrain, double lowestSunElevationDeg,
                           double sunDiameterDeg);
 

@@ -98,7 +98,9 @@ TEST_F(OptionsCli, LightQualityFullChangesTheSkyAndIsRecorded) {
     ASSERT_EQ(la.size(), 1u);
     ASSERT_EQ(lf.size(), 1u);
     EXPECT_GT(cellsDiffering(la[0], lf[0], 1e-4f), la[0].size() / 10);
-    EXPECT_EQ(cellsDiffering(la[0], lf[0], 0.1f), 0u);  // same light, only finer
+    // Same light, only finer: large changes only where full's finer scan tolerance (more sweep
+    // regions) moves a sun shadow edge by a cell (measured 20 of 153 000 cells).
+    EXPECT_LT(cellsDiffering(la[0], lf[0], 0.1f), la[0].size() / 1000);
 }
 
 // A looser --tolerance turns curvature off on this 17 km scene (its drop is ~0.07 deg), which
@@ -135,9 +137,10 @@ TEST_F(OptionsCli, SunhoursQualityFullChangesTheSunLatticeAndIsRecorded) {
     const auto ba = readRasterBands(path("auto.tif"));
     const auto bf = readRasterBands(path("full.tif"));
     // sun_irradiation: smooth in the sun position, so every lattice change shows; large changes
-    // only where a shadow edge moves (the search distance is the DEM diagonal with full).
+    // only where a shadow edge moves (full: the DEM diagonal as search distance and a 0.01 deg
+    // scan tolerance, so other sweep regions; measured 0.3 % of cells).
     EXPECT_GT(cellsDiffering(ba[1], bf[1], 0.0f), ba[1].size() / 10);
-    EXPECT_LT(cellsDiffering(ba[1], bf[1], 0.05f), ba[1].size() / 1000);
+    EXPECT_LT(cellsDiffering(ba[1], bf[1], 0.05f), ba[1].size() / 100);
     // sky_irradiation: the sky term from the plan's 64 directions instead of 16.
     EXPECT_EQ(a.metadata.at("DEMLIGHT_SKY_DIRECTIONS"), "16");
     EXPECT_EQ(f.metadata.at("DEMLIGHT_SKY_DIRECTIONS"), "64");

@@ -152,6 +152,8 @@ TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     HorizonParams p;
     p.maxDistanceM = std::min(defaultMaxDistanceM(t), 0.25 * sideM);
     p.threads = kThreads;
+    // As `demlight sky` sweeps under --quality auto (ScenePlan::integralNearestLine).
+    p.nearestLine = true;
 
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<RefCell> ref = reference(t, normals, p);
