@@ -253,6 +253,13 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
     return steps;
 }
 
+bool rangeLimitPays(const Terrain& terrain, const HorizonParams& params) {
+    if (!std::isfinite(params.maxDistanceM)) return false;
+    HorizonParams whole = params;
+    whole.maxDistanceM = std::numeric_limits<double>::infinity();
+    return kRangeLimitStepCost * estimateSweepSteps(terrain, params) < estimateSweepSteps(terrain, whole);
+}
+
 double estimateSweepWork(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
                          double refraction) {
     HorizonParams p = planHorizonParams(plan, refraction);

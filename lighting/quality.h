@@ -114,6 +114,17 @@ HorizonParams planIntegralParams(const ScenePlan& plan, double refraction, int t
 /// beside measured times.
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params);
 
+/// Cost of one line step of a range-limited sweep relative to an unlimited one (the chunked
+/// hulls and the exact range pass): up to 1.8x, measured on one-region DEMs (quality.cpp). A
+/// range limit pays only where it cuts the steps by more than this.
+inline constexpr double kRangeLimitStepCost = 1.8;
+
+/// True when sweeping with `params` as given is expected to cost less than sweeping the whole
+/// DEM (maxDistanceM = infinity), by estimateSweepSteps and kRangeLimitStepCost. Both find the
+/// same horizons above the elevation the limit resolves, so callers that only need those (sun
+/// frames) take whichever is cheaper.
+bool rangeLimitPays(const Terrain& terrain, const HorizonParams& params);
+
 /// estimateSweepSteps summed over `directions` evenly spaced azimuths (0, 360/directions, ...)
 /// with the plan's parameters: the cost of a sky or aperture integral under the plan.
 double estimateSweepWork(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,

@@ -1,5 +1,6 @@
 #include "lighting/sun_frame.h"
 
+#include "lighting/quality.h"
 #include "src/angles.h"
 #include "src/parallel.h"
 
@@ -11,6 +12,14 @@ namespace {
 
 /// Floor of the elevation used to size the search distance (degrees).
 constexpr double kLowestShadowElevationDeg = 0.25;
+
+/// Diagonal of the DEM (metres), from the middle row's cell width and the summed cell heights.
+double diagonalM(const Terrain& t) {
+    double heightM = 0;
+    for (double h : t.cellHeightM) heightM += h;
+    const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
+    return std::hypot(widthM, heightM);
+}
 
 /// Side of the blocks (cells) in which sweepWindows() bounds the cells of each sweep.
 constexpr std::size_t kWindowBlockCells = 64;
@@ -64,11 +73,8 @@ double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double
     const auto [lo, hi] = heightRangeM(t.heightsM);
     const double angle =
         std::max(lowestSunElevationDeg - sunDiameterDeg / 2, kLowestShadowElevationDeg);
-    double heightM = 0;
-    for (double h : t.cellHeightM) heightM += h;
-    const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
     const double byRelief = static_cast<double>(hi - lo) / std::tan(angle * kDegToRad);
-    const double diagonal = std::hypot(widthM, heightM);
+    const double diagonal = diagonalM(t);
     return std::max(t.cellHeightM.front(), byRelief >= kWholeDemShareOfDiagonal * diagonal ? diagonal : byRelief);
 }
 
@@ -100,6 +106,16 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.maxDistanceM = frame.maxDistanceM;
     frame.sweepAzimuthsDeg = sunSweepAzimuthsDeg(field, t.width(), t.height());
     const std::vector<double>& azimuths = frame.sweepAzimuthsDeg;
+    if (params.maxDistanceM <= 0) {
+        // The sun's own distance finds every shadow; farther terrain cannot rise above this sun,
+        // so the whole DEM gives the same visibility, and costs less unless the limit cuts the
+        // line walks (regions, small windows) by more than its own overhead.
+        hp.azimuthDeg = wrapAzimuthDeg(azimuths[azimuths.size() / 2]);
+        if (!rangeLimitPays(t, hp)) {
+            hp.maxDistanceM = std::numeric_limits<double>::infinity();
+            frame.maxDistanceM = diagonalM(t);
+        }
+    }
     // Each sweep covers only the cells that interpolate with it, so a frame costs about two
     // DEM-wide sweeps however many azimuths it spans. Progress: the frame counts as one pass
     // over the cells, shared among the sweeps by their window areas.

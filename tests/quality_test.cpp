@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace demlight {
 namespace {
@@ -103,6 +104,26 @@ TEST(Quality, RejectsBadBudgetsAndNames) {
     EXPECT_THROW(planScene(cone(10, 10, 5), Quality::Auto, b), Error);
     EXPECT_THROW(parseQuality("best"), Error);
     EXPECT_EQ(parseQuality("full"), Quality::Full);
+}
+
+}  // namespace
+}  // namespace demlight
+
+namespace demlight {
+namespace {
+
+// A range limit saves work only where it shortens the line walks: a window far from the far
+// edge (the walk stops maxDistanceM beyond it), not a whole-DEM sweep (lines walk the DEM anyway).
+TEST(Quality, RangeLimitPaysOnlyWhereItShortensTheWalks) {
+    const Terrain t = makeUniformTerrain(Grid<float>(400, 300, 10.0f), 30.0);
+    HorizonParams p;
+    p.azimuthDeg = 0;
+    p.maxDistanceM = 600;
+    EXPECT_FALSE(rangeLimitPays(t, p));
+    p.window = CellWindow{0, 280, 400, 300};  // southern rows, looking north across the DEM
+    EXPECT_TRUE(rangeLimitPays(t, p));
+    p.maxDistanceM = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(rangeLimitPays(t, p));
 }
 
 }  // namespace
