@@ -58,13 +58,8 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
     budget.toleranceDeg = o.toleranceDeg;
     budget.lowestElevationDeg = lowestElevationDeg;
     budget.refraction = o.refraction;
-    ScenePlan plan = planScene(terrain, parseQuality(o.quality), budget);
-    if (o.maxDistanceM) {
-        plan.maxDistanceM = *o.maxDistanceM;
-        plan.reasons[0] = "max_distance_m=" + formatNumber(*o.maxDistanceM) + " (--max-distance)";
-        plan.expectedError.aboveElevationDeg =
-            std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, *o.maxDistanceM));
-    }
+    budget.maxDistanceM = o.maxDistanceM.value_or(0.0);
+    const ScenePlan plan = planScene(terrain, parseQuality(o.quality), budget);
     if (o.verbose && !ctx.quiet) {
         note(ctx, "scene plan (--quality " + o.quality + "):");
         for (const auto& r : plan.reasons) note(ctx, "  " + r);

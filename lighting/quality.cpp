@@ -109,6 +109,22 @@ Quality parseQuality(std::string_view name) {
 
 std::string_view qualityName(Quality q) { return q == Quality::Auto ? "auto" : "full"; }
 
+namespace {
+
+/// budget.maxDistanceM > 0: the user's distance replaces the plan's, and the expected error
+/// covers only the horizons that distance resolves.
+void applyUserDistance(const Terrain& terrain, const QualityBudget& budget, ScenePlan& plan) {
+    if (!(budget.maxDistanceM > 0)) return;
+    plan.maxDistanceM = budget.maxDistanceM;
+    std::ostringstream why;
+    why << "max_distance_m=" << budget.maxDistanceM << " (--max-distance)";
+    plan.reasons[0] = why.str();
+    plan.expectedError.aboveElevationDeg =
+        std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, budget.maxDistanceM));
+}
+
+}  // namespace
+
 ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget& budget) {
     if (!(budget.toleranceDeg > 0)) throw Error("--tolerance must be a positive number of degrees");
     if (!(budget.lowestElevationDeg > 0 && budget.lowestElevationDeg < 90))
@@ -133,6 +149,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                         "sky_scan_lines=two (full: each cell between its two bracketing lines)",
                         describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), "full")};
         plan.expectedError = sweepExpectedError(terrain, -90);
+        applyUserDistance(terrain, budget, plan);
         return plan;
     }
 
@@ -142,7 +159,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     // A range limit of half the DEM or more saves no sweep work (lines walk the whole DEM
     // anyway) and costs the range-limit pass: then search the whole DEM, which is also exact.
     const bool wholeDem = byRelief >= kWholeDemShareOfDiagonal * diagonal;
-    plan.maxDistanceM = std::max(minCell, wholeDem ? diagonal : byRelief);
+    plan.maxDistanceM = budget.maxDistanceM > 0 ? budget.maxDistanceM : std::max(minCell, wholeDem ? diagonal : byRelief);
     const double curvatureDeg = plan.maxDistanceM / (2 * rEff) * kRadToDeg;
     plan.curvature = curvatureDeg >= kCurvatureShareOfTolerance * budget.toleranceDeg;
     plan.directionToleranceDeg = 0;  // the sweep's automatic rule
@@ -164,6 +181,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells),
                              "sun direction changes by < 0.01 deg over 64 cells of 30 m")};
     plan.expectedError = sweepExpectedError(terrain, budget.lowestElevationDeg);
+    applyUserDistance(terrain, budget, plan);
     return plan;
 }
 

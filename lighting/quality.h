@@ -34,6 +34,9 @@ struct QualityBudget {
     double lowestElevationDeg = 2.0;
     /// Effective-radius refraction coefficient k the user asked for.
     double refraction = 0.13;
+    /// > 0: the search distance the user gave (--max-distance), used as is; the other choices
+    /// (curvature) and the expected error's scope follow from it.
+    double maxDistanceM = 0;
 };
 
 /// The horizon error a plan states (DEMLIGHT_EXPECTED_ERROR_DEG): the sweep's measured |error|
