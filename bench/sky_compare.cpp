@@ -152,17 +152,10 @@ std::vector<double> sagaSteppingHorizonsRad(const Grid<float>& z, double cellSiz
 
 std::vector<RefCell> reference(const demlight::Terrain& t, const demlight::Normals& normals,
                                const demlight::HorizonParams& p, std::size_t wanted, std::size_t* candidates) {
-    // Valid cells farther than the search distance from every edge (metres along each axis).
-    const std::size_t mid = t.height() / 2;
-    const auto marginCols = static_cast<std::size_t>(std::ceil(p.maxDistanceM / t.cellWidthM[mid])) + 2;
-    const auto marginRows = static_cast<std::size_t>(std::ceil(p.maxDistanceM / t.cellHeightM[mid])) + 2;
-    std::vector<CellIndex> cells;
-    for (std::size_t r = marginRows; r + marginRows < t.height(); ++r)
-        for (std::size_t c = marginCols; c + marginCols < t.width(); ++c)
-            if (t.valid(c, r)) cells.push_back({c, r});
+    // Valid cells farther than the search distance from every edge, all of them shuffled, then
+    // the first `wanted`.
+    std::vector<CellIndex> cells = demlight::sampleValidCells(t, static_cast<std::size_t>(-1), kSampleSeed, p.maxDistanceM);
     *candidates = cells.size();
-    std::mt19937_64 rng(kSampleSeed);
-    std::shuffle(cells.begin(), cells.end(), rng);
     if (cells.size() > wanted) cells.resize(wanted);
 
     std::vector<std::vector<demlight::HorizonSample>> h(kReferenceAzimuths);

@@ -287,17 +287,7 @@ private:
 
     /// Sample cells; compute the sun and sky references (full physics, the whole crop).
     void sampleAndReference() {
-        const std::size_t mid = t_.height() / 2;
-        const double marginM = 2 * marginM_;
-        const auto mc = static_cast<std::size_t>(std::ceil(marginM / t_.cellWidthM[mid])) + 2;
-        const auto mr = static_cast<std::size_t>(std::ceil(marginM / t_.cellHeightM[mid])) + 2;
-        std::vector<CellIndex> cand;
-        for (std::size_t r = mr; r + mr < t_.height(); ++r)
-            for (std::size_t c = mc; c + mc < t_.width(); ++c)
-                if (t_.valid(c, r)) cand.push_back({c, r});
-        std::mt19937_64 rng(kSampleSeed);
-        std::shuffle(cand.begin(), cand.end(), rng);
-        if (cand.size() > o_.sampleCells) cand.resize(o_.sampleCells);
+        std::vector<CellIndex> cand = sampleValidCells(t_, o_.sampleCells, kSampleSeed, 2 * marginM_);
         if (cand.empty()) throw Error(name_ + ": no cells 2 M from the crop edge; use a larger crop");
 
         // Sun truth over the whole crop, and the reference limited to D0 (timed: one azimuth per
@@ -682,13 +672,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
     std::printf("%s: %zu x %zu cells; auto distance %.0f m, full %.0f m\n", name.c_str(), t.width(), t.height(),
                 plans[0].maxDistanceM, plans[1].maxDistanceM);
 
-    std::vector<CellIndex> cells;
-    for (std::size_t r = 0; r < t.height(); ++r)
-        for (std::size_t c = 0; c < t.width(); ++c)
-            if (t.valid(c, r)) cells.push_back({c, r});
-    std::mt19937_64 rng(kSampleSeed);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    cells.resize(std::min(cells.size(), kAutoVsFullCells));
+    const std::vector<CellIndex> cells = sampleValidCells(t, kAutoVsFullCells, kSampleSeed);
     HorizonParams reference;  // full physics: curvature on, the whole DEM
     reference.maxDistanceM = std::numeric_limits<double>::infinity();
     reference.threads = kThreads;

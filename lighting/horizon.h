@@ -160,6 +160,13 @@ std::vector<HorizonSample> referenceHorizonAt(const Terrain& terrain, const Hori
                                               std::span<const CellIndex> cells,
                                               ProgressCounter* progress = nullptr);
 
+/// The cells accuracy measurements hand to referenceHorizonAt: every valid cell at least
+/// edgeMarginM from each DEM edge (converted to cells with the middle row's sizes, plus two;
+/// 0 = no margin), in row-major order shuffled by std::mt19937_64(seed), the first `count` kept.
+/// The same arguments always give the same cells.
+std::vector<CellIndex> sampleValidCells(const Terrain& terrain, std::size_t count, std::uint64_t seed,
+                                        double edgeMarginM = 0);
+
 /// Validates params (finite azimuth, maxDistanceM > 0, 0 <= refraction < 1, tolerance >= 0, a
 /// window inside the grid) and throws Error naming the bad option.
 void validateHorizonParams(const Terrain& terrain, const HorizonParams& params);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace demlight {
 
@@ -137,6 +138,24 @@ std::vector<HorizonSample> referenceHorizonAt(const Terrain& terrain, const Hori
     }, 64);
     if (progress) progress->throwIfCancelled();
     return out;
+}
+
+std::vector<CellIndex> sampleValidCells(const Terrain& t, std::size_t count, std::uint64_t seed,
+                                        double edgeMarginM) {
+    std::size_t marginCols = 0, marginRows = 0;
+    if (edgeMarginM > 0) {
+        const std::size_t mid = t.height() / 2;
+        marginCols = static_cast<std::size_t>(std::ceil(edgeMarginM / t.cellWidthM[mid])) + 2;
+        marginRows = static_cast<std::size_t>(std::ceil(edgeMarginM / t.cellHeightM[mid])) + 2;
+    }
+    std::vector<CellIndex> cells;
+    for (std::size_t r = marginRows; r + marginRows < t.height(); ++r)
+        for (std::size_t c = marginCols; c + marginCols < t.width(); ++c)
+            if (t.valid(c, r)) cells.push_back({c, r});
+    std::mt19937_64 rng(seed);
+    std::shuffle(cells.begin(), cells.end(), rng);
+    if (cells.size() > count) cells.resize(count);
+    return cells;
 }
 
 }  // namespace demlight

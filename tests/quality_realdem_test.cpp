@@ -90,13 +90,7 @@ TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull
 
     // A fixed pseudo-random sample of valid cells, anywhere in the crop (all methods see the
     // same DEM, so cells near the edge are as fair as any).
-    std::vector<CellIndex> cells;
-    for (std::size_t r = 0; r < t.height(); ++r)
-        for (std::size_t c = 0; c < t.width(); ++c)
-            if (t.valid(c, r)) cells.push_back({c, r});
-    std::mt19937_64 rng(kSampleSeed);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    cells.resize(std::min(cells.size(), kSampleCells));
+    const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
     ASSERT_EQ(cells.size(), kSampleCells);
 
     // The reference: full physics (curvature on, refraction 0.13, the whole DEM).

@@ -77,17 +77,8 @@ double angleDeg(const EnuVector& a, const EnuVector& b) {
 }
 
 std::vector<RefCell> reference(const Terrain& t, const Normals& normals, const HorizonParams& p) {
-    // Valid cells farther than the search distance from every edge (metres along each axis).
-    const std::size_t mid = t.height() / 2;
-    const auto marginCols = static_cast<std::size_t>(std::ceil(p.maxDistanceM / t.cellWidthM[mid])) + 2;
-    const auto marginRows = static_cast<std::size_t>(std::ceil(p.maxDistanceM / t.cellHeightM[mid])) + 2;
-    std::vector<CellIndex> cells;
-    for (std::size_t r = marginRows; r + marginRows < t.height(); ++r)
-        for (std::size_t c = marginCols; c + marginCols < t.width(); ++c)
-            if (t.valid(c, r)) cells.push_back({c, r});
-    std::mt19937_64 rng(4242);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    if (cells.size() > kReferenceCells) cells.resize(kReferenceCells);
+    // Valid cells farther than the search distance from every edge.
+    const std::vector<CellIndex> cells = sampleValidCells(t, kReferenceCells, 4242, p.maxDistanceM);
 
     // Horizons of every cell in every reference azimuth.
     std::vector<std::vector<HorizonSample>> h(kReferenceAzimuths);

@@ -54,13 +54,8 @@ TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
     ASSERT_GE(frame.sweepAzimuthsDeg.size(), 8u);
 
     // Reference: every sampled cell at its own sun azimuth.
-    std::vector<CellIndex> cells;
-    for (std::size_t r = 0; r < t.height(); ++r)
-        for (std::size_t c = 0; c < t.width(); ++c)
-            if (t.valid(c, r)) cells.push_back({c, r});
-    std::mt19937_64 rng(7);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    cells.resize(1500);
+    const std::vector<CellIndex> cells = sampleValidCells(t, 1500, 7);
+    ASSERT_EQ(cells.size(), 1500u);
     double visError = 0;
     std::size_t visWrong = 0;
     for (const CellIndex& cell : cells) {
