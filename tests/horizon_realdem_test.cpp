@@ -82,11 +82,9 @@ class HorizonRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(HorizonRealDem, SweepMatchesReference) {
     const Case& tc = GetParam();
-    const std::string path = sharedDemPath(tc.file);
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
-    const Dem dem = loadDem(path);
-    Terrain t = dem.terrain;
-    if (tc.cropW > 0) t = cropTerrainCentre(t, tc.cropW, tc.cropH);
+    const std::optional<Terrain> dem = sharedTerrain(tc.file, tc.cropW, tc.cropH);
+    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(tc.file);
+    const Terrain& t = *dem;
     const Normals normals = computeNormals(t);
     // The scene default, capped at a quarter of the DEM's shorter side so that enough cells are
     // not truncated to measure.

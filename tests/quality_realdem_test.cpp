@@ -84,9 +84,9 @@ std::vector<double> clampedErrors(const std::vector<double>& h, const std::vecto
 class QualityRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull) {
-    const std::string path = sharedDemPath(GetParam().file);
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
-    const Terrain t = cropTerrainCentre(loadDem(path).terrain, kCropCells, kCropCells);
+    const std::optional<Terrain> dem = sharedTerrain(GetParam().file, kCropCells, kCropCells);
+    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
+    const Terrain& t = *dem;
 
     // A fixed pseudo-random sample of valid cells, anywhere in the crop (all methods see the
     // same DEM, so cells near the edge are as fair as any).

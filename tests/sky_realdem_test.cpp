@@ -131,11 +131,9 @@ class SkyRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     const Case& tc = GetParam();
-    const std::string path = sharedDemPath(tc.file);
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared DEM not found: " << path;
-    const Dem dem = loadDem(path);
-    Terrain t = dem.terrain;
-    if (tc.cropW > 0) t = cropTerrainCentre(t, tc.cropW, tc.cropH);
+    const std::optional<Terrain> dem = sharedTerrain(tc.file, tc.cropW, tc.cropH);
+    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(tc.file);
+    const Terrain& t = *dem;
     const Normals normals = computeNormals(t, kThreads);
     const std::size_t mid = t.height() / 2;
     const double sideM = std::min(t.cellWidthM[mid] * static_cast<double>(t.width()),

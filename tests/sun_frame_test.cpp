@@ -41,9 +41,9 @@ SunField slantedField(std::size_t width, std::size_t height, double az0, double 
 }
 
 TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
-    const std::string path = sharedDemPath("big_tujunga_srtm30m_utm11.tif");
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
-    const Terrain t = cropTerrainCentre(loadDem(path).terrain, 400, 400);
+    const std::optional<Terrain> dem = sharedTerrain("big_tujunga_srtm30m_utm11.tif", 400, 400);
+    if (!dem) GTEST_SKIP() << "shared DEM not found";
+    const Terrain& t = *dem;
     const Normals normals = computeNormals(t, 0);
     const SunField field = slantedField(t.width(), t.height(), 150.0, 153.2, 12.0);
 
