@@ -3,6 +3,7 @@
 //   (default: 5 runs, the scene's defaultMaxDistanceM (0 = default too), azimuths
 //   0,37,90,123.4,225; azimuths as a comma-separated list). Each azimuth is timed on 1 thread
 //   and on all threads within the same run, so their ratio is not skewed by load drift.
+#include "bench/bench_timing.h"
 #include "geo/dem.h"
 #include "lighting/horizon.h"
 #include "src/error.h"
@@ -19,14 +20,7 @@
 namespace {
 
 double medianSeconds(const demlight::Terrain& t, const demlight::HorizonParams& p, int runs) {
-    std::vector<double> s;
-    for (int i = 0; i < runs; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const demlight::HorizonMap m = demlight::sweepHorizon(t, p);
-        s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::sort(s.begin(), s.end());
-    return s[s.size() / 2];
+    return demlight::bench::medianSeconds(runs, [&] { const demlight::HorizonMap m = demlight::sweepHorizon(t, p); });
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 //   max-distance 0 = the scene default). tests/sky_realdem_test.cpp's crops and distances:
 //   N44W072.hgt 2 6627 400 400; big_tujunga_srtm30m_utm11.tif 2 3750 600 500;
 //   svalbard_longyearbyen_npi_dtm20.tif 2 2500 600 500.
+#include "bench/bench_timing.h"
 #include "geo/dem.h"
 #include "lighting/aperture.h"
 #include "lighting/directions.h"
@@ -22,9 +23,7 @@
 
 namespace {
 
-double since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+double since(std::chrono::steady_clock::time_point t0) { return demlight::bench::secondsSince(t0); }
 
 }  // namespace
 

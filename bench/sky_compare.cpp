@@ -39,6 +39,7 @@
 // (the scene plan turns it on for this crop; with --refraction 0 its drop over the search
 // distance is at most d / 2R = 0.017 deg at 3.75 km), so the CLI rows show the curvature-on
 // result.
+#include "bench/bench_timing.h"
 #include "geo/dem.h"
 #include "geo/raster.h"
 #include "lighting/directions.h"
@@ -78,9 +79,7 @@ constexpr double kAlbedo = 0.2;
 /// SAGA writes VISIBLE as a percentage.
 constexpr double kPercent = 100.0;
 
-double since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+double since(std::chrono::steady_clock::time_point t0) { return demlight::bench::secondsSince(t0); }
 
 /// Dense-reference values of one cell: demlight's three bands and SAGA's two definitions.
 struct RefCell {

@@ -24,6 +24,7 @@
 // Cells: a fixed pseudo-random sample of valid cells at least 2 M from every crop edge, M = D0
 // capped at a sixth of the crop's shorter side, so that every cell has terrain around it (the
 // whole-crop reference is cut by the crop edge beyond that, as every method is).
+#include "bench/bench_timing.h"
 #include "geo/dem.h"
 #include "lighting/aperture.h"
 #include "lighting/directions.h"
@@ -98,21 +99,8 @@ struct Row {
     bool pareto = false;
 };
 
-double seconds(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// Median wall time of `repeats` calls of f (seconds).
-double medianSeconds(int repeats, const std::function<void()>& f) {
-    std::vector<double> s;
-    for (int i = 0; i < repeats; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        f();
-        s.push_back(seconds(t0));
-    }
-    std::sort(s.begin(), s.end());
-    return s[s.size() / 2];
-}
+using bench::medianSeconds;
+double seconds(std::chrono::steady_clock::time_point t0) { return bench::secondsSince(t0); }
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0;
