@@ -146,8 +146,10 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
             const auto [az, el] = field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
             // Horizon at this cell's own sun azimuth, linear between the bracketing sweeps.
             // Both bracketing sweeps' windows contain this cell (sweepWindows).
-            double h = horizons[0].angleDeg.empty() ? 0.0 : horizons[0].angleDeg(col, row);
-            if (azimuths.size() > 1) {
+            double h = 0;
+            if (azimuths.size() == 1) {
+                h = horizons[0].angleDeg(col, row);
+            } else {
                 const double u = std::clamp((az - azimuths[0]) / spacing, 0.0,
                                             static_cast<double>(azimuths.size() - 1));
                 const auto i0 = std::min(static_cast<std::size_t>(u), azimuths.size() - 2);
