@@ -522,7 +522,7 @@ private:
         for (const Quality q : {Quality::Auto, Quality::Full}) {
             const ScenePlan plan = planScene(t_, q, QualityBudget{});
             const auto n = static_cast<std::size_t>(plan.skyDirections);
-            HorizonParams hp = planIntegralParams(plan, base_.refraction, kThreads);
+            HorizonParams hp = planIntegralParams(t_, plan, n, base_.refraction, kThreads);
             SkyMaps maps;
             const double s = medianSeconds(o_.repeats, [&] {
                 SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
@@ -735,7 +735,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         double s[2], mae[2], work[2];
         for (int q = 0; q < 2; ++q) {
             const auto n = static_cast<std::size_t>(plans[q].skyDirections);
-            const HorizonParams hp = planIntegralParams(plans[q], budget.refraction, kThreads);
+            const HorizonParams hp = planIntegralParams(t, plans[q], n, budget.refraction, kThreads);
             SkyMaps maps;
             s[q] = medianSeconds(o.repeats, [&] {
                 SkyAccumulator acc(normals.east, normals.north, normals.up, n, {}, kThreads);

@@ -29,8 +29,8 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    const HorizonParams params = integralParams(o.search, plan);
     const int directions = o.directions.value_or(plan.skyDirections);
+    const HorizonParams params = integralParams(o.search, plan, t, static_cast<std::size_t>(directions));
 
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);

@@ -151,7 +151,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     const bool skySweeps = o.skyModel == "stewart-langer";
     const auto directions = static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections));
     const std::size_t sweeps = skySweeps || aperture ? directions : 0;
-    const HorizonParams hp = integralParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan, t, std::max<std::size_t>(directions, 1));
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "light", t.heightsM.size() * (sweeps + (aperture ? 0 : 1)));
 

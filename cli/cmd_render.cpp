@@ -46,7 +46,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
     const auto start = std::chrono::steady_clock::now();
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
     const std::size_t skyDirections = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams skyParams = integralParams(o.search, plan);
+    const HorizonParams skyParams = integralParams(o.search, plan, t, skyDirections);
     const SunField field = computeSunField(dem, when.utc, SolarSite{}, SpaOptions{}, plan.sunLatticeStepCells);
     const Normals normals = computeNormals(t, o.search.threads);
     ProgressBar bar(!ctx.quiet);
@@ -72,7 +72,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
                   std::to_string(image.height) + "); quality " + std::string(qualityName(plan.quality)) +
                   ": sun max distance " + formatNumber(std::round(frame.maxDistanceM)) + " m, " +
                   std::to_string(skyDirections) + " sky directions to " +
-                  formatNumber(std::round(skyParams.maxDistanceM)) + " m; " + formatNumber(seconds) + " s");
+                  formatDistance(skyParams.maxDistanceM) + "; " + formatNumber(seconds) + " s");
 }
 
 }  // namespace

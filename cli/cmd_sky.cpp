@@ -70,9 +70,13 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     }
 
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    const HorizonParams params = integralParams(o.search, plan);
     const int directions = o.directions.value_or(plan.skyDirections);
+    const HorizonParams params = integralParams(o.search, plan, t, static_cast<std::size_t>(directions));
 
+    if (o.search.verbose && !ctx.quiet)
+        note(ctx, "  sky sweeps: " + std::to_string(directions) + " directions, direction tolerance " +
+                      formatNumber(params.directionToleranceDeg) + " deg, search distance " +
+                      formatDistance(params.maxDistanceM));
     const auto start = std::chrono::steady_clock::now();
     const Normals normals = computeNormals(t, o.search.threads);
     SkyAccumulator sky(normals.east, normals.north, normals.up,
@@ -109,7 +113,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands.size()) + " bands: svf_horizontal, "
               "sky_fraction, sky_K, sky_factor" + (maps.patchK.empty() ? "" : ", patches") + "); " +
               std::to_string(directions) + " directions, max distance " +
-              formatNumber(std::round(params.maxDistanceM)) + " m, " + formatNumber(seconds) + " s compute");
+              formatDistance(params.maxDistanceM) + ", " + formatNumber(seconds) + " s compute");
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& f
                      const SunOptions& o, const ScenePlan& plan, std::size_t d, bool smooth,
                      ProgressCounter& counter) {
     // The aperture does not depend on the sun: search distance and directions are the sky's.
-    const HorizonParams hp = integralParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan, t, d);
     ApertureAccumulator acc(normals.east, normals.north, normals.up, d, o.search.threads);
     sweepDirections(t, hp, d, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
                     &counter);

@@ -96,7 +96,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
 
     // Sky term once: it does not depend on the sun's position.
     const auto skyDirections = static_cast<std::size_t>(o.skyDirections.value_or(plan.skyDirections));
-    const HorizonParams hp = integralParams(o.search, plan);
+    const HorizonParams hp = integralParams(o.search, plan, t, skyDirections);
     SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, o.search.threads);
     ProgressCounter skyCounter(bar.callback(), "sky", t.heightsM.size() * skyDirections);
     sweepDirections(t, hp, skyDirections,

@@ -239,9 +239,13 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const auto seconds = [](clock::duration d) { return std::chrono::duration<double>(d).count(); };
     const auto tStart = clock::now();
     const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    HorizonParams skyParams = integralParams(o.search, plan);
     const std::size_t skyDirections =
         stackDirections > 0 ? stackDirections : o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    // The interpolated stack also gives every frame's sun horizon: the plan's own direction
+    // tolerance, not the integrals' (planIntegralParams).
+    HorizonParams skyParams = stackDirections > 0 ? planHorizonParams(plan, o.search.refraction, o.search.threads)
+                                                  : integralParams(o.search, plan, t, skyDirections);
+    skyParams.nearestLine = plan.integralNearestLine;
     const std::size_t n = frames.instants.size();
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "timelapse", t.heightsM.size() * (skyDirections + n));
@@ -357,7 +361,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   "), " + std::to_string(sunUp) + " with the sun up");
     note(ctx, "time: sky " + formatNumber(std::round(skySeconds * 1000)) + " ms once (" +
                   std::to_string(skyDirections) + " directions to " +
-                  formatNumber(std::round(skyParams.maxDistanceM)) + " m, quality " +
+                  formatDistance(skyParams.maxDistanceM) + ", quality " +
                   std::string(qualityName(plan.quality)) +
                   (stackDirections > 0 ? ", also the interpolated sun horizons" : "") +
                   "); per frame " +

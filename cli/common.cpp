@@ -20,11 +20,11 @@ constexpr double kCarriedNodataMagnitude = 10000.0;
 
 void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
     cmd->add_option("-o,--output", o.path, "Output raster path")->required();
-    cmd->add_option("--of", o.format, "Output format (also -of): GTiff (tiled, DEFLATE) or COG")
+    cmd->add_option("--of", o.format, "Output format (also -of): GTiff (tiled, ZSTD level 1, band-interleaved) or COG (DEFLATE)")
         ->check(CLI::IsMember({"GTiff", "COG"}, CLI::ignore_case))
         ->transform([](std::string s) { return (s == "cog" || s == "COG") ? "COG" : "GTiff"; });
     cmd->add_option("--co", o.creationOptions,
-                    "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=ZSTD");
+                    "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=DEFLATE for readers without ZSTD");
 }
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
@@ -72,8 +72,9 @@ HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
     return planHorizonParams(plan, o.refraction, o.threads);
 }
 
-HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan) {
-    return planIntegralParams(plan, o.refraction, o.threads);
+HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan, const Terrain& terrain,
+                             std::size_t directions) {
+    return planIntegralParams(terrain, plan, directions, o.refraction, o.threads);
 }
 
 SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
@@ -150,6 +151,10 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
         throw Error("cannot write '" + outPath + "': folder '" + parent.string() +
                     "' is not writable");
     }
+}
+
+std::string formatDistance(double metres) {
+    return std::isfinite(metres) ? formatNumber(std::round(metres)) + " m" : std::string("the whole DEM");
 }
 
 std::string formatNumber(double value) {

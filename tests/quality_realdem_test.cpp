@@ -10,8 +10,11 @@
 // tolerance to full's median and 99th percentile. Cost: deterministic work counts
 // (estimateSweepWork), not wall time; the bench checks that they track wall time.
 #include "geo/dem.h"
+#include "lighting/directions.h"
 #include "lighting/horizon.h"
 #include "lighting/quality.h"
+#include "lighting/sky.h"
+#include "lighting/surface.h"
 
 #include "shared_dem.h"
 
@@ -23,6 +26,7 @@
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -153,6 +157,57 @@ TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull
                 fullSky, fullSky / autoSky, autoOne, fullOne, fullOne / autoOne);
     EXPECT_LE(autoSky, fullSky / 2);
     EXPECT_LT(autoOne, fullOne);
+}
+
+// The integrals' scan-direction tolerance (kIntegralToleranceShareOfSector of the sector width)
+// against the sweep's own one-cell drift rule, on a full-height strip of a 1-degree lat/lon tile:
+// there the cell aspect ratio changes with latitude enough to split the strict sweeps into
+// regions. The relaxed sweeps must use fewer regions and change the sky by a small fraction of
+// its 0.003 budget (measured 0.0001 sky_K MAE on the whole tile).
+TEST(Quality, IntegralToleranceKeepsTheSkyOnARealTile) {
+    const std::optional<Terrain> dem = sharedTerrain("N48W125_srtm1.tif", 900, 3601);
+    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath("N48W125_srtm1.tif");
+    const Terrain& t = *dem;
+    constexpr std::size_t kDirections = 32;
+    constexpr int kThreads = 2;
+    const ScenePlan plan = planScene(t, Quality::Auto, QualityBudget{});
+    const HorizonParams relaxed = planIntegralParams(t, plan, kDirections, 0.13, kThreads);
+    HorizonParams strict = relaxed;
+    strict.directionToleranceDeg = 0;  // the sweep's automatic one-cell rule
+    EXPECT_GT(relaxed.directionToleranceDeg, effectiveDirectionToleranceDeg(t, strict));
+
+    std::size_t regionsRelaxed = 0, regionsStrict = 0;
+    for (std::size_t i = 0; i < kDirections; ++i) {
+        HorizonParams a = relaxed, b = strict;
+        a.azimuthDeg = b.azimuthDeg = directionAzimuthDeg(i, kDirections);
+        regionsRelaxed += sweepRegions(t, a).size();
+        regionsStrict += sweepRegions(t, b).size();
+    }
+    EXPECT_LT(regionsRelaxed, regionsStrict);
+
+    const Normals normals = computeNormals(t, kThreads);
+    const auto sky = [&](const HorizonParams& p) {
+        SkyAccumulator acc(normals.east, normals.north, normals.up, kDirections, {}, kThreads);
+        sweepDirections(t, p, kDirections, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
+        return acc.finish(0.2);
+    };
+    const SkyMaps a = sky(relaxed), b = sky(strict);
+    double maeK = 0, maeSvf = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < t.heightsM.size(); ++i) {
+        const float ka = a.skyK.data()[i], kb = b.skyK.data()[i];
+        if (std::isnan(ka) || std::isnan(kb)) continue;
+        maeK += std::abs(ka - kb);
+        maeSvf += std::abs(a.svfHorizontal.data()[i] - b.svfHorizontal.data()[i]);
+        ++n;
+    }
+    ASSERT_GT(n, t.heightsM.size() / 4);
+    maeK /= static_cast<double>(n);
+    maeSvf /= static_cast<double>(n);
+    std::printf("  regions over %zu directions: relaxed %zu, strict %zu; sky_K MAE %.6f, svf_horizontal MAE %.6f\n",
+                kDirections, regionsRelaxed, regionsStrict, maeK, maeSvf);
+    EXPECT_LT(maeK, 0.0005);
+    EXPECT_LT(maeSvf, 0.0005);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedDems, QualityRealDem,

@@ -98,7 +98,8 @@ TEST(WriteRaster, RoundTripKeepsGeoreferencingAndDescriptions) {
     ASSERT_TRUE(s.nodata.has_value());
     EXPECT_EQ(*s.nodata, -32768.0);
     EXPECT_EQ(s.metadata.at("DEMLIGHT_COMMAND"), "demlight test");
-    EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "DEFLATE");
+    EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "ZSTD");
+    EXPECT_EQ(s.imageStructure.at("INTERLEAVE"), "BAND");
 
     const RasterBand back = readRasterBand(out);
     EXPECT_TRUE(std::isnan(back.values(1, 1)));
