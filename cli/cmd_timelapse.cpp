@@ -1,7 +1,8 @@
 // demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D [--tz ZONE]):
 // a frame per instant. Per frame the sun is placed per region and swept exactly along its own
 // azimuth (lighting/sun_frame.h); the sky light K is computed once. Writes
-//   DIR/frame_NNN.tif  lightmaps: sun_irradiance, sun_visibility, sky_k (Float32, linear)
+//   DIR/frame_NNN.tif  lightmaps: sun_irradiance, sun_visibility (Float32, linear)
+//   DIR/sky_k.tif      the sky light K every frame shares (written once)
 //   DIR/frame_NNN.png  previews with the render rig (lighting/preview.h)
 //   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
 // The scene plan (--quality, lighting/quality.h) sets the sun-position lattice, the sun's search
@@ -281,6 +282,23 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         gif = std::make_unique<GifWriter>((fs::path(o.outDir) / "timelapse.gif").string(), o.fps);
 
     double computeS = 0, writeS = 0;
+    if (formats.count("tif")) {
+        // The sky term is the same in every frame: written once, next to the frames.
+        const auto w0 = clock::now();
+        std::map<std::string, std::string> meta = planMetadata(plan);
+        meta.insert({
+            {"DEMLIGHT_PRODUCT", "timelapse sky"},
+            {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
+            {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(skyParams.maxDistanceM)},
+            {"DEMLIGHT_REFRACTION", formatNumber(skyParams.refraction)},
+        });
+        OutputOptions out;
+        out.path = (fs::path(o.outDir) / "sky_k.tif").string();
+        writeRaster(out.path,
+                    {{&sky, nullptr, "sky_k", "normalised sky irradiance K under a unit uniform sky (0-1)"}},
+                    dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
+        writeS += seconds(clock::now() - w0);
+    }
     std::size_t sunUp = 0;
     std::unique_ptr<SequenceFitter> fitter;
     if (o.fitDegree > 0) {
@@ -335,9 +353,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
             writeRaster(out.path,
                         {{&frame.light.irradiance, nullptr, "sun_irradiance",
                           "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"},
-                         {&frame.light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"},
-                         {&sky, nullptr, "sky_k",
-                          "normalised sky irradiance K under a unit uniform sky (0-1)"}},
+                         {&frame.light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"}},
                         dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
         }
         if (formats.count("png") || formats.count("mp4"))
@@ -369,7 +385,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   formatNumber(std::round(writeS * 1000 / n)) + " ms writing; total " +
                   formatNumber(std::round(total * 100) / 100) + " s");
     note(ctx, "wrote " + o.outDir + ": " +
-                  (formats.count("tif") ? "frame_*.tif (sun_irradiance, sun_visibility, sky_k) " : "") +
+                  (formats.count("tif") ? "frame_*.tif (sun_irradiance, sun_visibility), sky_k.tif " : "") +
                   (formats.count("png") ? "frame_*.png " : "") + (gif ? "timelapse.gif " : "") +
                   (formats.count("mp4") ? "timelapse.mp4" : ""));
 }

@@ -98,6 +98,10 @@ std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& de
 
 void checkImagePath(const std::string& path) { createOutput(path); }
 
+namespace {
+constexpr int kPngCompressionLevel = 1;
+}  // namespace
+
 void writeImage(const std::string& path, const Image8& image) {
     auto out = createOutput(path);
     const bool alpha = out->supports("alpha");
@@ -105,6 +109,9 @@ void writeImage(const std::string& path, const Image8& image) {
     OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), channels,
                          OIIO::TypeDesc::UINT8);
     if (alpha) spec.alpha_channel = 3;
+    // zlib level 1: a 3601 x 3601 PNG in about a third of the default level's time, for a file
+    // about 10 % larger (time-lapses write one per frame).
+    spec.attribute("png:compressionLevel", kPngCompressionLevel);
     const fs::path tmp = tempPathFor(path);
     if (!out->open(tmp.string(), spec)) fail(*out, tmp, path);
     const std::vector<std::uint8_t> rgb = alpha ? std::vector<std::uint8_t>() : dropAlpha(image);

@@ -20,6 +20,7 @@ using detail::kPi;
 namespace {
 
 constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+constexpr float kDegToRadF = static_cast<float>(kDegToRad);
 
 double clampElevationRad(double elevationDeg) {
     return std::clamp(elevationDeg, -90.0, 90.0) * kDegToRad;
@@ -39,8 +40,10 @@ double planeAntiderivative(const detail::NormalFrame& f, double psi) {
     const double m = std::sqrt(1.0 + k * k);
     const double mMinus1 = k * k / (m + 1.0);
     const double s = std::sin(psi), c = std::cos(psi);
-    return -f.horizontal * c * std::atan(k * s) +
-           f.up * (mMinus1 * psi + m * std::atan(mMinus1 * s * c / (c * c + m * s * s)));
+    // fastAtan (3e-9 rad) in place of std::atan: this runs for every sector whose tangent plane
+    // rises above the horizon, the dearest case of the sky accumulation.
+    return -f.horizontal * c * fastAtan(k * s) +
+           f.up * (mMinus1 * psi + m * fastAtan(mMinus1 * s * c / (c * c + m * s * s)));
 }
 
 /// pi * K over one piece of a wedge.
@@ -369,23 +372,31 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         float* k = sumK_.rowPtr(row);
         float* s1 = sumSin_.rowPtr(row);
         float* s2 = sumSin2_.rowPtr(row);
+        // Pass 1, branch-free so the compiler vectorises it: sin max(h, 0) into the two SVF
+        // sums for every cell (NaN horizons propagate into them, so nodata stays NaN).
         for (std::size_t col = 0; col < width; ++col) {
-            // NaN inputs propagate into the sums, so nodata stays NaN.
-            const double hRad = std::isnan(h[col]) ? std::numeric_limits<double>::quiet_NaN()
-                                                   : clampElevationRad(h[col]);
-            const auto [sinH, cosH] = fastSinCosElevation(hRad);  // NaN stays NaN
-            const double sPos = hRad > 0.0 ? sinH : (std::isnan(hRad) ? hRad : 0.0);
-            s1[col] += static_cast<float>(sPos);
-            s2[col] += static_cast<float>(sPos * sPos);
-            if (std::isnan(hRad) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
+            const float x = std::clamp(h[col], -90.0f, 90.0f) * kDegToRadF;  // NaN stays NaN
+            const float sinH = fastSinElevationF(x);
+            const float sPos = x > 0.0f ? sinH : (x != x ? x : 0.0f);
+            s1[col] += sPos;
+            s2[col] += sPos * sPos;
+        }
+        // Pass 2: K for the cells whose tangent plane is tilted (flat ones take K from the SVF
+        // sum in finish()), exactly per sector in double.
+        for (std::size_t col = 0; col < width; ++col) {
+            if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
                 k[col] = kNaNf;
                 for (std::size_t p = 0; p < patches_.size(); ++p) sumPatch_[p].rowPtr(row)[col] = kNaNf;
                 continue;
             }
+            // A normal with no horizontal part is flat whatever its length; skip the rest early.
+            if (e[col] == 0.0f && n[col] == 0.0f && pieces.empty()) continue;
             const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
-            if (normal.east * normal.east + normal.north * normal.north >=
-                detail::kFlatNormalEps * detail::kFlatNormalEps)  // flat: K from the SVF sum
-                k[col] += static_cast<float>(wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi));
+            const bool tilted = normal.east * normal.east + normal.north * normal.north >=
+                                detail::kFlatNormalEps * detail::kFlatNormalEps;
+            const double hRad = clampElevationRad(h[col]);
+            const auto [sinH, cosH] = fastSinCosElevation(hRad);
+            if (tilted) k[col] += static_cast<float>(wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi));
             for (const PatchPiece& p : pieces)
                 sumPatch_[p.patch].rowPtr(row)[col] += static_cast<float>(
                     hRad >= p.lowerRad

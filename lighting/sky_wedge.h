@@ -97,12 +97,15 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
             piece(phi1, phi2, lower >= 0.0 ? PieceLower::Constant : PieceLower::Plane);
         return;
     }
-    // Cut points: thetaP(phi) = x  <=>  R sin(phi + delta) = -N_up tan x.
+    // Cut points: thetaP(phi) = x  <=>  R sin(phi + delta) = -N_up tan x. The plane never
+    // reaches the zenith, so an upper limit of pi/2 cuts nothing.
     std::array<double, 10> cuts{};
     std::size_t count = 0;
     cuts[count++] = phi1;
+    const double tanLower = std::tan(lower);
     for (double x : {lower, upper}) {
-        const double s = -f.up * std::tan(x) / f.horizontal;
+        if (x >= kHalfPi) continue;
+        const double s = -f.up * (x == lower ? tanLower : std::tan(x)) / f.horizontal;
         if (!(std::abs(s) < 1.0)) continue;
         const double base = std::asin(s);
         for (double psi : {base, kPi - base}) {
@@ -117,9 +120,12 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
     for (std::size_t i = 0; i + 1 < count; ++i) {
         const double a = cuts[i], b = cuts[i + 1];
         if (!(a < b)) continue;
-        const double thetaP = planeElevation(f, 0.5 * (a + b));
-        if (thetaP >= upper) continue;
-        piece(a, b, thetaP > lower ? PieceLower::Plane : PieceLower::Constant);
+        // thetaP against the limits through tan thetaP = -a(phi) / N_up (tan is increasing):
+        // no arctangent per piece.
+        const double mid = 0.5 * (a + b);
+        const double tanP = -(f.east * std::sin(mid) + f.north * std::cos(mid)) / f.up;
+        if (upper < kHalfPi && tanP >= std::tan(upper)) continue;
+        piece(a, b, tanP > tanLower ? PieceLower::Plane : PieceLower::Constant);
     }
 }
 

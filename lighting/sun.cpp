@@ -2,11 +2,13 @@
 
 #include "src/angles.h"
 #include "src/error.h"
+#include "src/fast_math.h"
 #include "src/parallel.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 namespace demlight {
@@ -52,6 +54,41 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
     const Enu s = directionEnu(sunAzimuthDeg, sunElevationDeg);
     const double cosine = normal.east * s.east + normal.north * s.north + normal.up * s.up;
     // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
+    return {o, o * std::max(0.0, cosine)};
+}
+
+SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
+                        double cosRef) {
+    const double el = std::clamp(elevationDeg, -90.0, 90.0) * kDegToRad;
+    const auto [sinE, cosE] = fastSinCosElevation(el);
+    // The offset in (-180, 180]: fields hold azimuths unwrapped, the reference may be wrapped.
+    double offsetDeg = azimuthDeg - refAzimuthDeg;
+    if (std::abs(offsetDeg) > 540.0) offsetDeg = std::fmod(offsetDeg, 360.0);  // rare; NaN stays NaN
+    if (offsetDeg > 180.0) {
+        offsetDeg -= 360.0;
+    } else if (offsetDeg <= -180.0) {
+        offsetDeg += 360.0;
+    }
+    const double offset = offsetDeg * kDegToRad;
+    if (!(std::abs(offset) <= 0.5 * std::numbers::pi)) {
+        const double az = wrapAzimuthDeg(azimuthDeg) * kDegToRad;
+        return {elevationDeg, std::sin(az), std::cos(az), sinE, cosE};
+    }
+    const auto [sinD, cosD] = fastSinCosElevation(offset);
+    return {elevationDeg, sinRef * cosD + cosRef * sinD, cosRef * cosD - sinRef * sinD, sinE, cosE};
+}
+
+SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg) {
+    if (std::isnan(horizonDeg)) return {horizonDeg, horizonDeg};
+    // Tangent-plane elevation in the sun's azimuth: atan2(-N_h·a, N_up) (as
+    // tangentPlaneElevationDeg), with the polynomial arctangent.
+    const double across = -(normal.east * sun.sinAzimuth + normal.north * sun.cosAzimuth);
+    const double planeDeg = normal.up > 0.0   ? fastAtan(across / normal.up) * kRadToDeg
+                            : normal.up < 0.0 ? std::atan2(across, normal.up) * kRadToDeg
+                                              : (across > 0.0 ? 90.0 : across < 0.0 ? -90.0 : 0.0);
+    const double o = sunVisibility(std::max(horizonDeg, planeDeg), sun.elevationDeg, sunDiameterDeg);
+    const double cosine = (normal.east * sun.sinAzimuth + normal.north * sun.cosAzimuth) * sun.cosElevation +
+                          normal.up * sun.sinElevation;
     return {o, o * std::max(0.0, cosine)};
 }
 

@@ -42,6 +42,24 @@ struct SunTerms {
 SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                   double sunElevationDeg, double sunDiameterDeg);
 
+/// The sun seen from one cell: its elevation and the sines and cosines of its azimuth and
+/// elevation, for grid drivers that evaluate thousands of cells under nearly the same sun.
+struct SunAngles {
+    double elevationDeg;
+    double sinAzimuth, cosAzimuth, sinElevation, cosElevation;
+};
+
+/// SunAngles of the sun at (azimuth, elevation) from those of a nearby reference azimuth
+/// (sinRef, cosRef of refAzimuthDeg): polynomial sines and cosines of the elevation and of the
+/// azimuth's offset (src/fast_math.h, < 1e-13 from <cmath>), no library trigonometry. The
+/// offset must be within 90 degrees (sun fields span a few degrees); beyond that <cmath> is used.
+SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
+                        double cosRef);
+
+/// sunTerms() from precomputed angles: the same visibility and irradiance (the tangent-plane
+/// elevation through a polynomial arctangent, within 2e-7 degrees).
+SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg);
+
 struct SunLight {
     /// Clamped visibility of the sun's disk in [0, 1]; NaN at nodata.
     Grid<float> visibility;

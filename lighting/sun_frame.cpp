@@ -140,6 +140,10 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         }
     }
     const double spacing = azimuths.size() > 1 ? azimuths[1] - azimuths[0] : 1.0;
+    // Each cell's sun from the middle sweep azimuth's sine and cosine plus a small offset: no
+    // library trigonometry per cell (sunAnglesNear).
+    const double refAzimuthDeg = azimuths[azimuths.size() / 2];
+    const double sinRef = std::sin(refAzimuthDeg * kDegToRad), cosRef = std::cos(refAzimuthDeg * kDegToRad);
     parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < t.width(); ++col) {
             if (std::isnan(t.heightsM(col, row))) continue;
@@ -157,8 +161,8 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
                 h = (1 - f) * horizons[i0].angleDeg(col, row) + f * horizons[i0 + 1].angleDeg(col, row);
             }
             const Enu n = normals.at(col, row);
-            const double azimuth = wrapAzimuthDeg(az);
-            const SunTerms terms = sunTerms(n, h, azimuth, el, params.sunDiameterDeg);
+            const SunTerms terms =
+                sunTerms(n, h, sunAnglesNear(az, el, refAzimuthDeg, sinRef, cosRef), params.sunDiameterDeg);
             frame.light.visibility(col, row) = static_cast<float>(terms.visibility);
             frame.light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }

@@ -152,6 +152,7 @@ TEST(TimelapseCli, WritesFramesPreviewsAndGif) {
         << err;
     for (const char* f : {"frame_000.tif", "frame_001.tif", "frame_002.tif", "frame_003.tif"})
         EXPECT_EQ(fs::exists(d / "out" / f), std::string(f) != "frame_003.tif") << f;
+    EXPECT_TRUE(fs::exists(d / "out" / "sky_k.tif"));
     expectPngOfDemSize(d / "out" / "frame_002.png");
     const auto gif = readFile(d / "out" / "timelapse.gif");
     ASSERT_GE(gif.size(), 10u);
@@ -180,7 +181,7 @@ TEST(TimelapseCli, FramesMatchDemlightSun) {
     const auto frame = demlight::readRasterResampled((d / "out" / "frame_000.tif").string(), ref.ref,
                                                      kDemWidth, kDemHeight);
     const auto sun = demlight::readRasterResampled((d / "sun.tif").string(), ref.ref, kDemWidth, kDemHeight);
-    ASSERT_EQ(frame.size(), 3u);
+    ASSERT_EQ(frame.size(), 2u);  // sun_irradiance, sun_visibility (sky_k.tif once)
     ASSERT_EQ(sun.size(), 2u);
     std::size_t compared = 0;
     for (std::size_t k = 0; k < frame[0].size(); ++k) {

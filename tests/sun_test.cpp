@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 namespace demlight {
 namespace {
@@ -79,6 +81,36 @@ Terrain tiltedPlane(double slopeEast, double slopeNorth) {
         for (std::size_t c = 0; c < 30; ++c)
             h(c, r) = static_cast<float>(slopeEast * 10.0 * c - slopeNorth * 10.0 * r);
     return makeUniformTerrain(std::move(h), 10.0);
+}
+
+TEST(SunTerms, PrecomputedAnglesMatchTheLibraryTrigonometry) {
+    // sunAnglesNear + the SunAngles overload (used per cell by sun frames) against sunTerms with
+    // <cmath>: random normals, horizons near the sun and suns up to 5 degrees from the reference
+    // azimuth, plus one beyond 90 degrees (the <cmath> fallback) and the wrap through north.
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double refAz = 180.0 * (unit(rng) + 1.0);
+        const double az = i == 0 ? refAz + 135.0 : i == 1 ? 359.9 : refAz + 5.0 * unit(rng);
+        const double ref = i == 1 ? 0.2 : refAz;  // 359.9 seen from 0.2: a 0.3-degree offset
+        const double el = 45.0 * (unit(rng) + 1.0) - 5.0;
+        const double horizon = el + 2.0 * unit(rng);
+        Enu n{0.6 * unit(rng), 0.6 * unit(rng), 1.0};
+        const double len = std::sqrt(n.east * n.east + n.north * n.north + n.up * n.up);
+        n = {n.east / len, n.north / len, n.up / len};
+        const SunAngles a = sunAnglesNear(az, el, ref, std::sin(ref * kDegToRad), std::cos(ref * kDegToRad));
+        EXPECT_NEAR(a.sinAzimuth, std::sin(az * kDegToRad), 1e-12);
+        EXPECT_NEAR(a.cosAzimuth, std::cos(az * kDegToRad), 1e-12);
+        EXPECT_NEAR(a.sinElevation, std::sin(el * kDegToRad), 1e-12);
+        const SunTerms fast = sunTerms(n, horizon, a, kSunDiameterDeg);
+        const SunTerms exact = sunTerms(n, horizon, az, el, kSunDiameterDeg);
+        worst = std::max({worst, std::abs(fast.visibility - exact.visibility), std::abs(fast.irradiance - exact.irradiance)});
+    }
+    EXPECT_LT(worst, 1e-6);
+    const SunAngles a = sunAnglesNear(10.0, 30.0, 10.0, std::sin(10.0 * kDegToRad), std::cos(10.0 * kDegToRad));
+    EXPECT_TRUE(std::isnan(sunTerms(kUp, std::nan(""), a, kSunDiameterDeg).visibility));
+    EXPECT_DOUBLE_EQ(sunTerms(kUp, -90.0, a, kSunDiameterDeg).irradiance, std::sin(30.0 * kDegToRad));
 }
 
 TEST(Normals, TiltedPlaneInTrueMetres) {
