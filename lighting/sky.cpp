@@ -28,7 +28,8 @@ double clampElevationRad(double elevationDeg) {
 
 /// Integral of a(phi) = N_e sin phi + N_n cos phi over [phiA, phiB].
 double integralOfA(const detail::NormalFrame& f, double phiA, double phiB) {
-    return f.east * (std::cos(phiA) - std::cos(phiB)) + f.north * (std::sin(phiB) - std::sin(phiA));
+    const SinCos a = fastSinCos(phiA), b = fastSinCos(phiB);
+    return f.east * (a.cos - b.cos) + f.north * (b.sin - a.sin);
 }
 
 /// J(psi) = integral of R sin(psi) atan(k sin(psi)) d psi with k = R / N_up, in elementary
@@ -39,7 +40,7 @@ double planeAntiderivative(const detail::NormalFrame& f, double psi) {
     const double k = f.horizontal / f.up;
     const double m = std::sqrt(1.0 + k * k);
     const double mMinus1 = k * k / (m + 1.0);
-    const double s = std::sin(psi), c = std::cos(psi);
+    const auto [s, c] = fastSinCos(psi);
     // fastAtan (3e-9 rad) in place of std::atan: this runs for every sector whose tangent plane
     // rises above the horizon, the dearest case of the sky accumulation.
     return -f.horizontal * c * fastAtan(k * s) +

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "lighting/sky.h"
+#include "src/fast_math.h"
 
 #include <algorithm>
 #include <array>
@@ -123,7 +124,8 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
         // thetaP against the limits through tan thetaP = -a(phi) / N_up (tan is increasing):
         // no arctangent per piece.
         const double mid = 0.5 * (a + b);
-        const double tanP = -(f.east * std::sin(mid) + f.north * std::cos(mid)) / f.up;
+        const SinCos m = fastSinCos(mid);
+        const double tanP = -(f.east * m.sin + f.north * m.cos) / f.up;
         if (upper < kHalfPi && tanP >= std::tan(upper)) continue;
         piece(a, b, tanP > tanLower ? PieceLower::Plane : PieceLower::Constant);
     }
@@ -131,11 +133,11 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
 
 /// Antiderivatives in elevation of cos^2 and sin cos (d omega = cos(el) d el d az).
 inline double cos2Antiderivative(double theta) {
-    return theta == kHalfPi ? kPi / 4.0 : 0.5 * theta + 0.25 * std::sin(2.0 * theta);
+    return theta == kHalfPi ? kPi / 4.0 : 0.5 * theta + 0.25 * fastSinCos(2.0 * theta).sin;
 }
 inline double sinCosAntiderivative(double theta) {
     if (theta == kHalfPi) return 0.5;
-    const double s = std::sin(theta);
+    const double s = fastSinCos(theta).sin;
     return 0.5 * s * s;
 }
 

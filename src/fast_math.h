@@ -65,6 +65,30 @@ inline SinCos fastSinCosElevation(double x) {
     return {s * x, c};
 }
 
+/// sin and cos of any finite x (radians): x reduced to [-π, π] by the nearest multiple of 2π
+/// (in two parts, exact to ~1e-16 |x| / π), reflected into [-π/2, π/2], then
+/// fastSinCosElevation. Within 1e-13 of <cmath> for |x| up to a few turns; beyond 1e6 rad, NaN
+/// and infinities, <cmath> itself.
+inline SinCos fastSinCos(double x) {
+    constexpr double kTwoPiHi = 6.283185307179586, kTwoPiLo = 2.4492935982947064e-16;
+    constexpr double kInvTwoPi = 1.0 / (2.0 * std::numbers::pi);
+    constexpr double kPi = std::numbers::pi, kHalfPi = std::numbers::pi / 2.0;
+    // NaN, infinities and angles of many turns (never from the callers) go to <cmath>; the
+    // conversion to an integer below is defined only for finite, moderate values.
+    if (!(std::abs(x) <= 1e6)) return {std::sin(x), std::cos(x)};
+    const double turns = static_cast<double>(static_cast<long long>(x * kInvTwoPi + (x >= 0.0 ? 0.5 : -0.5)));
+    const double r = (x - turns * kTwoPiHi) - turns * kTwoPiLo;
+    if (r > kHalfPi) {
+        const SinCos t = fastSinCosElevation(kPi - r);
+        return {t.sin, -t.cos};
+    }
+    if (r < -kHalfPi) {
+        const SinCos t = fastSinCosElevation(-kPi - r);
+        return {t.sin, -t.cos};
+    }
+    return fastSinCosElevation(r);
+}
+
 /// sin x for x in [-π/2, π/2] in float arithmetic, by the Taylor series to x^11 (remainder below
 /// 6e-8 at |x| = π/2, a float's own resolution): for sums kept in float, where the branch-free
 /// form lets the compiler vectorise the loop. NaN propagates.

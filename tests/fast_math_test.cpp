@@ -36,5 +36,32 @@ TEST(FastMath, SinCosWithin1e13OverElevations) {
     EXPECT_TRUE(std::isnan(fastSinCosElevation(std::numeric_limits<double>::quiet_NaN()).sin));
 }
 
+TEST(FastMath, SinCosWithin1e13OverSeveralTurns) {
+    // fastSinCos reduces any angle; the sky wedges pass azimuths plus a normal's direction, a
+    // few turns at most. Include the reflection seams at +-pi/2 and +-pi.
+    double worstSin = 0.0, worstCos = 0.0;
+    for (int i = -200000; i <= 200000; ++i) {
+        const double x = 4.0 * std::numbers::pi * i / 100000.0;  // -8 pi .. 8 pi
+        for (double y : {x, std::numbers::pi / 2 + x * 1e-9, std::numbers::pi - x * 1e-9}) {
+            const auto [s, c] = fastSinCos(y);
+            worstSin = std::max(worstSin, std::abs(s - std::sin(y)));
+            worstCos = std::max(worstCos, std::abs(c - std::cos(y)));
+        }
+    }
+    EXPECT_LT(worstSin, 1e-13);
+    EXPECT_LT(worstCos, 1e-13);
+    EXPECT_TRUE(std::isnan(fastSinCos(std::numeric_limits<double>::quiet_NaN()).cos));
+}
+
+TEST(FastMath, FloatSinWithinFloatResolution) {
+    float worst = 0.0f;
+    for (int i = -100000; i <= 100000; ++i) {
+        const float x = static_cast<float>(std::numbers::pi / 2 * i / 100000.0);
+        worst = std::max(worst, std::abs(fastSinElevationF(x) - static_cast<float>(std::sin(static_cast<double>(x)))));
+    }
+    EXPECT_LT(worst, 2e-7f);
+    EXPECT_TRUE(std::isnan(fastSinElevationF(std::numeric_limits<float>::quiet_NaN())));
+}
+
 }  // namespace
 }  // namespace demlight
