@@ -10,6 +10,7 @@
 #include "src/parallel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace demlight {
@@ -20,8 +21,40 @@ double smoothstep(double lo, double hi, double x) {
     return u * u * (3 - 2 * u);
 }
 
-std::uint8_t toByte(double x) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0));
+/// What previewRadiance needs of the sun, computed once per image rather than per cell.
+struct SunRig {
+    Enu sun, bounce;
+    double skyScale, bounceScale;
+};
+
+SunRig sunRig(double sunAzimuthDeg, double sunElevationDeg) {
+    return {directionEnu(sunAzimuthDeg, sunElevationDeg), directionEnu(sunAzimuthDeg + 180.0, 0.0),
+            twilightSkyScale(sunElevationDeg), bounceScale(sunElevationDeg)};
+}
+
+/// vis^exponent with the common ends (fully lit, fully shadowed) without a pow call.
+double penumbra(double vis, double exponent) {
+    if (vis == 1.0) return 1.0;
+    if (vis == 0.0 && exponent > 0.0) return 0.0;
+    return std::pow(vis, exponent);
+}
+
+Rgb radiance(const Enu& n, const Rgb& albedo, double sunVisibility, const SunRig& rig, double skyLight,
+             const PreviewParams& p) {
+    const double sun = std::max(0.0, n.east * rig.sun.east + n.north * rig.sun.north + n.up * rig.sun.up);
+    const double vis = std::clamp(sunVisibility, 0.0, 1.0);
+    // Bounce from the horizontal direction opposite the sun (Quilez: sunDir * (-1, 0, -1)).
+    const double ind = std::max(0.0, n.east * rig.bounce.east + n.north * rig.bounce.north);
+    const double occ = std::clamp(skyLight, 0.0, 1.0);
+    const double sky = occ * rig.skyScale;
+    const double bounce = ind * occ * rig.bounceScale;
+    auto channel = [&](double sunC, double exponent, double skyC, double bounceC, double a) {
+        const double key = sun * sunC * penumbra(vis, exponent);  // coloured penumbra
+        return a * (key + sky * skyC + bounce * bounceC);
+    };
+    return {channel(p.sunColor.r, p.penumbraExponent.r, p.skyColor.r, p.bounceColor.r, albedo.r),
+            channel(p.sunColor.g, p.penumbraExponent.g, p.skyColor.g, p.bounceColor.g, albedo.g),
+            channel(p.sunColor.b, p.penumbraExponent.b, p.skyColor.b, p.bounceColor.b, albedo.b)};
 }
 
 }  // namespace
@@ -52,22 +85,17 @@ double bounceScale(double sunElevationDeg) {
 
 Rgb previewRadiance(const Enu& n, const Rgb& albedo, double sunVisibility, double sunAzimuthDeg,
                     double sunElevationDeg, double skyLight, const PreviewParams& p) {
-    const Enu s = directionEnu(sunAzimuthDeg, sunElevationDeg);
-    const double sun = std::max(0.0, n.east * s.east + n.north * s.north + n.up * s.up);
-    const double vis = std::clamp(sunVisibility, 0.0, 1.0);
-    // Bounce from the horizontal direction opposite the sun (Quilez: sunDir * (-1, 0, -1)).
-    const Enu b = directionEnu(sunAzimuthDeg + 180.0, 0.0);
-    const double ind = std::max(0.0, n.east * b.east + n.north * b.north);
-    const double occ = std::clamp(skyLight, 0.0, 1.0);
-    const double sky = occ * twilightSkyScale(sunElevationDeg);
-    const double bounce = ind * occ * bounceScale(sunElevationDeg);
-    auto channel = [&](double sunC, double exponent, double skyC, double bounceC, double a) {
-        const double key = sun * sunC * std::pow(vis, exponent);  // coloured penumbra
-        return a * (key + sky * skyC + bounce * bounceC);
-    };
-    return {channel(p.sunColor.r, p.penumbraExponent.r, p.skyColor.r, p.bounceColor.r, albedo.r),
-            channel(p.sunColor.g, p.penumbraExponent.g, p.skyColor.g, p.bounceColor.g, albedo.g),
-            channel(p.sunColor.b, p.penumbraExponent.b, p.skyColor.b, p.bounceColor.b, albedo.b)};
+    return radiance(n, albedo, sunVisibility, sunRig(sunAzimuthDeg, sunElevationDeg), skyLight, p);
+}
+
+DisplayBytes::DisplayBytes(const PreviewParams& p) {
+    for (int k = 0; k < 255; ++k)
+        thresholds_[static_cast<std::size_t>(k)] = std::pow((k + 0.5) / 255.0, p.gamma) / p.exposure;
+}
+
+std::uint8_t DisplayBytes::operator()(double linear) const {
+    return static_cast<std::uint8_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), linear) -
+                                     thresholds_.begin());
 }
 
 Rgb toDisplay(const Rgb& x, const PreviewParams& p) {
@@ -90,6 +118,8 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
     img.width = w;
     img.height = h;
     img.rgba.assign(w * h * 4, 0);
+    const SunRig rig = sunRig(sunAzimuthDeg, sunElevationDeg);
+    const DisplayBytes toDisplayByte(params);
     parallelFor(0, h, threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < w; ++col) {
             std::uint8_t* px = img.rgba.data() + (row * w + col) * 4;
@@ -107,11 +137,10 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
                             b = albedoRgb[2](col, row);
                 if (!std::isnan(r) && !std::isnan(g) && !std::isnan(b)) a = {r, g, b};
             }
-            const Rgb d = toDisplay(
-                previewRadiance(n, a, vis, sunAzimuthDeg, sunElevationDeg, sky, params), params);
-            px[0] = toByte(d.r);
-            px[1] = toByte(d.g);
-            px[2] = toByte(d.b);
+            const Rgb lin = radiance(n, a, vis, rig, sky, params);
+            px[0] = toDisplayByte(lin.r);
+            px[1] = toDisplayByte(lin.g);
+            px[2] = toDisplayByte(lin.b);
             px[3] = 255;
         }
     });

@@ -67,6 +67,19 @@ Rgb previewRadiance(const Enu& normal, const Rgb& albedo, double sunVisibility,
 /// Display value of a linear radiance: clamp((exposure · x)^(1/gamma), 0, 1) per channel.
 Rgb toDisplay(const Rgb& linear, const PreviewParams& params);
 
+/// The 8-bit display value of one linear channel, lround(255 · toDisplay), without a pow per
+/// pixel: the byte is the number of thresholds ((k + 1/2) / 255)^gamma / exposure, k = 0..254,
+/// at or below the value (where the rounding steps), found by binary search. renderPreview uses
+/// it for every pixel.
+class DisplayBytes {
+public:
+    explicit DisplayBytes(const PreviewParams& params);
+    std::uint8_t operator()(double linear) const;
+
+private:
+    std::array<double, 255> thresholds_{};
+};
+
 /// An 8-bit RGBA picture, row-major, row 0 at the top (north), 4 bytes per pixel.
 struct Image8 {
     std::size_t width = 0, height = 0;

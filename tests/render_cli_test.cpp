@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -101,6 +103,29 @@ TEST(PreviewRig, FlatCellUnderFullSunIsLinearKeyPlusFills) {
     const demlight::Rgb night = demlight::previewRadiance(up, a, 0.0, 0.0, -40.0, 1.0, p);
     EXPECT_NEAR(night.b, 0.2 * 0.28 * demlight::kNightSkyFloor, 1e-9);
     EXPECT_GT(demlight::toDisplay(night, p).b, 0.1);
+}
+
+// The per-pixel byte lookup renderPreview uses equals lround(255 * toDisplay) for any value,
+// exposure and gamma, except within a rounding hair of a step (then by at most one).
+TEST(PreviewRig, DisplayBytesMatchGammaAndRounding) {
+    for (const auto& [exposure, gamma] : {std::pair{1.0, 2.2}, std::pair{1.7, 2.2}, std::pair{0.5, 1.8}}) {
+        demlight::PreviewParams p;
+        p.exposure = exposure;
+        p.gamma = gamma;
+        const demlight::DisplayBytes bytes(p);
+        int exact = 0, total = 0;
+        for (int i = 0; i <= 200000; ++i) {
+            const double v = 3.0 * std::pow(i / 200000.0, 3.0);  // dense near 0, past white
+            const double d = demlight::toDisplay({v, v, v}, p).r;
+            const long ref = std::lround(std::clamp(d, 0.0, 1.0) * 255.0);
+            ASSERT_LE(std::abs(static_cast<long>(bytes(v)) - ref), 1) << v;
+            exact += bytes(v) == ref;
+            ++total;
+        }
+        EXPECT_GE(exact, total - 2) << exposure << " " << gamma;
+        EXPECT_EQ(bytes(0.0), 0);
+        EXPECT_EQ(bytes(1e9), 255);
+    }
 }
 
 TEST(RenderCli, DayPngHasTheDemSize) {
