@@ -57,7 +57,9 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     if (o.model == "hemisphere" && !o.patches.empty())
         throw Error("--patches needs --model stewart-langer (the hemisphere model has no sky patches)");
     const SkyPatches patches = o.patches.empty() ? SkyPatches{} : parseSkyPatches(o.patches);
+    const auto loadStart = std::chrono::steady_clock::now();
     const Dem dem = loadDem(o.demPath);
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     const Terrain& t = dem.terrain;
     std::vector<Grid<float>> albedoRaster;
     if (!o.albedoRaster.empty()) {
@@ -109,11 +111,15 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
     });
+    const auto writeStart = std::chrono::steady_clock::now();
     writeRaster(o.out.path, bands, dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
+    const double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands.size()) + " bands: svf_horizontal, "
               "sky_fraction, sky_K, sky_factor" + (maps.patchK.empty() ? "" : ", patches") + "); " +
               std::to_string(directions) + " directions, max distance " +
-              formatDistance(params.maxDistanceM) + ", " + formatNumber(seconds) + " s compute");
+              formatDistance(params.maxDistanceM) + "; " + formatNumber(std::round(loadSeconds * 100) / 100) +
+              " s reading, " + formatNumber(std::round(seconds * 100) / 100) + " s compute, " +
+              formatNumber(std::round(writeSeconds * 100) / 100) + " s writing");
 }
 
 }  // namespace

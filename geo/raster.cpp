@@ -66,6 +66,10 @@ GeoReference readGeoReference(GDALDataset& ds, const std::string& path) {
     return ref;
 }
 
+/// Rows per RasterIO call when writing: a multiple of the GTiff tile height (256), so each call
+/// completes a row of tiles.
+constexpr std::size_t kWriteStripRows = 256;
+
 /// GDAL default creation options per driver; user options override by key.
 std::vector<std::string> creationOptions(const WriteOptions& options, bool floatData) {
     std::vector<std::string> defaults;
@@ -304,23 +308,31 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                                 static_cast<int>(height), GDT_Byte, 0, 0);
         } else {
             out->SetNoDataValue(options.nodata);
-            const float* data = nullptr;
-            if (b.values && !replaceNan) {
-                data = b.values->data();  // written as is: no copy
-            } else {
-                if (b.values) {
-                    buffer.assign(b.values->values().begin(), b.values->values().end());
+            // In strips of whole tile rows: a band that needs converting (a mask, or NaN to the
+            // nodata value) goes through a strip-sized buffer that stays in cache, not a copy of
+            // the whole band.
+            err = CE_None;
+            for (std::size_t r0 = 0; r0 < height && err == CE_None; r0 += kWriteStripRows) {
+                const std::size_t rows = std::min(kWriteStripRows, height - r0);
+                const float* data = nullptr;
+                if (b.values && !replaceNan) {
+                    data = b.values->rowPtr(r0);  // written as is: no copy
                 } else {
-                    buffer.assign(b.mask->values().begin(), b.mask->values().end());
+                    buffer.resize(rows * width);
+                    if (b.values) {
+                        std::copy_n(b.values->rowPtr(r0), rows * width, buffer.begin());
+                    } else {
+                        std::copy_n(b.mask->rowPtr(r0), rows * width, buffer.begin());
+                    }
+                    if (replaceNan)
+                        for (float& v : buffer)
+                            if (std::isnan(v)) v = nodataF;
+                    data = buffer.data();
                 }
-                if (replaceNan)
-                    for (float& v : buffer)
-                        if (std::isnan(v)) v = nodataF;
-                data = buffer.data();
+                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
+                                    const_cast<float*>(data), static_cast<int>(width), static_cast<int>(rows),
+                                    GDT_Float32, 0, 0);
             }
-            err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
-                                const_cast<float*>(data), static_cast<int>(width), static_cast<int>(height),
-                                GDT_Float32, 0, 0);
         }
         if (err != CE_None) {
             ds.reset();
