@@ -246,7 +246,6 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     // tolerance, not the integrals' (planIntegralParams).
     HorizonParams skyParams = stackDirections > 0 ? planHorizonParams(plan, o.search.refraction, o.search.threads)
                                                   : integralParams(o.search, plan, t, skyDirections);
-    skyParams.nearestLine = plan.integralNearestLine;
     const std::size_t n = frames.instants.size();
     ProgressBar bar(!ctx.quiet);
     ProgressCounter counter(bar.callback(), "timelapse", t.heightsM.size() * (skyDirections + n));

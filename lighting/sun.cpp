@@ -49,12 +49,12 @@ double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzim
 
 SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                   double sunElevationDeg, double sunDiameterDeg) {
-    const double o = sunVisibilityClamped(normal, horizonDeg, sunAzimuthDeg, sunElevationDeg, sunDiameterDeg);
-    if (std::isnan(o)) return {o, o};
-    const Enu s = directionEnu(sunAzimuthDeg, sunElevationDeg);
-    const double cosine = normal.east * s.east + normal.north * s.north + normal.up * s.up;
-    // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
-    return {o, o * std::max(0.0, cosine)};
+    // Reduce the azimuth first so that 0 and 360 give the same bits (as directionEnu).
+    const double az = wrapAzimuthDeg(sunAzimuthDeg) * kDegToRad;
+    const double el = sunElevationDeg * kDegToRad;
+    return sunTerms(normal, horizonDeg,
+                    SunAngles{sunElevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)},
+                    sunDiameterDeg);
 }
 
 SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
@@ -89,6 +89,7 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, do
     const double o = sunVisibility(std::max(horizonDeg, planeDeg), sun.elevationDeg, sunDiameterDeg);
     const double cosine = (normal.east * sun.sinAzimuth + normal.north * sun.cosAzimuth) * sun.cosElevation +
                           normal.up * sun.sinElevation;
+    // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
     return {o, o * std::max(0.0, cosine)};
 }
 

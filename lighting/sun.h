@@ -56,8 +56,9 @@ struct SunAngles {
 SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
                         double cosRef);
 
-/// sunTerms() from precomputed angles: the same visibility and irradiance (the tangent-plane
-/// elevation through a polynomial arctangent, within 2e-7 degrees).
+/// sunTerms() from precomputed angles (the one implementation; the overload above fills the
+/// angles with <cmath>). The tangent-plane elevation goes through the polynomial arctangent,
+/// within 2e-7 degrees of tangentPlaneElevationDeg().
 SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg);
 
 struct SunLight {
