@@ -91,7 +91,14 @@ double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lowe
         const double sinCos = detail::sinCosAntiderivative(upper) - 0.5 * sinL * sinL;
         return (aInt * cos2 + nu * width * sinCos) / kPi;
     }
-    return wedgeK(detail::makeNormalFrame(n), r.phi1, r.phi2, lower, upper);
+    const detail::NormalFrame f = detail::makeNormalFrame(n);
+    // The tangent plane above the lower limit across the whole range (and the zenith as upper
+    // limit, which the plane never reaches): one plane piece, the piece forEachWedgePiece would
+    // find, without searching for cuts.
+    if (upper >= kHalfPi && f.horizontal >= detail::kFlatNormalEps &&
+        detail::planeAboveAcross(r, n.east, n.north, nu, sinL, cosL))
+        return piecePiK(f, r.phi1, r.phi2, lower, upper, detail::PieceLower::Plane) / kPi;
+    return wedgeK(f, r.phi1, r.phi2, lower, upper);
 }
 
 double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lower, double upper) {

@@ -84,6 +84,21 @@ inline bool planeBelowAcross(const AzimuthRange& r, double ne, double nn, double
     return aMin * cosE + nu * sinE >= 0.0;
 }
 
+/// True if the tangent plane lies strictly above the elevation with sine/cosine (sinE, cosE,
+/// cosE > 0) at every azimuth of r, so the plane is the lower limit across the whole range:
+/// a(phi) cos e + N_up sin e < 0 everywhere; the maximum of a(phi) is at an end of r or, if r
+/// contains it, at the azimuth of (N_e, N_n) where a = R. Only decides for ranges narrower than
+/// pi (returns false else).
+inline bool planeAboveAcross(const AzimuthRange& r, double ne, double nn, double nu, double sinE,
+                             double cosE) {
+    if (!(r.phi2 - r.phi1 < kPi)) return false;
+    double aMax = std::max(ne * r.sin1 + nn * r.cos1, ne * r.sin2 + nn * r.cos2);
+    // Is the azimuth of (N_e, N_n) inside r? sin(psi - phi1) >= 0 and sin(phi2 - psi) >= 0.
+    if (ne * r.cos1 - nn * r.sin1 >= 0.0 && nn * r.sin2 - ne * r.cos2 >= 0.0)
+        aMax = std::sqrt(ne * ne + nn * nn);
+    return aMax * cosE + nu * sinE < 0.0;
+}
+
 enum class PieceLower { Constant, Plane };
 
 /// Calls piece(phiA, phiB, PieceLower) for the non-empty pieces of the wedge
