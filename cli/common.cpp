@@ -30,7 +30,8 @@ void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--max-distance", o.maxDistanceM,
                     "Horizon search distance (metres). Default (--quality auto): relief / tan(2 deg), "
-                    "or the whole DEM when that is half its diagonal or more; full: the whole DEM")
+                    "or the whole DEM when that is half its diagonal or more (sky and aperture "
+                    "integrals: the whole DEM unless a range limit saves sweep work); full: the whole DEM")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--refraction", o.refraction,
                     "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
