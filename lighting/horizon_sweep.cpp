@@ -337,6 +337,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         return XMajor ? static_cast<std::size_t>(j) * W + static_cast<std::size_t>(m)
                       : static_cast<std::size_t>(m) * W + static_cast<std::size_t>(j);
     };
+    // The grid row whose cell sizes give the length of line n0's step at major index m.
+    auto stepRowOf = [N](long n0, long m, double frac) {
+        return XMajor ? static_cast<std::size_t>(std::clamp<long>(frac < 0.5 ? n0 : n0 + 1, 0, N - 1))
+                      : static_cast<std::size_t>(m);
+    };
 
     // A block serves window cells only where one of its lines is within a cell of the window's
     // minor range; off-axis, in a region narrower than the DEM, that is a fraction of the
@@ -385,14 +390,22 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         const bool anyInside = n0Last >= -1 && n0First <= N - 1;
         const bool inWindow = m >= static_cast<long>(geo.majorWin0) &&
                               m < static_cast<long>(geo.majorWin1);
-        if (anyInside) {
+        // Where every cell the block's lines sample or serve at this step is nodata (sea, voids),
+        // the lines only advance their distances: nothing is sampled, served or pushed. The
+        // range limit's chunk bookkeeping catches up at the next valid sample, which is the same:
+        // a chunk boundary crossed over nodata leaves an empty hull behind either way.
+        bool allNodata = anyInside;
+        for (long j = std::max(0L, n0First); allNodata && j <= std::min(N - 1, n0Last + 1); ++j)
+            allNodata = std::isnan(H[index(m, j)]);
+        if (allNodata) {
+            for (std::size_t b = 0; b < nLines; ++b)
+                lines[b].sigmaM += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + base, m, frac)];
+        } else if (anyInside) {
             for (std::size_t b = 0; b < nLines; ++b) {
                 LineState& line = lines[b];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 const long n1 = n0 + 1;
-                const std::size_t stepRow =
-                    XMajor ? static_cast<std::size_t>(std::clamp<long>(frac < 0.5 ? n0 : n1, 0, N - 1))
-                           : static_cast<std::size_t>(m);
+                const std::size_t stepRow = stepRowOf(n0, m, frac);
                 const double sigma = line.sigmaM;
                 line.sigmaM += geo.stepLengthM[stepRow];
                 if (n0 < -1 || n0 > N - 1) continue;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstring>
 #include <functional>
 #include <iostream>
@@ -184,6 +185,43 @@ TEST(Horizon, SweepMatchesReferenceOnHills) {
         EXPECT_LT(e.median, 0.15) << az;
         EXPECT_LT(e.p99, 3.0) << az;
         RecordProperty("hills_az" + std::to_string(static_cast<int>(az)) + "_p99", std::to_string(e.p99));
+    }
+}
+
+TEST(Horizon, WallSeenExactlyAcrossAWideNodataBand) {
+    // Flat ground at 0 m, a 400 m band of nodata, then a 100 m wall: along the grid axes the
+    // sweep is exact, so a cell before the band sees the wall at atan(100 / d) when d is within
+    // range, and the flat ground ahead of it (0 deg) otherwise. The sweep skips the steps where a block
+    // of lines meets only nodata; this checks that distances keep counting over them and that
+    // range-limit chunks crossed inside the band leave nothing behind. Both the east-west
+    // (columns) and the north-south (rows) walks.
+    constexpr std::size_t kLong = 200, kWide = 24;
+    constexpr double kCell = 10.0, kWall = 100.0;
+    for (const bool eastWest : {true, false}) {
+        Grid<float> g(eastWest ? kLong : kWide, eastWest ? kWide : kLong, 0.0f);
+        for (std::size_t i = 0; i < kLong; ++i)
+            for (std::size_t k = 0; k < kWide; ++k) {
+                float& h = eastWest ? g(i, k) : g(k, i);
+                if (i >= 80 && i < 120) h = kNaN;  // the band
+                if (i == 150) h = static_cast<float>(kWall);  // the wall
+            }
+        const Terrain t = makeUniformTerrain(std::move(g), kCell);
+        for (const double maxDistanceM : {std::numeric_limits<double>::infinity(), 2000.0, 1000.0, 300.0}) {
+            HorizonParams p = flatEarth(eastWest ? 90.0 : 180.0);
+            p.maxDistanceM = maxDistanceM;
+            const HorizonMap m = sweepHorizon(t, p);
+            for (std::size_t i = 0; i < 80; ++i) {
+                const double d = (150.0 - static_cast<double>(i)) * kCell;
+                // Out of range: the flat ground ahead (0 deg), or nothing at all for the cell
+                // that borders the band (kNoHorizonDeg).
+                const double expected = d <= maxDistanceM ? std::atan(kWall / d) * 180.0 / std::numbers::pi
+                                        : i + 1 < 80    ? 0.0
+                                                        : kNoHorizonDeg;
+                const float got = eastWest ? m.angleDeg(i, kWide / 2) : m.angleDeg(kWide / 2, i);
+                ASSERT_NEAR(got, expected, 1e-4) << (eastWest ? "east" : "south") << " cell " << i << " max "
+                                                 << maxDistanceM;
+            }
+        }
     }
 }
 
