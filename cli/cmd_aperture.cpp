@@ -43,7 +43,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
                     &counter);
     const ApertureMaps maps = acc.finish();
     bar.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.insert({

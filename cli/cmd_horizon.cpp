@@ -54,8 +54,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
                                  : sweepHorizon(dem.terrain, params, &counter));
     }
     bar.finish();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
 
     std::vector<OutputBand> bands, masks;
     std::string azimuthList;

@@ -210,8 +210,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
             light[c].data()[k] = static_cast<float>(reflectance * (sunC[c] * s + skyC[c] * skyTerm));
         }
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.insert({

@@ -62,8 +62,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
                                        field.centreAzimuthDeg, field.centreElevationDeg, pp,
                                        o.search.threads);
     writeImage(o.outPath, image);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     note(ctx, "sun at DEM centre: azimuth " + formatNumber(field.centreAzimuthDeg) +
                   " deg, elevation " + formatNumber(field.centreElevationDeg) + " deg (" +
                   formatInstant(when.utc, when.zone) + ")" +

@@ -38,7 +38,7 @@ void runHemisphere(const SkyOptions& o, const CliContext& ctx, const Dem& dem,
     HemisphereParams hp;
     hp.albedo = o.albedo;
     const Grid<float> light = applyHemisphereLight(normals.up, hp, albedo, o.search.threads);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     const std::map<std::string, std::string> meta = {
         {"DEMLIGHT_PRODUCT", "sky"},
         {"DEMLIGHT_MODEL", "hemisphere"},
@@ -59,7 +59,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     const SkyPatches patches = o.patches.empty() ? SkyPatches{} : parseSkyPatches(o.patches);
     const auto loadStart = std::chrono::steady_clock::now();
     const Dem dem = loadDem(o.demPath);
-    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+    const double loadSeconds = secondsSince(loadStart);
     const Terrain& t = dem.terrain;
     std::vector<Grid<float>> albedoRaster;
     if (!o.albedoRaster.empty()) {
@@ -90,7 +90,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
                     &counter);
     const SkyMaps maps = albedoRaster.empty() ? sky.finish(o.albedo) : sky.finish(albedoRaster[0]);
     bar.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
 
     std::vector<OutputBand> bands = {
         {&maps.svfHorizontal, nullptr, "svf_horizontal", "fraction (cosine-weighted, horizontal plane)"},
@@ -113,13 +113,12 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     });
     const auto writeStart = std::chrono::steady_clock::now();
     writeRaster(o.out.path, bands, dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
-    const double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+    const double writeSeconds = secondsSince(writeStart);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands.size()) + " bands: svf_horizontal, "
               "sky_fraction, sky_K, sky_factor" + (maps.patchK.empty() ? "" : ", patches") + "); " +
               std::to_string(directions) + " directions, max distance " +
-              formatDistance(params.maxDistanceM) + "; " + formatNumber(std::round(loadSeconds * 100) / 100) +
-              " s reading, " + formatNumber(std::round(seconds * 100) / 100) + " s compute, " +
-              formatNumber(std::round(writeSeconds * 100) / 100) + " s writing");
+              formatDistance(params.maxDistanceM) + "; " + formatSeconds(loadSeconds) + " reading, " +
+              formatSeconds(seconds) + " compute, " + formatSeconds(writeSeconds) + " writing");
 }
 
 }  // namespace

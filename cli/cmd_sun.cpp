@@ -98,7 +98,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
                                  : apertureSun(t, normals, field, o, plan, directions,
                                                model == LightingModel::ApertureSmooth, counter);
     bar.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     const bool sunUp = horizon ? out.sunRegions > 0 : highestSun > -0.5 * o.sunDiameterDeg;
 
     std::map<std::string, std::string> meta = planMetadata(plan);

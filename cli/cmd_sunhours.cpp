@@ -121,8 +121,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
         o.search.threads);
     const Grid<float> skyIrr = skyIrradiation(skyFactor, daylight);
     bar.finish();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.insert({

@@ -154,6 +154,12 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     }
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string formatSeconds(double seconds) { return formatNumber(std::round(seconds * 100) / 100) + " s"; }
+
 std::string formatDistance(double metres) {
     return std::isfinite(metres) ? formatNumber(std::round(metres)) + " m" : std::string("the whole DEM");
 }

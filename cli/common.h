@@ -9,6 +9,7 @@
 #include "lighting/sun_frame.h"
 #include "lighting/surface.h"
 
+#include <chrono>
 #include <map>
 #include <optional>
 #include <string>
@@ -82,6 +83,12 @@ std::string formatNumber(double value);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
 std::string formatDistance(double metres);
+
+/// Seconds elapsed since `start` (steady clock), for the time notes of the commands.
+double secondsSince(std::chrono::steady_clock::time_point start);
+
+/// A duration for notes, rounded to hundredths of a second ("1.23 s").
+std::string formatSeconds(double seconds);
 
 /// Prints a line to stderr unless quiet.
 void note(const CliContext& ctx, const std::string& line);

@@ -20,6 +20,8 @@ namespace fs = std::filesystem;
 
 /// Gamma of display-encoded colour rasters (decoded to linear albedo).
 constexpr double kDisplayGamma = 2.2;
+/// zlib level of PNG outputs (writeImage).
+constexpr int kPngCompressionLevel = 1;
 
 std::string extensionOf(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
@@ -97,10 +99,6 @@ std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& de
 }
 
 void checkImagePath(const std::string& path) { createOutput(path); }
-
-namespace {
-constexpr int kPngCompressionLevel = 1;
-}  // namespace
 
 void writeImage(const std::string& path, const Image8& image) {
     auto out = createOutput(path);

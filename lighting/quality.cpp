@@ -1,5 +1,6 @@
 #include "lighting/quality.h"
 
+#include "lighting/directions.h"
 #include "src/angles.h"
 #include "src/error.h"
 
@@ -113,6 +114,16 @@ namespace {
 
 /// budget.maxDistanceM > 0: the user's distance replaces the plan's, and the expected error
 /// covers only the horizons that distance resolves.
+/// estimateSweepSteps summed over `directions` evenly spaced azimuths (params.azimuthDeg ignored).
+double stepsOverDirections(const Terrain& terrain, HorizonParams params, std::size_t directions) {
+    double steps = 0;
+    for (std::size_t i = 0; i < directions; ++i) {
+        params.azimuthDeg = directionAzimuthDeg(i, directions);
+        steps += estimateSweepSteps(terrain, params);
+    }
+    return steps;
+}
+
 void applyUserDistance(const Terrain& terrain, const QualityBudget& budget, ScenePlan& plan) {
     if (!(budget.maxDistanceM > 0)) return;
     plan.maxDistanceM = budget.maxDistanceM;
@@ -222,14 +233,10 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
     if (plan.userDistance || !std::isfinite(p.maxDistanceM)) return p;
     HorizonParams whole = p;
     whole.maxDistanceM = std::numeric_limits<double>::infinity();
-    double limitedSteps = 0, wholeSteps = 0;
-    for (std::size_t i = 0; i < directions; ++i) {
-        p.azimuthDeg = whole.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(directions);
-        limitedSteps += estimateSweepSteps(terrain, p);
-        wholeSteps += estimateSweepSteps(terrain, whole);
-    }
-    whole.azimuthDeg = p.azimuthDeg = 0;
-    return kRangeLimitStepCost * limitedSteps < wholeSteps ? p : whole;
+    return kRangeLimitStepCost * stepsOverDirections(terrain, p, directions) <
+                   stepsOverDirections(terrain, whole, directions)
+               ? p
+               : whole;
 }
 
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
@@ -299,13 +306,7 @@ bool rangeLimitPays(const Terrain& terrain, const HorizonParams& params) {
 
 double estimateSweepWork(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
                          double refraction) {
-    HorizonParams p = planIntegralParams(terrain, plan, directions, refraction);
-    double work = 0;
-    for (std::size_t i = 0; i < directions; ++i) {
-        p.azimuthDeg = 360.0 * static_cast<double>(i) / static_cast<double>(directions);
-        work += estimateSweepSteps(terrain, p);
-    }
-    return work;
+    return stepsOverDirections(terrain, planIntegralParams(terrain, plan, directions, refraction), directions);
 }
 
 }  // namespace demlight

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -68,6 +69,12 @@ inline AzimuthRange makeAzimuthRange(double phi1, double phi2) {
     return {phi1, phi2, std::sin(phi1), std::cos(phi1), std::sin(phi2), std::cos(phi2)};
 }
 
+/// True if the azimuth of the horizontal vector (e, n) lies inside r (r narrower than pi):
+/// sin(psi - phi1) >= 0 and sin(phi2 - psi) >= 0.
+inline bool rangeContainsAzimuthOf(const AzimuthRange& r, double e, double n) {
+    return e * r.cos1 - n * r.sin1 >= 0.0 && n * r.sin2 - e * r.cos2 >= 0.0;
+}
+
 /// True if the tangent plane lies at or below the elevation with sine/cosine (sinE, cosE,
 /// cosE >= 0) at every azimuth of r, so the constant lower limit applies across the whole range
 /// and no cut is needed. Plane elevation <= e  <=>  a(phi) cos e + N_up sin e >= 0; the minimum
@@ -77,10 +84,7 @@ inline bool planeBelowAcross(const AzimuthRange& r, double ne, double nn, double
                              double cosE) {
     if (!(r.phi2 - r.phi1 < kPi)) return false;
     double aMin = std::min(ne * r.sin1 + nn * r.cos1, ne * r.sin2 + nn * r.cos2);
-    // Is the azimuth of u = (-N_e, -N_n) inside r? sin(psi - phi1) >= 0 and sin(phi2 - psi) >= 0.
-    const double ue = -ne, un = -nn;
-    if (ue * r.cos1 - un * r.sin1 >= 0.0 && un * r.sin2 - ue * r.cos2 >= 0.0)
-        aMin = -std::sqrt(ne * ne + nn * nn);
+    if (rangeContainsAzimuthOf(r, -ne, -nn)) aMin = -std::sqrt(ne * ne + nn * nn);
     return aMin * cosE + nu * sinE >= 0.0;
 }
 
@@ -93,9 +97,7 @@ inline bool planeAboveAcross(const AzimuthRange& r, double ne, double nn, double
                              double cosE) {
     if (!(r.phi2 - r.phi1 < kPi)) return false;
     double aMax = std::max(ne * r.sin1 + nn * r.cos1, ne * r.sin2 + nn * r.cos2);
-    // Is the azimuth of (N_e, N_n) inside r? sin(psi - phi1) >= 0 and sin(phi2 - psi) >= 0.
-    if (ne * r.cos1 - nn * r.sin1 >= 0.0 && nn * r.sin2 - ne * r.cos2 >= 0.0)
-        aMax = std::sqrt(ne * ne + nn * nn);
+    if (rangeContainsAzimuthOf(r, ne, nn)) aMax = std::sqrt(ne * ne + nn * nn);
     return aMax * cosE + nu * sinE < 0.0;
 }
 
@@ -119,9 +121,10 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
     std::size_t count = 0;
     cuts[count++] = phi1;
     const double tanLower = std::tan(lower);
-    for (double x : {lower, upper}) {
-        if (x >= kHalfPi) continue;
-        const double s = -f.up * (x == lower ? tanLower : std::tan(x)) / f.horizontal;
+    const double tanUpper = upper < kHalfPi ? std::tan(upper) : std::numeric_limits<double>::infinity();
+    for (double tanX : {tanLower, tanUpper}) {
+        if (!std::isfinite(tanX)) continue;
+        const double s = -f.up * tanX / f.horizontal;
         if (!(std::abs(s) < 1.0)) continue;
         const double base = std::asin(s);
         for (double psi : {base, kPi - base}) {
@@ -141,7 +144,7 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
         const double mid = 0.5 * (a + b);
         const SinCos m = fastSinCos(mid);
         const double tanP = -(f.east * m.sin + f.north * m.cos) / f.up;
-        if (upper < kHalfPi && tanP >= std::tan(upper)) continue;
+        if (tanP >= tanUpper) continue;
         piece(a, b, tanP > tanLower ? PieceLower::Plane : PieceLower::Constant);
     }
 }

@@ -57,12 +57,14 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                     sunDiameterDeg);
 }
 
-SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
-                        double cosRef) {
+SunAnglesNear::SunAnglesNear(double refAzimuthDeg)
+    : refDeg_(refAzimuthDeg), sinRef_(std::sin(refAzimuthDeg * kDegToRad)), cosRef_(std::cos(refAzimuthDeg * kDegToRad)) {}
+
+SunAngles SunAnglesNear::operator()(double azimuthDeg, double elevationDeg) const {
     const double el = std::clamp(elevationDeg, -90.0, 90.0) * kDegToRad;
     const auto [sinE, cosE] = fastSinCosElevation(el);
     // The offset in (-180, 180]: fields hold azimuths unwrapped, the reference may be wrapped.
-    double offsetDeg = azimuthDeg - refAzimuthDeg;
+    double offsetDeg = azimuthDeg - refDeg_;
     if (std::abs(offsetDeg) > 540.0) offsetDeg = std::fmod(offsetDeg, 360.0);  // rare; NaN stays NaN
     if (offsetDeg > 180.0) {
         offsetDeg -= 360.0;
@@ -75,7 +77,7 @@ SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimut
         return {elevationDeg, std::sin(az), std::cos(az), sinE, cosE};
     }
     const auto [sinD, cosD] = fastSinCosElevation(offset);
-    return {elevationDeg, sinRef * cosD + cosRef * sinD, cosRef * cosD - sinRef * sinD, sinE, cosE};
+    return {elevationDeg, sinRef_ * cosD + cosRef_ * sinD, cosRef_ * cosD - sinRef_ * sinD, sinE, cosE};
 }
 
 SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg) {

@@ -49,16 +49,23 @@ struct SunAngles {
     double sinAzimuth, cosAzimuth, sinElevation, cosElevation;
 };
 
-/// SunAngles of the sun at (azimuth, elevation) from those of a nearby reference azimuth
-/// (sinRef, cosRef of refAzimuthDeg): polynomial sines and cosines of the elevation and of the
-/// azimuth's offset (src/fast_math.h, < 1e-13 from <cmath>), no library trigonometry. The
-/// offset must be within 90 degrees (sun fields span a few degrees); beyond that <cmath> is used.
-SunAngles sunAnglesNear(double azimuthDeg, double elevationDeg, double refAzimuthDeg, double sinRef,
-                        double cosRef);
+/// SunAngles of suns whose azimuths lie near a reference azimuth (a sun field spans a few
+/// degrees), without library trigonometry per call: the reference's sine and cosine once, then
+/// polynomial sines and cosines of the elevation and of the azimuth's offset (src/fast_math.h,
+/// < 1e-13 from <cmath>). Offsets beyond 90 degrees fall back to <cmath>.
+class SunAnglesNear {
+public:
+    explicit SunAnglesNear(double refAzimuthDeg);
+    SunAngles operator()(double azimuthDeg, double elevationDeg) const;
+
+private:
+    double refDeg_, sinRef_, cosRef_;
+};
 
 /// sunTerms() from precomputed angles (the one implementation; the overload above fills the
 /// angles with <cmath>). The tangent-plane elevation goes through the polynomial arctangent,
-/// within 2e-7 degrees of tangentPlaneElevationDeg().
+/// within 2e-7 degrees of tangentPlaneElevationDeg(), the <cmath> form the references and
+/// sunVisibilityClamped() keep.
 SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg);
 
 struct SunLight {

@@ -140,10 +140,9 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         }
     }
     const double spacing = azimuths.size() > 1 ? azimuths[1] - azimuths[0] : 1.0;
-    // Each cell's sun from the middle sweep azimuth's sine and cosine plus a small offset: no
-    // library trigonometry per cell (sunAnglesNear).
-    const double refAzimuthDeg = azimuths[azimuths.size() / 2];
-    const double sinRef = std::sin(refAzimuthDeg * kDegToRad), cosRef = std::cos(refAzimuthDeg * kDegToRad);
+    // Each cell's sun from the middle sweep azimuth plus a small offset: no library
+    // trigonometry per cell.
+    const SunAnglesNear sunAngles(azimuths[azimuths.size() / 2]);
     parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < t.width(); ++col) {
             if (std::isnan(t.heightsM(col, row))) continue;
@@ -162,7 +161,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
             }
             const Enu n = normals.at(col, row);
             const SunTerms terms =
-                sunTerms(n, h, sunAnglesNear(az, el, refAzimuthDeg, sinRef, cosRef), params.sunDiameterDeg);
+                sunTerms(n, h, sunAngles(az, el), params.sunDiameterDeg);
             frame.light.visibility(col, row) = static_cast<float>(terms.visibility);
             frame.light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }

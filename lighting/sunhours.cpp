@@ -51,9 +51,8 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
     SunLight light{Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
     const bool night = field.elevationRange().second <= -sunDiameterDeg / 2;
     const double sectorDeg = 360.0 / static_cast<double>(n);
-    // Each cell's sun from the field centre's azimuth plus a small offset (sunAnglesNear).
-    const double refAzimuthDeg = field.centreAzimuthDeg;
-    const double sinRef = std::sin(refAzimuthDeg * kDegToRad), cosRef = std::cos(refAzimuthDeg * kDegToRad);
+    // Each cell's sun from the field centre's azimuth plus a small offset.
+    const SunAnglesNear sunAngles(field.centreAzimuthDeg);
     parallelFor(0, h, threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < w; ++col) {
             if (!t.valid(col, row)) continue;
@@ -69,7 +68,7 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
             const double horizon = (1 - f) * stack.angleDeg[i0](col, row) + f * stack.angleDeg[i1](col, row);
             const Enu nrm = normals.at(col, row);
             const SunTerms terms =
-                sunTerms(nrm, horizon, sunAnglesNear(az, el, refAzimuthDeg, sinRef, cosRef), sunDiameterDeg);
+                sunTerms(nrm, horizon, sunAngles(az, el), sunDiameterDeg);
             light.visibility(col, row) = static_cast<float>(terms.visibility);
             light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         }
