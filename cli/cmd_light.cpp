@@ -113,7 +113,7 @@ std::vector<Grid<float>> loadColorRaster(const std::string& path, const Dem& dem
 struct SunTerm {
     Grid<float> irradiance;
     double maxDistanceM = 0;
-    std::size_t sweepAzimuths = 0;  ///< horizon model: sun azimuths swept
+    std::size_t sweepRegions = 0;  ///< horizon model: regions of the sun sweep
 };
 
 void runLight(const LightOptions& o, const CliContext& ctx) {
@@ -179,7 +179,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
         // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
         const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg, plan);
         SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
-        sun = {std::move(frame.light.irradiance), frame.maxDistanceM, frame.sweepAzimuthsDeg.size()};
+        sun = {std::move(frame.light.irradiance), frame.maxDistanceM, frame.sweepRegions};
     }
 
     // Sky term: one grid, or one per channel when the colour raster sets the albedo.
@@ -220,7 +220,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
         {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
-        {"DEMLIGHT_SUN_SWEEP_AZIMUTHS", aperture ? std::string() : std::to_string(sun.sweepAzimuths)},
+        {"DEMLIGHT_SUN_SWEEP_REGIONS", aperture ? std::string() : std::to_string(sun.sweepRegions)},
         {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_DIRECTIONS", aperture ? std::to_string(directions) : std::string()},
         {"DEMLIGHT_SKY_MODEL", o.skyModel},

@@ -1,8 +1,8 @@
 // demlight sun DEM -o OUT.tif --time T [--tz ZONE]: how much of the sun's disk each cell sees.
 //
 // Sun position per region: SPA on a lattice every 64 cells (geo/sun_field.h), interpolated per
-// cell. --model horizon (default): a few sweeps spanning the sun azimuths, interpolated per cell
-// (lighting/sun_frame.h). --model aperture / aperture-smooth: the ambient aperture of every cell
+// cell. --model horizon (default): one sweep whose regions follow the sun's azimuth across the
+// DEM (lighting/sun_frame.h). --model aperture / aperture-smooth: the ambient aperture of every cell
 // from --directions sweeps, then the sun cap intersected with it per cell
 // (lighting/lighting_models.h applyApertureSun).
 #include "cli/common.h"
@@ -41,7 +41,7 @@ struct SunBands {
     Grid<float> visibility, irradiance;
     double maxDistanceM = 0;
     std::string sweeps;          ///< what the closing note says about the sweeps
-    std::size_t sunRegions = 0;  ///< horizon model: sun azimuths swept (0 = sun down everywhere)
+    std::size_t sunRegions = 0;  ///< horizon model: regions of the sun sweep (0 = sun down everywhere)
 };
 
 SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
@@ -50,7 +50,7 @@ SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& fi
     const SunFrameParams params = sunFrameParams(o.search, o.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
     return {std::move(frame.light.visibility), std::move(frame.light.irradiance), frame.maxDistanceM,
-            std::to_string(frame.sweepAzimuthsDeg.size()) + " sweep azimuth(s)", frame.sweepAzimuthsDeg.size()};
+            std::to_string(frame.sweepRegions) + " sweep region(s)", frame.sweepRegions};
 }
 
 SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& field,
@@ -109,7 +109,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
         {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
         {"DEMLIGHT_SUN_ELEVATION_RANGE_DEG", formatNumber(lowestSun) + "," + formatNumber(highestSun)},
-        {"DEMLIGHT_SUN_SWEEP_AZIMUTHS", std::to_string(out.sunRegions)},
+        {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(out.sunRegions)},
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
         {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_METHOD", "sweep"},

@@ -317,7 +317,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
             if (field.elevationRange().second > -o.sunDiameterDeg / 2) ++sunUp;
         } else {
             frame = computeSunFrame(t, normals, field, sp, &counter);
-            if (!frame.sweepAzimuthsDeg.empty()) ++sunUp;
+            if (frame.sweepRegions > 0) ++sunUp;
         }
         Image8 preview;
         if (formats.count("png") || formats.count("mp4") || gif)

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -68,6 +69,14 @@ struct HorizonParams {
     /// horizon accuracy table has both); sky and aperture integrals, which average many
     /// directions, use it.
     bool nearestLine = false;
+    /// Sweep only: the true azimuth (degrees, unwrapped values allowed) wanted at the centre of
+    /// cell (col, row) when it varies over the grid, as the sun's does across a large DEM; empty
+    /// = azimuthDeg everywhere. Regions are then split until each region's straight direction is
+    /// within the direction tolerance of this azimuth at its samples (sweepRegions), so one sweep
+    /// serves every cell at its own azimuth. The field must be smooth over a region (the split
+    /// samples corners, edge midpoints and centre). The reference marches each cell's ray along
+    /// the field's azimuth at that cell.
+    std::function<double(double col, double row)> azimuthAtDeg;
 };
 
 struct HorizonMap {
@@ -110,7 +119,9 @@ struct SweepRegion {
 /// represents, evaluated at its corners, edge midpoints and centre with the local cell sizes and
 /// gamma, differs from `azimuthDeg` by more than effectiveDirectionToleranceDeg(). Both sources of error
 /// are smooth (gamma ≈ Δlon·sin(lat); the cell aspect ratio of geographic grids varies with
-/// cos(lat)), so these nine samples bound it. Regions are not split below 8 cells a side. Each
+/// cos(lat)), so these nine samples bound it. With params.azimuthAtDeg, each region's direction
+/// is taken for the field's azimuth at its centre and compared with the field's azimuth at each
+/// sample instead of `azimuthDeg`. Regions are not split below 8 cells a side. Each
 /// region's lines start up to maxDistanceM beyond it, so many small regions cost extra time.
 std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params);
 
@@ -147,7 +158,8 @@ void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, Horiz
 /// The reference method: a ray march from every cell centre in steps of a quarter of the smaller
 /// cell side, bilinear heights (nodata corners dropped and weights renormalised), re-evaluating
 /// the grid direction from the local gamma and cell sizes at every step, up to maxDistanceM or the
-/// DEM edge. Slow (O(cells × distance)); used to measure the sweep. Parallel over rows.
+/// DEM edge; in params.azimuthAtDeg's azimuth at the cell when that is set. Slow
+/// (O(cells × distance)); used to measure the sweep. Parallel over rows.
 HorizonMap referenceHorizon(const Terrain& terrain, const HorizonParams& params,
                             ProgressCounter* progress = nullptr);
 

@@ -42,8 +42,9 @@ double bilinearHeight(const Grid<float>& h, double x, double y) {
 class RayMarcher {
 public:
     RayMarcher(const Terrain& t, const HorizonParams& p)
-        : t_(t), azimuthDeg_(wrapAzimuthDeg(p.azimuthDeg)), maxDistanceM_(p.maxDistanceM),
-          invR_(inverseEffectiveRadius(p)), constantGamma_(t.convergence.empty()) {}
+        : t_(t), azimuthDeg_(wrapAzimuthDeg(p.azimuthDeg)), azimuthAtDeg_(p.azimuthAtDeg),
+          maxDistanceM_(p.maxDistanceM), invR_(inverseEffectiveRadius(p)),
+          constantGamma_(t.convergence.empty()) {}
 
     HorizonSample march(std::size_t col, std::size_t row) const {
         HorizonSample out;
@@ -56,6 +57,7 @@ public:
         const double maxX = static_cast<double>(t_.width()) - 0.5;
         const double maxY = static_cast<double>(t_.height()) - 0.5;
         double x = static_cast<double>(col), y = static_cast<double>(row), d = 0.0;
+        const double azimuthDeg = azimuthAtDeg_ ? azimuthAtDeg_(x, y) : azimuthDeg_;
         double best = -std::numeric_limits<double>::infinity();
         long directionRow = -1;
         double dirCol = 0.0, dirRow = 0.0;
@@ -63,7 +65,7 @@ public:
             // Re-evaluate the grid direction from the local cell sizes and convergence.
             const long r = std::lround(std::clamp(y, 0.0, maxY - 0.5));
             if (!constantGamma_ || r != directionRow) {
-                const double gridAzRad = (azimuthDeg_ - t_.convergence.at(x, y)) * kDegToRad;
+                const double gridAzRad = (azimuthDeg - t_.convergence.at(x, y)) * kDegToRad;
                 dirCol = std::sin(gridAzRad) / t_.cellWidthM[static_cast<std::size_t>(r)];
                 dirRow = -std::cos(gridAzRad) / t_.cellHeightM[static_cast<std::size_t>(r)];
                 directionRow = r;
@@ -92,6 +94,7 @@ public:
 private:
     const Terrain& t_;
     double azimuthDeg_;
+    const std::function<double(double, double)>& azimuthAtDeg_;
     double maxDistanceM_;
     double invR_;
     bool constantGamma_;

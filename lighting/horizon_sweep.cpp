@@ -68,16 +68,23 @@ double azimuthDifferenceDeg(double a, double b) {
     return std::abs(d);
 }
 
-void splitRegion(const Terrain& t, double azimuthDeg, double toleranceDeg, const CellWindow& w,
+/// The azimuth wanted at (col, row): the params' field, or the one azimuth.
+struct AzimuthTarget {
+    double azimuthDeg;
+    const std::function<double(double, double)>& field;
+    double operator()(double col, double row) const { return field ? field(col, row) : azimuthDeg; }
+};
+
+void splitRegion(const Terrain& t, const AzimuthTarget& target, double toleranceDeg, const CellWindow& w,
                  std::vector<SweepRegion>& out) {
     const double c0 = static_cast<double>(w.col0), c1 = static_cast<double>(w.col1 - 1);
     const double r0 = static_cast<double>(w.row0), r1 = static_cast<double>(w.row1 - 1);
     const double cm = 0.5 * (c0 + c1), rm = 0.5 * (r0 + r1);
     SweepRegion region{w, 0.0, 0.0};
-    localGridDirection(t, azimuthDeg, cm, rm, region.dirCol, region.dirRow);
+    localGridDirection(t, target(cm, rm), cm, rm, region.dirCol, region.dirRow);
     auto err = [&](double c, double r) {
         return azimuthDifferenceDeg(trueAzimuthOfDirection(t, region.dirCol, region.dirRow, c, r),
-                                    azimuthDeg);
+                                    target(c, r));
     };
     // Nine samples: corners, edge midpoints, centre.
     const double eLeft = std::max({err(c0, r0), err(c0, rm), err(c0, r1)});
@@ -102,8 +109,8 @@ void splitRegion(const Terrain& t, double azimuthDeg, double toleranceDeg, const
     } else {
         a.row1 = b.row0 = w.row0 + h_ / 2;
     }
-    splitRegion(t, azimuthDeg, toleranceDeg, a, out);
-    splitRegion(t, azimuthDeg, toleranceDeg, b, out);
+    splitRegion(t, target, toleranceDeg, a, out);
+    splitRegion(t, target, toleranceDeg, b, out);
 }
 
 CellWindow outputWindow(const Terrain& t, const HorizonParams& p) {
@@ -694,8 +701,8 @@ double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParam
 std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params) {
     validateHorizonParams(terrain, params);
     std::vector<SweepRegion> regions;
-    splitRegion(terrain, wrapAzimuthDeg(params.azimuthDeg), effectiveDirectionToleranceDeg(terrain, params),
-                outputWindow(terrain, params), regions);
+    splitRegion(terrain, AzimuthTarget{wrapAzimuthDeg(params.azimuthDeg), params.azimuthAtDeg},
+                effectiveDirectionToleranceDeg(terrain, params), outputWindow(terrain, params), regions);
     return regions;
 }
 

@@ -53,31 +53,8 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
     const double az = wrapAzimuthDeg(sunAzimuthDeg) * kDegToRad;
     const double el = sunElevationDeg * kDegToRad;
     return sunTerms(normal, horizonDeg,
-                    SunAngles{sunElevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)},
+                    SunAngles{sunAzimuthDeg, sunElevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)},
                     sunDiameterDeg);
-}
-
-SunAnglesNear::SunAnglesNear(double refAzimuthDeg)
-    : refDeg_(refAzimuthDeg), sinRef_(std::sin(refAzimuthDeg * kDegToRad)), cosRef_(std::cos(refAzimuthDeg * kDegToRad)) {}
-
-SunAngles SunAnglesNear::operator()(double azimuthDeg, double elevationDeg) const {
-    const double el = std::clamp(elevationDeg, -90.0, 90.0) * kDegToRad;
-    const auto [sinE, cosE] = fastSinCosElevation(el);
-    // The offset in (-180, 180]: fields hold azimuths unwrapped, the reference may be wrapped.
-    double offsetDeg = azimuthDeg - refDeg_;
-    if (std::abs(offsetDeg) > 540.0) offsetDeg = std::fmod(offsetDeg, 360.0);  // rare; NaN stays NaN
-    if (offsetDeg > 180.0) {
-        offsetDeg -= 360.0;
-    } else if (offsetDeg <= -180.0) {
-        offsetDeg += 360.0;
-    }
-    const double offset = offsetDeg * kDegToRad;
-    if (!(std::abs(offset) <= 0.5 * std::numbers::pi)) {
-        const double az = wrapAzimuthDeg(azimuthDeg) * kDegToRad;
-        return {elevationDeg, std::sin(az), std::cos(az), sinE, cosE};
-    }
-    const auto [sinD, cosD] = fastSinCosElevation(offset);
-    return {elevationDeg, sinRef_ * cosD + cosRef_ * sinD, cosRef_ * cosD - sinRef_ * sinD, sinE, cosE};
 }
 
 SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, double sunDiameterDeg) {

@@ -45,21 +45,8 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
 /// The sun seen from one cell: its elevation and the sines and cosines of its azimuth and
 /// elevation, for grid drivers that evaluate thousands of cells under nearly the same sun.
 struct SunAngles {
-    double elevationDeg;
+    double azimuthDeg, elevationDeg;
     double sinAzimuth, cosAzimuth, sinElevation, cosElevation;
-};
-
-/// SunAngles of suns whose azimuths lie near a reference azimuth (a sun field spans a few
-/// degrees), without library trigonometry per call: the reference's sine and cosine once, then
-/// polynomial sines and cosines of the elevation and of the azimuth's offset (src/fast_math.h,
-/// < 1e-13 from <cmath>). Offsets beyond 90 degrees fall back to <cmath>.
-class SunAnglesNear {
-public:
-    explicit SunAnglesNear(double refAzimuthDeg);
-    SunAngles operator()(double azimuthDeg, double elevationDeg) const;
-
-private:
-    double refDeg_, sinRef_, cosRef_;
 };
 
 /// sunTerms() from precomputed angles (the one implementation; the overload above fills the

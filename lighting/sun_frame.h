@@ -1,8 +1,8 @@
 // Direct sun over a whole DEM at one instant: the driver `demlight sun`, time-lapse frames and
 // sun-hour integrals share. Each cell uses its own sun position (interpolated from a SunField).
-// Over a large DEM the sun's azimuth differs from cell to cell; the horizon is swept along a
-// few azimuths spanning that range and each cell interpolates between the two that bracket its
-// own sun azimuth.
+// Over a large DEM the sun's azimuth differs from cell to cell; one sweep follows it, its regions
+// split wherever the sun's azimuth drifts by more than the direction tolerance
+// (HorizonParams::azimuthAtDeg).
 #pragma once
 
 #include "lighting/horizon.h"
@@ -12,19 +12,13 @@
 #include "src/sun_field.h"
 #include "src/terrain.h"
 
+#include "src/angles.h"
+
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace demlight {
-
-/// Largest spread of the sun's azimuth over the DEM served by one sweep (degrees). Horizons
-/// change with azimuth by well under 1 deg per deg on real terrain, so a shared azimuth costs
-/// < ~0.05 deg of horizon.
-inline constexpr double kSunAzimuthToleranceDeg = 0.1;
-/// Spacing of the sweep azimuths when the spread is larger (degrees). Linear interpolation of
-/// the horizon in azimuth over 0.5 deg is exact wherever the horizon point does not jump, and
-/// the 5.6 deg spacing of `timelapse --horizon-mode interpolated:64` already gives a sun
-/// visibility MAE of 0.0016, so 0.5 deg is far inside the budget.
-inline constexpr double kSunAzimuthSpacingDeg = 0.5;
 
 struct SunFrameParams {
     double sunDiameterDeg = kSunDiameterDeg;
@@ -39,14 +33,43 @@ struct SunFrameParams {
 
 struct SunFrame {
     SunLight light;                       ///< visibility and irradiance; NaN at nodata
-    std::vector<double> sweepAzimuthsDeg; ///< azimuths swept (empty when the sun is down everywhere)
+    std::size_t sweepRegions = 0;         ///< regions of the frame's sweep (0 when the sun is down everywhere)
     double maxDistanceM = 0;              ///< the search distance used
 };
 
-/// The azimuths to sweep (degrees, unwrapped like the field): the midpoint when the field's
-/// azimuth spread is at most kSunAzimuthToleranceDeg, otherwise evenly spaced from the lowest to
-/// the highest azimuth at most kSunAzimuthSpacingDeg apart.
-std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width, std::size_t height);
+/// Calls fn(col, sun) (SunAngles, azimuth unwrapped like the field) for every column of `row` with the field's sun at the cell's centre
+/// (SunField::at). Along a row the field is linear within each lattice interval, so each
+/// interval's cells take azimuth and elevation linearly between its end cells, and their sines
+/// and cosines by one angle-addition step per cell from the first cell's <cmath> values: no
+/// trigonometry per cell, within ~1e-14 of <cmath> (tests/sun_frame_test.cpp).
+template <class Fn>
+void forEachSunInRow(const SunField& field, std::size_t row, std::size_t width, Fn&& fn) {
+    const double y = static_cast<double>(row) + 0.5;
+    const std::size_t step = std::max<std::size_t>(field.stepCells, 1);
+    for (std::size_t c0 = 0; c0 < width;) {
+        const std::size_t c1 = std::min(width, (c0 / step + 1) * step);  // one lattice interval
+        const auto [az0, el0] = field.at(static_cast<double>(c0) + 0.5, y);
+        const auto [az1, el1] = field.at(static_cast<double>(c1) - 0.5, y);
+        const double last = static_cast<double>(c1 - c0 - 1);
+        const double dAz = last > 0 ? (az1 - az0) / last : 0.0, dEl = last > 0 ? (el1 - el0) / last : 0.0;
+        const double sinDAz = std::sin(dAz * kDegToRad), cosDAz = std::cos(dAz * kDegToRad);
+        const double sinDEl = std::sin(dEl * kDegToRad), cosDEl = std::cos(dEl * kDegToRad);
+        SunAngles sun{az0, el0, std::sin(az0 * kDegToRad), std::cos(az0 * kDegToRad), std::sin(el0 * kDegToRad),
+                      std::cos(el0 * kDegToRad)};
+        for (std::size_t col = c0; col < c1; ++col) {
+            fn(col, static_cast<const SunAngles&>(sun));
+            sun.azimuthDeg = az0 + dAz * static_cast<double>(col + 1 - c0);
+            sun.elevationDeg = el0 + dEl * static_cast<double>(col + 1 - c0);
+            const double sa = sun.sinAzimuth * cosDAz + sun.cosAzimuth * sinDAz;
+            sun.cosAzimuth = sun.cosAzimuth * cosDAz - sun.sinAzimuth * sinDAz;
+            sun.sinAzimuth = sa;
+            const double se = sun.sinElevation * cosDEl + sun.cosElevation * sinDEl;
+            sun.cosElevation = sun.cosElevation * cosDEl - sun.sinElevation * sinDEl;
+            sun.sinElevation = se;
+        }
+        c0 = c1;
+    }
+}
 
 /// Search distance that catches every shadow at this sun: relief / tan(lowest elevation minus
 /// the disk radius, at least 0.25 deg), at least one cell; the DEM diagonal when that is
@@ -54,8 +77,11 @@ std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width
 double sunSearchDistanceM(const Terrain& terrain, double lowestSunElevationDeg,
                           double sunDiameterDeg);
 
-/// Visibility and irradiance of the sun for every cell. When the sun's upper limb is below the
-/// horizon everywhere, every valid cell gets 0 without any sweep.
+/// Visibility and irradiance of the sun for every cell, from one sweep along each cell's own sun
+/// azimuth. Its direction tolerance is params.directionToleranceDeg, or when that is 0, one cell
+/// of sideways drift at the sun's search distance (sunSearchDistanceM: no shadow is cast from
+/// farther). When the sun's upper limb is below the horizon everywhere, every valid cell gets 0
+/// without any sweep.
 SunFrame computeSunFrame(const Terrain& terrain, const Normals& normals, const SunField& field,
                          const SunFrameParams& params, ProgressCounter* progress = nullptr);
 

@@ -51,27 +51,23 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
     SunLight light{Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
     const bool night = field.elevationRange().second <= -sunDiameterDeg / 2;
     const double sectorDeg = 360.0 / static_cast<double>(n);
-    // Each cell's sun from the field centre's azimuth plus a small offset.
-    const SunAnglesNear sunAngles(field.centreAzimuthDeg);
     parallelFor(0, h, threads, [&](std::size_t row) {
-        for (std::size_t col = 0; col < w; ++col) {
-            if (!t.valid(col, row)) continue;
+        forEachSunInRow(field, row, w, [&](std::size_t col, const SunAngles& sun) {
+            if (!t.valid(col, row)) return;
             if (night) {
                 light.visibility(col, row) = light.irradiance(col, row) = 0.0f;
-                continue;
+                return;
             }
-            const auto [az, el] = field.at(static_cast<double>(col) + 0.5, static_cast<double>(row) + 0.5);
-            const double azimuth = wrapAzimuthDeg(az);
+            const double azimuth = wrapAzimuthDeg(sun.azimuthDeg);
             const double u = azimuth / sectorDeg;
             const std::size_t i0 = static_cast<std::size_t>(u) % n, i1 = (i0 + 1) % n;
             const double f = u - std::floor(u);
             const double horizon = (1 - f) * stack.angleDeg[i0](col, row) + f * stack.angleDeg[i1](col, row);
             const Enu nrm = normals.at(col, row);
-            const SunTerms terms =
-                sunTerms(nrm, horizon, sunAngles(az, el), sunDiameterDeg);
+            const SunTerms terms = sunTerms(nrm, horizon, sun, sunDiameterDeg);
             light.visibility(col, row) = static_cast<float>(terms.visibility);
             light.irradiance(col, row) = static_cast<float>(terms.irradiance);
-        }
+        });
     });
     return light;
 }
