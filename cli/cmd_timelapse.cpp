@@ -27,6 +27,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -305,6 +307,13 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         for (UtcInstant when : frames.instants) times.push_back(unixSeconds(when));
         fitter = std::make_unique<SequenceFitter>(times, o.fitDegree, t.width(), t.height());
     }
+    // Frame i is written on a background thread while frame i + 1 computes; waiting for the
+    // previous write before handing over the next keeps the files (and the GIF) in order, and
+    // rethrows a failed write.
+    std::future<void> writing;
+    const auto waitForWriting = [&] {
+        if (writing.valid()) writing.get();
+    };
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = frames.instants[i];
         const auto c0 = clock::now();
@@ -325,14 +334,13 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                                     field.centreAzimuthDeg, field.centreElevationDeg, pp,
                                     o.search.threads);
         if (fitter) fitter->addFrame(i, frame.light.irradiance);
-        const auto c1 = clock::now();
-        computeS += seconds(c1 - c0);
+        std::map<std::string, std::string> meta;
         if (formats.count("tif")) {
             // The horizons of this frame resolve what its own search distance reaches.
             ScenePlan framePlan = plan;
             framePlan.expectedError.aboveElevationDeg =
                 std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(t, frame.maxDistanceM));
-            std::map<std::string, std::string> meta = planMetadata(framePlan);
+            meta = planMetadata(framePlan);
             meta.insert({
                 {"DEMLIGHT_PRODUCT", "timelapse frame"},
                 {"DEMLIGHT_FRAME", std::to_string(i)},
@@ -347,20 +355,29 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                 {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
                 {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(skyParams.maxDistanceM)},
             });
-            OutputOptions out;
-            out.path = (fs::path(o.outDir) / frameName(i, n, "tif")).string();
-            writeRaster(out.path,
-                        {{&frame.light.irradiance, nullptr, "sun_irradiance",
-                          "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"},
-                         {&frame.light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"}},
-                        dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
         }
-        if (formats.count("png") || formats.count("mp4"))
-            writeImage((fs::path(o.outDir) / frameName(i, n, "png")).string(), preview);
-        if (gif) gif->add(downsample(preview, o.gifSize));
-        writeS += seconds(clock::now() - c1);
+        computeS += seconds(clock::now() - c0);
+        waitForWriting();
         counter.throwIfCancelled();
+        writing = std::async(std::launch::async, [&, i, light = std::move(frame.light), preview = std::move(preview),
+                                                  meta = std::move(meta)] {
+            const auto w0 = clock::now();
+            if (formats.count("tif")) {
+                OutputOptions out;
+                out.path = (fs::path(o.outDir) / frameName(i, n, "tif")).string();
+                writeRaster(out.path,
+                            {{&light.irradiance, nullptr, "sun_irradiance",
+                              "normalised irradiance (1 = unit-radiance zenith sun on flat ground)"},
+                             {&light.visibility, nullptr, "sun_visibility", "fraction of sun disk (0-1)"}},
+                            dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
+            }
+            if (formats.count("png") || formats.count("mp4"))
+                writeImage((fs::path(o.outDir) / frameName(i, n, "png")).string(), preview);
+            if (gif) gif->add(downsample(preview, o.gifSize));
+            writeS += seconds(clock::now() - w0);
+        });
     }
+    waitForWriting();
     if (gif) gif->finish();
     bar.finish();
     if (formats.count("mp4")) {
@@ -381,8 +398,10 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                   (stackDirections > 0 ? ", also the interpolated sun horizons" : "") +
                   "); per frame " +
                   formatNumber(std::round(computeS * 1000 / n)) + " ms compute + " +
-                  formatNumber(std::round(writeS * 1000 / n)) + " ms writing; total " +
-                  formatNumber(std::round(total * 100) / 100) + " s");
+                  formatNumber(std::round(writeS * 1000 / n)) +
+                  " ms writing (in the background, while the next frame computes); total " +
+                  formatNumber(std::round(total * 100) / 100) + " s, " +
+                  formatNumber(std::round(total * 1000 / n)) + " ms per frame");
     note(ctx, "wrote " + o.outDir + ": " +
                   (formats.count("tif") ? "frame_*.tif (sun_irradiance, sun_visibility), sky_k.tif " : "") +
                   (formats.count("png") ? "frame_*.png " : "") + (gif ? "timelapse.gif " : "") +

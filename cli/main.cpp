@@ -3,8 +3,11 @@
 #include "cli/commands.h"
 #include "src/error.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 #include <exception>
@@ -12,6 +15,12 @@
 
 int main(int argc, char** argv) {
     using namespace demlight;
+    // Grids of tens of MB are allocated and freed per frame (time-lapses, sun hours). glibc maps
+    // each one afresh from the kernel (zeroed, one fault per 4 KiB page); keep freed memory in
+    // the heap for reuse instead. A 10-frame time-lapse of the 3601² tile: 3.0 -> 1.0 s of
+    // kernel time, 1.26 -> 1.09 s per frame (README "Speed").
+    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
     cli::CliContext ctx;
     for (int i = 0; i < argc; ++i) {
         if (i) ctx.commandLine += ' ';

@@ -1,0 +1,63 @@
+// The libdeflate PNG encoder, decoded by an independent reader (OpenImageIO's libpng).
+#include "geo/png_writer.h"
+#include "src/error.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::uint8_t> readRgba(const std::string& path, int& width, int& height) {
+    // PNG alpha is straight; keep OpenImageIO from premultiplying it.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    EXPECT_TRUE(in) << OIIO::geterror();
+    if (!in) return {};
+    const OIIO::ImageSpec& spec = in->spec();
+    width = spec.width;
+    height = spec.height;
+    EXPECT_EQ(spec.nchannels, 4);
+    EXPECT_EQ(spec.alpha_channel, 3);
+    std::vector<std::uint8_t> px(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+    return px;
+}
+
+TEST(PngWriter, RoundTripsThroughAnIndependentDecoder) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_png_test";
+    fs::create_directories(dir);
+    std::mt19937 rng(3);
+    // Noise (incompressible), smooth gradients with runs, and odd sizes; 700 x 500 spans several
+    // IDAT chunks.
+    for (const auto& [w, h] : {std::pair<std::size_t, std::size_t>{1, 1}, {3, 2}, {700, 500}}) {
+        std::vector<std::uint8_t> rgba(w * h * 4);
+        for (std::size_t i = 0; i < rgba.size(); ++i)
+            rgba[i] = (i / 4) % 3 == 0 ? static_cast<std::uint8_t>(rng()) : static_cast<std::uint8_t>((i / (4 * w)) & 0xff);
+        const std::string path = (dir / ("img" + std::to_string(w) + ".png")).string();
+        writePngRgba(path, rgba, w, h);
+        int rw = 0, rh = 0;
+        const std::vector<std::uint8_t> back = readRgba(path, rw, rh);
+        EXPECT_EQ(static_cast<std::size_t>(rw), w);
+        EXPECT_EQ(static_cast<std::size_t>(rh), h);
+        EXPECT_TRUE(back == rgba) << w << " x " << h;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(PngWriter, RefusesBadSizesAndUnwritablePaths) {
+    std::vector<std::uint8_t> rgba(16, 0);
+    EXPECT_THROW(writePngRgba("/tmp/demlight_bad.png", rgba, 3, 2), Error);  // 16 != 3*2*4
+    EXPECT_THROW(writePngRgba("/tmp/demlight_bad.png", rgba, 0, 4), Error);
+    EXPECT_THROW(writePngRgba("/nonexistent-dir/x.png", rgba, 2, 2), Error);
+}
+
+}  // namespace
+}  // namespace demlight
