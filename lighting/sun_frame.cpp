@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace demlight {
 namespace {
@@ -19,6 +20,63 @@ double diagonalM(const Terrain& t) {
     for (double h : t.cellHeightM) heightM += h;
     const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
     return std::hypot(widthM, heightM);
+}
+
+/// Interpolating strategy: largest spread of the sun's azimuth served by one sweep, and the
+/// spacing of the sweep azimuths when the spread is larger (degrees). Linear interpolation of the
+/// horizon in azimuth over 0.5 deg is exact wherever the horizon point does not jump, and the
+/// 5.6 deg spacing of `timelapse --horizon-mode interpolated:64` already gives a sun visibility
+/// MAE of 0.0016.
+constexpr double kSunAzimuthToleranceDeg = 0.1;
+constexpr double kSunAzimuthSpacingDeg = 0.5;
+
+/// Side of the blocks (cells) in which sweepWindows() bounds the cells of each sweep.
+constexpr std::size_t kWindowBlockCells = 64;
+
+/// For each sweep azimuth a_i, the bounding window of the cells whose own sun azimuth lies in
+/// [a_(i-1), a_(i+1)], the only cells that interpolate with sweep i; empty (col0 == col1) when
+/// no cell needs it. Taken over blocks of kWindowBlockCells with the field's exact range in each.
+std::vector<CellWindow> sweepWindows(const SunField& field, const std::vector<double>& azimuths,
+                                     std::size_t width, std::size_t height) {
+    const std::size_t n = azimuths.size();
+    std::vector<CellWindow> windows(n);
+    if (n == 1) {
+        windows[0] = {0, 0, width, height};
+        return windows;
+    }
+    for (std::size_t r0 = 0; r0 < height; r0 += kWindowBlockCells) {
+        const std::size_t r1 = std::min(r0 + kWindowBlockCells, height);
+        for (std::size_t c0 = 0; c0 < width; c0 += kWindowBlockCells) {
+            const std::size_t c1 = std::min(c0 + kWindowBlockCells, width);
+            const auto [lo, hi] = field.azimuthRange(c0, r0, c1, r1);
+            for (std::size_t i = 0; i < n; ++i) {
+                const double below = i == 0 ? -1e300 : azimuths[i - 1];
+                const double above = i + 1 == n ? 1e300 : azimuths[i + 1];
+                if (hi < below || lo > above) continue;
+                CellWindow& w = windows[i];
+                if (w.col0 == w.col1) {
+                    w = {c0, r0, c1, r1};
+                } else {
+                    w = {std::min(w.col0, c0), std::min(w.row0, r0), std::max(w.col1, c1),
+                         std::max(w.row1, r1)};
+                }
+            }
+        }
+    }
+    return windows;
+}
+
+/// The azimuths of the interpolating strategy (degrees, unwrapped like the field): the midpoint
+/// when the field's spread is at most kSunAzimuthToleranceDeg, otherwise evenly spaced from the
+/// lowest to the highest azimuth at most kSunAzimuthSpacingDeg apart.
+std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width, std::size_t height) {
+    const auto [lo, hi] = field.azimuthRange(0, 0, width, height);
+    if (hi - lo <= kSunAzimuthToleranceDeg) return {0.5 * (lo + hi)};
+    const auto intervals = static_cast<std::size_t>(std::ceil((hi - lo) / kSunAzimuthSpacingDeg));
+    std::vector<double> azimuths(intervals + 1);
+    for (std::size_t i = 0; i <= intervals; ++i)
+        azimuths[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(intervals);
+    return azimuths;
 }
 
 }  // namespace
@@ -72,15 +130,70 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         hp.maxDistanceM = std::numeric_limits<double>::infinity();
         frame.maxDistanceM = diagonalM(t);
     }
-    frame.sweepRegions = sweepRegions(t, hp).size();
-    HorizonMap horizon;
+    // Two exact strategies; the one with fewer estimated line steps runs.
+    //  - Following: one sweep whose regions follow the sun's azimuth. Cheapest while the
+    //    tolerance is loose (sun well up); near sunrise the tolerance tightens to ~0.01 deg at
+    //    the whole DEM's distance and thousands of narrow regions would each walk the DEM.
+    //  - Interpolating: sweeps at azimuths kSunAzimuthSpacingDeg apart spanning the field, each
+    //    over the cells whose own azimuth it brackets (its regions split for the convergence
+    //    only), and each cell's horizon linear in azimuth between the two bracketing sweeps.
+    const std::vector<double> azimuths = sunSweepAzimuthsDeg(field, t.width(), t.height());
+    const std::vector<CellWindow> windows = sweepWindows(field, azimuths, t.width(), t.height());
+    std::vector<HorizonParams> fixedSweeps;
+    if (azimuths.size() > 1 && params.strategy != SunSweepStrategy::Following) {
+        double interpolatingSteps = 0;
+        for (std::size_t i = 0; i < azimuths.size(); ++i) {
+            if (windows[i].col0 == windows[i].col1) continue;
+            HorizonParams p = hp;
+            p.azimuthAtDeg = nullptr;
+            p.azimuthDeg = wrapAzimuthDeg(azimuths[i]);
+            p.window = windows[i];
+            interpolatingSteps += estimateSweepSteps(t, p);
+            fixedSweeps.push_back(p);
+        }
+        if (params.strategy == SunSweepStrategy::Cheapest && interpolatingSteps >= estimateSweepSteps(t, hp))
+            fixedSweeps.clear();
+    }
+    std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
     SweepBuffers buffers;
-    sweepHorizonInto(t, hp, horizon, buffers, progress);
+    if (fixedSweeps.empty()) {
+        frame.sweepRegions = sweepRegions(t, hp).size();
+        sweepHorizonInto(t, hp, horizons[0], buffers, progress);
+    } else {
+        // Progress: the frame counts as one pass over the cells, shared by window areas.
+        const auto area = [](const CellWindow& w) { return (w.col1 - w.col0) * (w.row1 - w.row0); };
+        std::size_t totalArea = 0, areaDone = 0, reported = 0;
+        for (const HorizonParams& p : fixedSweeps) totalArea += area(*p.window);
+        std::size_t next = 0;
+        for (std::size_t i = 0; i < azimuths.size(); ++i) {
+            if (windows[i].col0 == windows[i].col1) continue;
+            const HorizonParams& p = fixedSweeps[next++];
+            frame.sweepRegions += sweepRegions(t, p).size();
+            sweepHorizonInto(t, p, horizons[i], buffers);
+            if (progress) {
+                areaDone += area(*p.window);
+                const std::size_t target = t.heightsM.size() * areaDone / totalArea;
+                progress->advance(target - reported);
+                reported = target;
+                progress->throwIfCancelled();
+            }
+        }
+    }
+    const double spacing = azimuths.size() > 1 ? azimuths[1] - azimuths[0] : 1.0;
+    const auto horizonAt = [&](std::size_t col, std::size_t row, double azimuthDeg) -> double {
+        if (horizons.size() == 1) return horizons[0].angleDeg(col, row);
+        // Linear between the bracketing sweeps, whose windows both contain this cell.
+        const double u = std::clamp((azimuthDeg - azimuths[0]) / spacing, 0.0,
+                                    static_cast<double>(azimuths.size() - 1));
+        const auto i0 = std::min(static_cast<std::size_t>(u), azimuths.size() - 2);
+        const double f = u - static_cast<double>(i0);
+        return (1 - f) * horizons[i0].angleDeg(col, row) + f * horizons[i0 + 1].angleDeg(col, row);
+    };
     parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
         forEachSunInRow(field, row, t.width(), [&](std::size_t col, const SunAngles& sun) {
             if (std::isnan(t.heightsM(col, row))) return;
-            const SunTerms terms =
-                sunTerms(normals.at(col, row), horizon.angleDeg(col, row), sun, params.sunDiameterDeg);
+            const SunTerms terms = sunTerms(normals.at(col, row), horizonAt(col, row, sun.azimuthDeg), sun,
+                                            params.sunDiameterDeg);
             frame.light.visibility(col, row) = static_cast<float>(terms.visibility);
             frame.light.irradiance(col, row) = static_cast<float>(terms.irradiance);
         });

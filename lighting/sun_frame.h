@@ -1,8 +1,7 @@
 // Direct sun over a whole DEM at one instant: the driver `demlight sun`, time-lapse frames and
 // sun-hour integrals share. Each cell uses its own sun position (interpolated from a SunField).
-// Over a large DEM the sun's azimuth differs from cell to cell; one sweep follows it, its regions
-// split wherever the sun's azimuth drifts by more than the direction tolerance
-// (HorizonParams::azimuthAtDeg).
+// Over a large DEM the sun's azimuth differs from cell to cell; the sweeps follow it (see
+// computeSunFrame).
 #pragma once
 
 #include "lighting/horizon.h"
@@ -20,6 +19,9 @@
 
 namespace demlight {
 
+/// How computeSunFrame sweeps a sun whose azimuth varies over the DEM (see there).
+enum class SunSweepStrategy { Cheapest, Following, Interpolating };
+
 struct SunFrameParams {
     double sunDiameterDeg = kSunDiameterDeg;
     /// Search distance (metres); <= 0 means sunSearchDistanceM() for the field's lowest sun.
@@ -29,11 +31,13 @@ struct SunFrameParams {
     bool curvature = true;
     double directionToleranceDeg = 0;
     int threads = 0;
+    /// Cheapest (estimated line steps) unless a test forces one.
+    SunSweepStrategy strategy = SunSweepStrategy::Cheapest;
 };
 
 struct SunFrame {
     SunLight light;                       ///< visibility and irradiance; NaN at nodata
-    std::size_t sweepRegions = 0;         ///< regions of the frame's sweep (0 when the sun is down everywhere)
+    std::size_t sweepRegions = 0;         ///< regions of the frame's sweeps (0 when the sun is down everywhere)
     double maxDistanceM = 0;              ///< the search distance used
 };
 
@@ -77,11 +81,14 @@ void forEachSunInRow(const SunField& field, std::size_t row, std::size_t width, 
 double sunSearchDistanceM(const Terrain& terrain, double lowestSunElevationDeg,
                           double sunDiameterDeg);
 
-/// Visibility and irradiance of the sun for every cell, from one sweep along each cell's own sun
-/// azimuth. Its direction tolerance is params.directionToleranceDeg, or when that is 0, one cell
-/// of sideways drift at the sun's search distance (sunSearchDistanceM: no shadow is cast from
-/// farther). When the sun's upper limb is below the horizon everywhere, every valid cell gets 0
-/// without any sweep.
+/// Visibility and irradiance of the sun for every cell, each cell's horizon taken along its own
+/// sun azimuth (within the direction tolerance): either one sweep whose regions follow the sun's
+/// azimuth (HorizonParams::azimuthAtDeg), or, when that costs more line steps
+/// (estimateSweepSteps; near sunrise and sunset on large DEMs), sweeps at azimuths 0.5 deg apart
+/// over the cells they bracket, interpolated linearly in azimuth per cell. The tolerance is
+/// params.directionToleranceDeg, or when that is 0, one cell of sideways drift at the sun's search
+/// distance (sunSearchDistanceM: no shadow is cast from farther). When the sun's upper limb is
+/// below the horizon everywhere, every valid cell gets 0 without any sweep.
 SunFrame computeSunFrame(const Terrain& terrain, const Normals& normals, const SunField& field,
                          const SunFrameParams& params, ProgressCounter* progress = nullptr);
 

@@ -1,6 +1,6 @@
-// computeSunFrame over a DEM whose sun azimuth varies from cell to cell: the windowed sweeps
-// at a few azimuths, interpolated per cell, against the reference horizon taken at every sampled
-// cell's own sun azimuth (DESIGN §4), on a real DEM.
+// computeSunFrame over a DEM whose sun azimuth varies from cell to cell, by both strategies (one
+// sweep following the azimuth; windowed sweeps at a few azimuths, interpolated per cell), against
+// the reference horizon taken at every sampled cell's own sun azimuth (DESIGN §4), on a real DEM.
 #include "geo/dem.h"
 #include "lighting/horizon.h"
 #include "lighting/sun.h"
@@ -40,7 +40,9 @@ SunField slantedField(std::size_t width, std::size_t height, double az0, double 
     return f;
 }
 
-TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
+class SunFrameStrategy : public ::testing::TestWithParam<SunSweepStrategy> {};
+
+TEST_P(SunFrameStrategy, MatchesThePerCellReferenceAcrossAnAzimuthSpread) {
     const std::optional<Terrain> dem = sharedTerrain("big_tujunga_srtm30m_utm11.tif", 400, 400);
     if (!dem) GTEST_SKIP() << "shared DEM not found";
     const Terrain& t = *dem;
@@ -49,8 +51,9 @@ TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
 
     SunFrameParams params;
     params.maxDistanceM = 8000;
+    params.strategy = GetParam();
     const SunFrame frame = computeSunFrame(t, normals, field, params);
-    // 3.5 deg of spread at <= 0.5 deg spacing.
+    // Following: 3.5 deg of spread at a 0.21 deg tolerance; interpolating: 8 azimuths.
     ASSERT_GE(frame.sweepRegions, 8u);
 
     // Reference: every sampled cell at its own sun azimuth.
@@ -75,6 +78,13 @@ TEST(SunFrame, WindowedSweepsAtSeveralAzimuthsMatchThePerCellReference) {
     EXPECT_LT(visError / n, 0.01);
     EXPECT_LT(static_cast<double>(visWrong) / n, 0.01);
 }
+
+INSTANTIATE_TEST_SUITE_P(BothStrategies, SunFrameStrategy,
+                         ::testing::Values(SunSweepStrategy::Following, SunSweepStrategy::Interpolating),
+                         [](const ::testing::TestParamInfo<SunSweepStrategy>& param) {
+                             return std::string(param.param == SunSweepStrategy::Following ? "Following"
+                                                                                          : "Interpolating");
+                         });
 
 TEST(SunFrame, RowAnglesMatchTheFieldAndTheLibraryTrigonometry) {
     // forEachSunInRow against SunField::at and <cmath> at every cell: a field slanted across
