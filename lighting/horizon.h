@@ -77,12 +77,16 @@ struct HorizonParams {
     /// samples corners, edge midpoints and centre). The reference marches each cell's ray along
     /// the field's azimuth at that cell.
     std::function<double(double col, double row)> azimuthAtDeg;
+    /// Sweep only: false leaves HorizonMap::truncated empty (integrals that never read it skip
+    /// its grid and the per-cell edge test).
+    bool truncationFlags = true;
 };
 
 struct HorizonMap {
     /// Horizon elevation angle (degrees); NaN at nodata cells (and outside the window).
     Grid<float> angleDeg;
-    /// 1 where the search reached the DEM edge before maxDistanceM, else 0.
+    /// 1 where the search reached the DEM edge before maxDistanceM, else 0 (empty when the sweep
+    /// ran with HorizonParams::truncationFlags = false).
     Grid<std::uint8_t> truncated;
 };
 

@@ -319,7 +319,9 @@ inline double observerHeight(const float* H, const Index& index, long m, long j,
     return lineSample + frac * (1.0 - frac) * (2.0 * cellHeight - hm - hp);
 }
 
-template <bool XMajor>
+/// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
+/// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
+template <bool XMajor, bool Limited>
 void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
                 long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
                 RangeLog* logs) {
@@ -328,7 +330,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     const std::size_t lineCapacity = static_cast<std::size_t>(std::abs(geo.mFar - geo.mNear)) + 1;
     const std::size_t nLines = static_cast<std::size_t>(kEnd - kBegin);
     if (scratch.size() < nLines * lineCapacity) scratch.resize(nLines * lineCapacity);
-    const bool limited = std::isfinite(maxDistanceM);
+    constexpr bool limited = Limited;
     LineState lines[kLinesPerBlock];
     for (std::size_t b = 0; b < nLines; ++b) {
         lines[b] = {scratch.data() + b * lineCapacity, 0, 0, 0.0, 0, maxDistanceM, 0, 0, 0,
@@ -493,7 +495,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         // within range can add, and is that answer when its vertex is in range;
                         // otherwise the cell is left to the second pass.
                         bool needsSecondPass = false;
-                        if (line.prevLo < line.prevHi) {
+                        if (Limited && line.prevLo < line.prevHi) {
                             const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
                                                                 sigma, gCell);
                             line.prevHint = v;
@@ -509,7 +511,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                             }
                         }
                         *cell = value;
-                        if (needsSecondPass)
+                        if (Limited && needsSecondPass)
                             line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints, cell};
                     }
                 }
@@ -605,14 +607,27 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
                 const CellWindow& w, float* planeA, const float* planeB, std::uint8_t* truncated) {
     const std::size_t W = t.width();
     const float none = -std::numeric_limits<float>::infinity();
+    if (geo.nearestLine && !truncated) {
+        // One line per cell and no flags: plane A holds the tangents, NaN where the sweep served
+        // nothing (nodata), so the angles need no per-cell branches and the loop vectorises.
+        float* a = planeA + row * W;
+        for (std::size_t col = w.col0; col < w.col1; ++col) {
+            const float slope = a[col];
+            const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+            a[col] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
+        }
+        return;
+    }
     const double stepLengthM = geo.stepLengthM[row];
     for (std::size_t col = w.col0; col < w.col1; ++col) {
         const std::size_t idx = row * W + col;
         const std::size_t m = geo.xMajor ? col : row;
         const std::size_t j = geo.xMajor ? row : col;
         // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
-        const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
-        truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
+        if (truncated) {
+            const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
+            truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
+        }
 
         if (std::isnan(t.heightsM.data()[idx])) {
             planeA[idx] = std::numeric_limits<float>::quiet_NaN();
@@ -730,7 +745,11 @@ void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, Horiz
         }
     };
     reset(out.angleDeg, std::numeric_limits<float>::quiet_NaN());
-    reset(out.truncated, std::uint8_t{0});
+    if (params.truncationFlags) {
+        reset(out.truncated, std::uint8_t{0});
+    } else {
+        out.truncated = Grid<std::uint8_t>();
+    }
     // NaN until written, so a cell no line served would show up as NaN in the tests. Plane B is
     // read only where two lines serve a cell.
     Grid<float>& planeB = buffers.planeB;
@@ -749,18 +768,21 @@ void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, Horiz
             thread_local RangeLog logs[kLinesPerBlock];
             const long kBegin = geo.kFirst + static_cast<long>(blockIndex * kLinesPerBlock);
             const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
+            const auto run = [&]<bool XMajor, bool Limited>() {
+                sweepBlock<XMajor, Limited>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
+                                            out.angleDeg.data(), planeB.data(), scratch, logs);
+            };
+            const bool limited = std::isfinite(params.maxDistanceM);
             if (geo.xMajor) {
-                sweepBlock<true>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
-                                 out.angleDeg.data(), planeB.data(), scratch, logs);
+                limited ? run.template operator()<true, true>() : run.template operator()<true, false>();
             } else {
-                sweepBlock<false>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
-                                  out.angleDeg.data(), planeB.data(), scratch, logs);
+                limited ? run.template operator()<false, true>() : run.template operator()<false, false>();
             }
         });
         if (progress) progress->throwIfCancelled();
         parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
             combineRow(terrain, geo, params.maxDistanceM, row, w, out.angleDeg.data(), planeB.data(),
-                       out.truncated.data());
+                       params.truncationFlags ? out.truncated.data() : nullptr);
         }, 16);
         if (progress) {
             progress->advance((w.col1 - w.col0) * (w.row1 - w.row0));

@@ -226,6 +226,7 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
     if (directions == 0) throw Error("the number of directions must be at least 1");
     HorizonParams p = planHorizonParams(plan, refraction, threads);
     p.nearestLine = plan.integralNearestLine;
+    p.truncationFlags = false;  // integrals never read them
     if (plan.quality == Quality::Full) return p;
     const double sectorDeg = 360.0 / static_cast<double>(directions);
     p.directionToleranceDeg =
