@@ -155,9 +155,9 @@ struct SweepBuffers {
 };
 
 /// sweepHorizon() writing into `out` (resized to the terrain if its shape differs) and reusing
-/// `buffers`; the result is identical.
-void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
-                      SweepBuffers& buffers, ProgressCounter* progress = nullptr);
+/// `buffers`; the result is identical. Returns the number of regions swept (sweepRegions).
+std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
+                             SweepBuffers& buffers, ProgressCounter* progress = nullptr);
 
 /// The reference method: a ray march from every cell centre in steps of a quarter of the smaller
 /// cell side, bilinear heights (nodata corners dropped and weights renormalised), re-evaluating

@@ -94,7 +94,7 @@ public:
 private:
     const Terrain& t_;
     double azimuthDeg_;
-    const std::function<double(double, double)>& azimuthAtDeg_;
+    std::function<double(double, double)> azimuthAtDeg_;
     double maxDistanceM_;
     double invR_;
     bool constantGamma_;

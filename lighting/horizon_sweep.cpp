@@ -728,8 +728,8 @@ HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params, Pro
     return out;
 }
 
-void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
-                      SweepBuffers& buffers, ProgressCounter* progress) {
+std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
+                             SweepBuffers& buffers, ProgressCounter* progress) {
     const std::vector<SweepRegion> regions = sweepRegions(terrain, params);
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
@@ -789,6 +789,7 @@ void sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, Horiz
             progress->throwIfCancelled();
         }
     }
+    return regions.size();
 }
 
 }  // namespace demlight

@@ -110,8 +110,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         return frame;
     }
 
-    // One sweep serves every cell at its own sun azimuth: its regions split wherever the sun's
-    // azimuth (and the grid convergence) drift more than the direction tolerance.
+    // The following strategy's sweep (below); the interpolating one's sweeps copy it.
     HorizonParams hp;
     hp.refraction = params.refraction;
     hp.curvature = params.curvature;
@@ -140,7 +139,11 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     //    only), and each cell's horizon linear in azimuth between the two bracketing sweeps.
     const std::vector<double> azimuths = sunSweepAzimuthsDeg(field, t.width(), t.height());
     const std::vector<CellWindow> windows = sweepWindows(field, azimuths, t.width(), t.height());
-    std::vector<HorizonParams> fixedSweeps;
+    struct FixedSweep {
+        std::size_t azimuthIndex;
+        HorizonParams params;
+    };
+    std::vector<FixedSweep> fixedSweeps;
     if (azimuths.size() > 1 && params.strategy != SunSweepStrategy::Following) {
         double interpolatingSteps = 0;
         for (std::size_t i = 0; i < azimuths.size(); ++i) {
@@ -150,7 +153,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
             p.azimuthDeg = wrapAzimuthDeg(azimuths[i]);
             p.window = windows[i];
             interpolatingSteps += estimateSweepSteps(t, p);
-            fixedSweeps.push_back(p);
+            fixedSweeps.push_back({i, p});
         }
         if (params.strategy == SunSweepStrategy::Cheapest && interpolatingSteps >= estimateSweepSteps(t, hp))
             fixedSweeps.clear();
@@ -158,21 +161,16 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
     SweepBuffers buffers;
     if (fixedSweeps.empty()) {
-        frame.sweepRegions = sweepRegions(t, hp).size();
-        sweepHorizonInto(t, hp, horizons[0], buffers, progress);
+        frame.sweepRegions = sweepHorizonInto(t, hp, horizons[0], buffers, progress);
     } else {
         // Progress: the frame counts as one pass over the cells, shared by window areas.
         const auto area = [](const CellWindow& w) { return (w.col1 - w.col0) * (w.row1 - w.row0); };
         std::size_t totalArea = 0, areaDone = 0, reported = 0;
-        for (const HorizonParams& p : fixedSweeps) totalArea += area(*p.window);
-        std::size_t next = 0;
-        for (std::size_t i = 0; i < azimuths.size(); ++i) {
-            if (windows[i].col0 == windows[i].col1) continue;
-            const HorizonParams& p = fixedSweeps[next++];
-            frame.sweepRegions += sweepRegions(t, p).size();
-            sweepHorizonInto(t, p, horizons[i], buffers);
+        for (const FixedSweep& sweep : fixedSweeps) totalArea += area(*sweep.params.window);
+        for (const FixedSweep& sweep : fixedSweeps) {
+            frame.sweepRegions += sweepHorizonInto(t, sweep.params, horizons[sweep.azimuthIndex], buffers);
             if (progress) {
-                areaDone += area(*p.window);
+                areaDone += area(*sweep.params.window);
                 const std::size_t target = t.heightsM.size() * areaDone / totalArea;
                 progress->advance(target - reported);
                 reported = target;

@@ -169,6 +169,39 @@ TEST(Horizon, CurvatureAndRefractionDropFarTerrain) {
     EXPECT_EQ(sweepHorizon(flat, p).angleDeg(w - 1, 2), 0.0f);
 }
 
+TEST(Horizon, AzimuthFieldFollowsEachCellsOwnAzimuth) {
+    const Terrain t = makeTerrain(120, 90, 25.0, hills);
+    HorizonParams p;
+    p.azimuthDeg = 123.4;
+    p.maxDistanceM = 1500.0;
+    p.directionToleranceDeg = 0.05;
+    // A constant field is the one azimuth: same regions, same bits, for the sweep and the reference.
+    HorizonParams constant = p;
+    constant.azimuthAtDeg = [](double, double) { return 123.4; };
+    EXPECT_EQ(sweepRegions(t, constant).size(), sweepRegions(t, p).size());
+    EXPECT_TRUE(bitIdentical(sweepHorizon(t, constant), sweepHorizon(t, p)));
+    EXPECT_TRUE(bitIdentical(referenceHorizon(t, constant), referenceHorizon(t, p)));
+    // A field turning 8 deg across the columns: regions split, and the reference marches each
+    // cell along its own azimuth (the same bits as a one-azimuth reference at that azimuth).
+    HorizonParams turning = p;
+    turning.azimuthAtDeg = [](double col, double) { return 120.0 + 8.0 * col / 120.0; };
+    EXPECT_GT(sweepRegions(t, turning).size(), sweepRegions(t, p).size());
+    const HorizonMap sweep = sweepHorizon(t, turning);
+    const HorizonMap ref = referenceHorizon(t, turning);
+    for (const CellIndex cell : {CellIndex{5, 40}, CellIndex{60, 45}, CellIndex{110, 30}}) {
+        HorizonParams at = p;
+        at.azimuthDeg = turning.azimuthAtDeg(static_cast<double>(cell.col), static_cast<double>(cell.row));
+        EXPECT_EQ(ref.angleDeg(cell.col, cell.row),
+                  referenceHorizonAt(t, at, std::span<const CellIndex>(&cell, 1))[0].angleDeg);
+    }
+    // And the sweep follows it within the bounds it keeps for one azimuth on these hills
+    // (SweepMatchesReferenceOnHills).
+    const ErrorStats e = compare(sweep, ref);
+    EXPECT_GT(e.count, 3000u);  // of 10 800 cells, those whose line stays inside the DEM
+    EXPECT_LT(e.median, 0.15);
+    EXPECT_LT(e.p99, 3.0);
+}
+
 TEST(Horizon, SweepMatchesReferenceOnHills) {
     const Terrain t = makeTerrain(180, 140, 25.0, hills);
     for (double az : {0.0, 37.0, 90.0, 123.4, 200.0, 315.0}) {
