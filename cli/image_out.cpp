@@ -100,7 +100,6 @@ std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& de
 void checkImagePath(const std::string& path) { createOutput(path); }
 
 void writeImage(const std::string& path, const Image8& image) {
-    auto out = createOutput(path);
     if (extensionOf(path) == "png") {
         // PNG through libdeflate (geo/png_writer.h): ~3x faster than libpng for time-lapse frames.
         const fs::path tmp = tempPathFor(path);
@@ -114,6 +113,7 @@ void writeImage(const std::string& path, const Image8& image) {
         commit(tmp, path);
         return;
     }
+    auto out = createOutput(path);
     const bool alpha = out->supports("alpha");
     const int channels = alpha ? 4 : 3;
     OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), channels,

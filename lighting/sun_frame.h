@@ -8,10 +8,9 @@
 #include "lighting/sun.h"
 #include "lighting/surface.h"
 #include "src/progress.h"
+#include "src/angles.h"
 #include "src/sun_field.h"
 #include "src/terrain.h"
-
-#include "src/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,8 +40,8 @@ struct SunFrame {
     double maxDistanceM = 0;              ///< the search distance used
 };
 
-/// Calls fn(col, sun) (SunAngles, azimuth unwrapped like the field) for every column of `row` with the field's sun at the cell's centre
-/// (SunField::at). Along a row the field is linear within each lattice interval, so each
+/// Calls fn(col, sun) for every column of `row` with the field's sun at the cell's centre
+/// (SunField::at; the azimuth unwrapped like the field). Along a row the field is linear within each lattice interval, so each
 /// interval's cells take azimuth and elevation linearly between its end cells, and their sines
 /// and cosines by one angle-addition step per cell from the first cell's <cmath> values: no
 /// trigonometry per cell, within ~1e-14 of <cmath> (tests/sun_frame_test.cpp).

@@ -49,15 +49,16 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
     if (n < 2) throw Error("horizon stack: need at least 2 directions");
     const float nan = std::numeric_limits<float>::quiet_NaN();
     SunLight light{Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
-    const bool night = field.elevationRange().second <= -sunDiameterDeg / 2;
+    if (field.elevationRange().second <= -sunDiameterDeg / 2) {
+        // Night everywhere: no sun to place.
+        for (std::size_t i = 0; i < t.heightsM.size(); ++i)
+            if (!std::isnan(t.heightsM.data()[i])) light.visibility.data()[i] = light.irradiance.data()[i] = 0.0f;
+        return light;
+    }
     const double sectorDeg = 360.0 / static_cast<double>(n);
     parallelFor(0, h, threads, [&](std::size_t row) {
         forEachSunInRow(field, row, w, [&](std::size_t col, const SunAngles& sun) {
             if (!t.valid(col, row)) return;
-            if (night) {
-                light.visibility(col, row) = light.irradiance(col, row) = 0.0f;
-                return;
-            }
             const double azimuth = wrapAzimuthDeg(sun.azimuthDeg);
             const double u = azimuth / sectorDeg;
             const std::size_t i0 = static_cast<std::size_t>(u) % n, i1 = (i0 + 1) % n;

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <limits>
+#include <random>
 
 namespace demlight {
 namespace {
@@ -32,6 +35,32 @@ TEST(ConvergenceField, InterpolatesBilinearlyBetweenNodes) {
     EXPECT_DOUBLE_EQ(f.at(100, 100), 3.0);  // clamped beyond the last node
     EXPECT_EQ(f.range(), std::make_pair(0.0, 3.0));
     EXPECT_DOUBLE_EQ(ConvergenceField{}.at(3, 3), 0.0);
+}
+
+TEST(HeightRange, SkipsNodataAtEveryPositionAndLength) {
+    // Against a plain loop that skips NaN: lengths across the vector lanes' remainder, nodata
+    // first, last and in between, extremes in the tail, and an all-nodata grid.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> height(-50.0f, 3000.0f);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (std::size_t n : {1u, 7u, 16u, 17u, 33u, 100u, 1000u}) {
+        for (int trial = 0; trial < 20; ++trial) {
+            Grid<float> g(n, 1);
+            for (std::size_t i = 0; i < n; ++i) g(i, 0) = rng() % 4 == 0 ? nan : height(rng);
+            if (trial == 1) g(0, 0) = nan;
+            if (trial == 2) g(n - 1, 0) = 5000.0f;
+            if (trial == 3) g(n - 1, 0) = -400.0f;
+            float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+            for (float z : g.values())
+                if (!std::isnan(z)) lo = std::min(lo, z), hi = std::max(hi, z);
+            const auto [gotLo, gotHi] = heightRangeM(g);
+            EXPECT_EQ(gotLo, lo) << n << " " << trial;
+            EXPECT_EQ(gotHi, hi) << n << " " << trial;
+        }
+    }
+    const auto [lo, hi] = heightRangeM(Grid<float>(20, 3, nan));
+    EXPECT_EQ(lo, std::numeric_limits<float>::infinity());
+    EXPECT_EQ(hi, -std::numeric_limits<float>::infinity());
 }
 
 TEST(ParallelFor, VisitsEveryIndexOnce) {
