@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <optional>
+#include <utility>
 
 namespace demlight::cli {
 namespace {
@@ -88,7 +89,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     sweepDirections(t, params, static_cast<std::size_t>(directions),
                     [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg); },
                     &counter);
-    const SkyMaps maps = albedoRaster.empty() ? sky.finish(o.albedo) : sky.finish(albedoRaster[0]);
+    const SkyMaps maps = albedoRaster.empty() ? std::move(sky).finish(o.albedo) : std::move(sky).finish(albedoRaster[0]);
     bar.finish();
     const double seconds = secondsSince(start);
 

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace demlight::cli {
 namespace {
@@ -101,7 +102,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     ProgressCounter skyCounter(bar.callback(), "sky", t.heightsM.size() * skyDirections);
     sweepDirections(t, hp, skyDirections,
                     [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); }, &skyCounter);
-    const Grid<float> skyFactor = skyAcc.finish(o.albedo).skyFactor;
+    const Grid<float> skyFactor = std::move(skyAcc).finish(o.albedo).skyFactor;
 
     ProgressCounter counter(bar.callback(), "sunhours", seq.instants.size());
     const SunHoursMaps maps = integrateSunHours(

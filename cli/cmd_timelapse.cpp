@@ -32,6 +32,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace demlight::cli {
 namespace {
@@ -268,7 +269,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         stack = computeHorizonStack(t, stackDirections, stackParams, &counter);
         SkyAccumulator acc(normals.east, normals.north, normals.up, stackDirections, {}, o.search.threads);
         for (std::size_t i = 0; i < stackDirections; ++i) acc.addDirection(i, stack.angleDeg[i]);
-        sky = acc.finish(0.0).skyK;
+        sky = std::move(acc).finish(0.0).skyK;
     } else {
         sky = planSkyLight(t, normals, skyDirections, skyParams, &counter);
     }

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <sstream>
 #include <unistd.h>
+#include <utility>
 
 namespace demlight::cli {
 
@@ -98,7 +99,7 @@ Grid<float> planSkyLight(const Terrain& terrain, const Normals& normals, std::si
     SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
     sweepDirections(terrain, params, directions,
                     [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
-    return acc.finish(0.0).skyK;
+    return std::move(acc).finish(0.0).skyK;
 }
 
 std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {

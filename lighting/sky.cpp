@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 namespace demlight {
 
@@ -103,6 +106,67 @@ double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lowe
 
 double wedgeKFast(const EnuVector& n, const detail::AzimuthRange& r, double lower, double upper) {
     return wedgeKFast(n, r, lower, std::sin(lower), std::cos(lower), upper);
+}
+
+
+/// A sector's constants for accumulateRowFast, in float.
+struct FastSector {
+    float sin1, cos1, sin2, cos2;
+    float cosDrop, sinRise;  // cos phi1 - cos phi2, sin phi2 - sin phi1
+    float width;             // radians
+    bool narrow;             // narrower than pi: detail::planeBelowAcross decides
+};
+
+FastSector makeFastSector(const detail::AzimuthRange& r) {
+    return {static_cast<float>(r.sin1),           static_cast<float>(r.cos1),
+            static_cast<float>(r.sin2),           static_cast<float>(r.cos2),
+            static_cast<float>(r.cos1 - r.cos2),  static_cast<float>(r.sin2 - r.sin1),
+            static_cast<float>(r.phi2 - r.phi1),  r.phi2 - r.phi1 < kPi};
+}
+
+/// One row of one sector, branch-free so the compiler vectorises it, in float (the sums are
+/// float):
+/// - sin max(h, 0) into the two SVF sums of every cell;
+/// - K of every tilted cell whose tangent plane stays below its horizon across the sector (the
+///   constant-limit closed form, as in wedgeKFast); the others get rises = 1 and are left to the
+///   caller. Flat cells take K from the SVF sum in SkyAccumulator::finish and add nothing here.
+/// NaN inputs give NaN. The pointers do not alias (restrict: seven arrays are more than the
+/// vectoriser checks at run time).
+void accumulateRowFast(const float* __restrict h, const float* __restrict e,
+                       const float* __restrict n, const float* __restrict u, float* __restrict k,
+                       float* __restrict s1, float* __restrict s2, std::uint8_t* __restrict rises,
+                       std::size_t cols, const FastSector c) {
+    constexpr float kPiF = static_cast<float>(kPi);
+    constexpr auto kFlatEps2 = static_cast<float>(detail::kFlatNormalEps * detail::kFlatNormalEps);
+    for (std::size_t col = 0; col < cols; ++col) {
+        const float hc = h[col], ec = e[col], nc = n[col], uc = u[col];
+        const float lower = std::clamp(hc, -90.0f, 90.0f) * kDegToRadF;  // NaN stays NaN
+        const float sinL = fastSinElevationF(lower);
+        const float cosL = std::sqrt(std::max(0.0f, 1.0f - sinL * sinL));  // |lower| <= pi/2
+        const float sPos = lower > 0.0f ? sinL : (lower != lower ? lower : 0.0f);
+        s1[col] += sPos;
+        s2[col] += sPos * sPos;
+
+        const float up = std::max(uc, static_cast<float>(kMinNormalUp));  // NaN stays NaN
+        const float inverseLength = 1.0f / std::sqrt(ec * ec + nc * nc + up * up);
+        const float ne = ec * inverseLength, nn = nc * inverseLength, nu = up * inverseLength;
+        const float horizontal2 = ne * ne + nn * nn;
+        const float aInt = ne * c.cosDrop + nn * c.sinRise;
+        const float kConstant = (aInt * (kPiF / 4.0f - 0.5f * lower - 0.5f * sinL * cosL) +
+                                 nu * c.width * (0.5f - 0.5f * sinL * sinL)) /
+                                kPiF;
+        // detail::planeBelowAcross: the lowest a(phi) over the sector against `lower`.
+        const bool steepestDescentInside =
+            ne * c.cos1 - nn * c.sin1 <= 0.0f && ne * c.cos2 - nn * c.sin2 >= 0.0f;
+        const float aMin = steepestDescentInside
+                               ? -std::sqrt(horizontal2)
+                               : std::min(ne * c.sin1 + nn * c.cos1, ne * c.sin2 + nn * c.cos2);
+        const bool flat = horizontal2 < kFlatEps2;
+        const bool planeRises = !flat && (!c.narrow || aMin * cosL + nu * sinL < 0.0f);
+        const float add = flat ? hc * 0.0f + uc * 0.0f : kConstant;
+        k[col] += planeRises ? 0.0f : add;
+        rises[col] = planeRises;
+    }
 }
 
 
@@ -372,7 +436,12 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
     const std::size_t width = east_.width();
+    const bool quarterSector = phi2 - phi1 < 0.5 * kPi;  // detail::sectorPiKAboveLower applies
+    const FastSector fast = makeFastSector(sector);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+        thread_local std::vector<std::uint8_t> risesBuffer;
+        risesBuffer.resize(width);
+        std::uint8_t* rises = risesBuffer.data();
         const float* h = horizonDeg.rowPtr(row);
         const float* e = east_.rowPtr(row);
         const float* n = north_.rowPtr(row);
@@ -380,31 +449,41 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         float* k = sumK_.rowPtr(row);
         float* s1 = sumSin_.rowPtr(row);
         float* s2 = sumSin2_.rowPtr(row);
-        // Pass 1, branch-free so the compiler vectorises it: sin max(h, 0) into the two SVF
-        // sums for every cell (NaN horizons propagate into them, so nodata stays NaN).
+        // Pass 1, vectorised: the SVF sums of every cell, and K where the plane stays below.
+        accumulateRowFast(h, e, n, u, k, s1, s2, rises, width, fast);
+        // Pass 2: the cells whose tangent plane rises above the horizon somewhere in the sector
+        // (about a fifth of the tilted ones on real terrain), exactly in double.
         for (std::size_t col = 0; col < width; ++col) {
-            const float x = std::clamp(h[col], -90.0f, 90.0f) * kDegToRadF;  // NaN stays NaN
-            const float sinH = fastSinElevationF(x);
-            const float sPos = x > 0.0f ? sinH : (x != x ? x : 0.0f);
-            s1[col] += sPos;
-            s2[col] += sPos * sPos;
-        }
-        // Pass 2: K for the cells whose tangent plane is tilted (flat ones take K from the SVF
-        // sum in finish()), exactly per sector in double.
-        for (std::size_t col = 0; col < width; ++col) {
+            // Eight flags at a time: most are clear.
+            if (std::uint64_t eight; col + 8 <= width && (col & 7) == 0 &&
+                                     (std::memcpy(&eight, rises + col, 8), eight == 0)) {
+                col += 7;
+                continue;
+            }
+            if (!rises[col]) continue;
             if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
                 k[col] = kNaNf;
+                continue;
+            }
+            const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
+            const double hRad = clampElevationRad(h[col]);
+            const auto [sinH, cosH] = fastSinCosElevation(hRad);
+            const double sectorK =
+                quarterSector ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
+                                                            sinH, cosH) / kPi
+                              : wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
+            k[col] += static_cast<float>(sectorK);
+        }
+        // Patches: per cell, with the general wedge.
+        if (pieces.empty()) return;
+        for (std::size_t col = 0; col < width; ++col) {
+            if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
                 for (std::size_t p = 0; p < patches_.size(); ++p) sumPatch_[p].rowPtr(row)[col] = kNaNf;
                 continue;
             }
-            // A normal with no horizontal part is flat whatever its length; skip the rest early.
-            if (e[col] == 0.0f && n[col] == 0.0f && pieces.empty()) continue;
             const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
-            const bool tilted = normal.east * normal.east + normal.north * normal.north >=
-                                detail::kFlatNormalEps * detail::kFlatNormalEps;
             const double hRad = clampElevationRad(h[col]);
             const auto [sinH, cosH] = fastSinCosElevation(hRad);
-            if (tilted) k[col] += static_cast<float>(wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi));
             for (const PatchPiece& p : pieces)
                 sumPatch_[p.patch].rowPtr(row)[col] += static_cast<float>(
                     hRad >= p.lowerRad
@@ -414,46 +493,78 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     });
 }
 
-SkyMaps SkyAccumulator::finish(double albedo) const { return finishImpl(nullptr, albedo); }
-
-SkyMaps SkyAccumulator::finish(const Grid<float>& albedo) const {
-    if (!albedo.sameShape(east_)) throw Error("sky: albedo grid size differs from the DEM");
-    return finishImpl(&albedo, 0.0);
+SkyMaps SkyAccumulator::finish(double albedo) const& {
+    SkyMaps maps = copiedSums();
+    finishInPlace(maps, nullptr, albedo);
+    return maps;
 }
 
-SkyMaps SkyAccumulator::finishImpl(const Grid<float>* albedo, double constantAlbedo) const {
+SkyMaps SkyAccumulator::finish(const Grid<float>& albedo) const& {
+    SkyMaps maps = copiedSums();
+    finishInPlace(maps, &albedo, 0.0);
+    return maps;
+}
+
+SkyMaps SkyAccumulator::finish(double albedo) && {
+    SkyMaps maps = movedSums();
+    finishInPlace(maps, nullptr, albedo);
+    return maps;
+}
+
+SkyMaps SkyAccumulator::finish(const Grid<float>& albedo) && {
+    SkyMaps maps = movedSums();
+    finishInPlace(maps, &albedo, 0.0);
+    return maps;
+}
+
+SkyMaps SkyAccumulator::copiedSums() const {
+    SkyMaps maps;
+    maps.svfHorizontal = sumSin2_;
+    maps.skyFraction = sumSin_;
+    maps.skyK = sumK_;
+    maps.patchK = sumPatch_;
+    return maps;
+}
+
+SkyMaps SkyAccumulator::movedSums() {
+    SkyMaps maps;
+    maps.svfHorizontal = std::move(sumSin2_);
+    maps.skyFraction = std::move(sumSin_);
+    maps.skyK = std::move(sumK_);
+    maps.patchK = std::move(sumPatch_);
+    return maps;
+}
+
+void SkyAccumulator::finishInPlace(SkyMaps& maps, const Grid<float>* albedo, double constantAlbedo) const {
     for (std::size_t i = 0; i < directions_; ++i)
         if (!added_[i])
             throw Error("sky: direction " + std::to_string(i) + " of " +
                         std::to_string(directions_) + " was never added");
+    if (albedo && !albedo->sameShape(east_)) throw Error("sky: albedo grid size differs from the DEM");
     const std::size_t w = east_.width(), ht = east_.height();
-    SkyMaps out;
-    out.svfHorizontal = Grid<float>(w, ht, kNaNf);
-    out.skyFraction = Grid<float>(w, ht, kNaNf);
-    out.skyK = Grid<float>(w, ht, kNaNf);
-    out.skyFactor = Grid<float>(w, ht, kNaNf);
-    for (std::size_t p = 0; p < patches_.size(); ++p) out.patchK.emplace_back(w, ht, kNaNf);
+    if (!maps.skyK.sameShape(east_)) throw Error("sky: the accumulator was already finished");
+    maps.skyFactor = Grid<float>(w, ht, kNaNf);
     const double d = static_cast<double>(directions_);
     parallelFor(0, ht, threads_, [&](std::size_t row) {
+        float* svf = maps.svfHorizontal.rowPtr(row);  // holds sum sin^2 h
+        float* fraction = maps.skyFraction.rowPtr(row);  // holds sum sin h
+        float* skyK = maps.skyK.rowPtr(row);  // holds sum K (tilted cells)
+        float* factor = maps.skyFactor.rowPtr(row);
         for (std::size_t col = 0; col < w; ++col) {
-            out.svfHorizontal(col, row) = static_cast<float>(1.0 - sumSin2_(col, row) / d);
-            out.skyFraction(col, row) = static_cast<float>(1.0 - sumSin_(col, row) / d);
+            const double sumSin2 = svf[col], sumSin = fraction[col], sumK = skyK[col];
+            svf[col] = static_cast<float>(1.0 - sumSin2 / d);
+            fraction[col] = static_cast<float>(1.0 - sumSin / d);
             const double nu = up_(col, row);
             const double ec = east_(col, row), nc = north_(col, row);
             const bool flat = ec * ec + nc * nc < detail::kFlatNormalEps * detail::kFlatNormalEps;
-            const double unitUp = detail::unitNormal({east_(col, row), north_(col, row), nu}).up;
-            double k = flat ? unitUp * (1.0 - sumSin2_(col, row) / d) : sumK_(col, row);
-            if (std::isnan(sumK_(col, row))) k = sumK_(col, row);
-            out.skyK(col, row) = static_cast<float>(k);
+            const double unitUp = detail::unitNormal({ec, nc, nu}).up;
+            double k = flat ? unitUp * (1.0 - sumSin2 / d) : sumK;
+            if (std::isnan(sumK)) k = sumK;
+            skyK[col] = static_cast<float>(k);
             const double c = albedo ? (*albedo)(col, row) : constantAlbedo;
-            out.skyFactor(col, row) = std::isnan(k) || std::isnan(c)
-                                          ? kNaNf
-                                          : static_cast<float>(skyFactor(k, c));
-            for (std::size_t p = 0; p < patches_.size(); ++p)
-                out.patchK[p](col, row) = static_cast<float>(sumPatch_[p](col, row));
+            factor[col] = std::isnan(k) || std::isnan(c) ? kNaNf : static_cast<float>(skyFactor(k, c));
         }
     });
-    return out;
 }
 
 SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
@@ -465,7 +576,7 @@ SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
         if (!horizonsDeg[i]) throw Error("sky: horizon grid " + std::to_string(i) + " is null");
         acc.addDirection(i, *horizonsDeg[i]);
     }
-    return acc.finish(albedo);
+    return std::move(acc).finish(albedo);
 }
 
 }  // namespace demlight

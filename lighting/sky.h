@@ -160,14 +160,22 @@ public:
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
 
     /// Final grids with a constant albedo C in [0, 1]. Throws Error if a direction is missing.
-    SkyMaps finish(double albedo) const;
+    SkyMaps finish(double albedo) const&;
     /// Final grids with a per-cell albedo raster (NaN albedo gives NaN f_sky only).
-    SkyMaps finish(const Grid<float>& albedo) const;
+    SkyMaps finish(const Grid<float>& albedo) const&;
+    /// The same from an accumulator that is done with: its sums become the output grids in
+    /// place, so only f_sky needs new memory (fresh pages cost ~2 ms per MB to fault in).
+    SkyMaps finish(double albedo) &&;
+    SkyMaps finish(const Grid<float>& albedo) &&;
 
     std::size_t directions() const { return directions_; }
 
 private:
-    SkyMaps finishImpl(const Grid<float>* albedo, double constantAlbedo) const;
+    /// Turns sums (maps.skyK, maps.skyFraction, maps.svfHorizontal and maps.patchK hold
+    /// sumK_, sumSin_, sumSin2_ and sumPatch_, or copies) into the outputs, in place.
+    void finishInPlace(SkyMaps& maps, const Grid<float>* albedo, double constantAlbedo) const;
+    SkyMaps copiedSums() const;
+    SkyMaps movedSums();
 
     const Grid<float>& east_;
     const Grid<float>& north_;

@@ -149,6 +149,74 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
     }
 }
 
+/// pi * K over the sector r (narrower than pi/2) from the constant lower limit `lower` (radians,
+/// with its sine and cosine, cosL >= 0) up to the zenith, clipped to the tangent plane of the
+/// unit normal (ne, nn, nu) with a horizontal part. The integral of forEachWedgePiece and the
+/// piece formulas in sky.cpp, without angles: with a(phi) = N_e sin phi + N_n cos phi = R sin psi
+/// and b(phi) = N_e cos phi - N_n sin phi = R cos psi (psi = phi + delta), the cut azimuths, where
+/// a = -N_up tan(lower), are unit vectors (sin psi = s, cos psi = +-sqrt(1 - s^2), turned back by
+/// delta), a piece's width is one arctangent of the cross and dot products of its ends, and the
+/// plane antiderivative J(psi) = -R cos psi atan(k sin psi) + N_up (m atan(...) + (m - 1) psi)
+/// is written in a and b, its psi term becoming (m - 1) times the width.
+inline double sectorPiKAboveLower(double ne, double nn, double nu, const AzimuthRange& r,
+                                  double lower, double sinL, double cosL) {
+    struct End {
+        double sin, cos, offset;  // azimuth as a unit vector, and its angle from phi1
+    };
+    const double horizontal = std::sqrt(ne * ne + nn * nn);
+    std::array<End, 4> ends{};
+    std::size_t count = 0;
+    ends[count++] = {r.sin1, r.cos1, 0.0};
+    // a(phi) cos(lower) + N_up sin(lower) = 0  <=>  sin psi = s.
+    const double t = nu * sinL, q = horizontal * cosL;
+    if (std::abs(t) < q) {
+        const double s = -t / q;
+        const double c = std::sqrt((1.0 - s) * (1.0 + s));
+        for (const double cosPsi : {c, -c}) {
+            const double sinPhi = (s * ne - cosPsi * nn) / horizontal;
+            const double cosPhi = (cosPsi * ne + s * nn) / horizontal;
+            const double fromStart = sinPhi * r.cos1 - cosPhi * r.sin1;  // sin(phi - phi1)
+            const double toEnd = cosPhi * r.sin2 - sinPhi * r.cos2;      // sin(phi2 - phi)
+            if (fromStart > 0.0 && toEnd > 0.0)  // strictly inside; cos(phi - phi1) > 0 below
+                ends[count++] = {sinPhi, cosPhi,
+                                 fastAtan(fromStart / (cosPhi * r.cos1 + sinPhi * r.sin1))};
+        }
+        if (count == 3 && ends[2].offset < ends[1].offset) std::swap(ends[1], ends[2]);
+    }
+    ends[count++] = {r.sin2, r.cos2, r.phi2 - r.phi1};
+
+    const double k = horizontal / nu;
+    const double m = std::sqrt(1.0 + k * k);
+    const double mMinus1 = k * k / (m + 1.0);
+    auto planeJ = [&](double a, double b) {
+        return -b * fastAtan(a / nu) + nu * m * fastAtan(mMinus1 * a * b / (b * b + m * a * a));
+    };
+    const double constantCos2 = 0.5 * lower + 0.5 * sinL * cosL;  // cos2Antiderivative(lower)
+    const double constantSinCos = 0.5 * sinL * sinL;              // sinCosAntiderivative(lower)
+    double piK = 0.0;
+    for (std::size_t i = 0; i + 1 < count; ++i) {
+        const End& p = ends[i];
+        const End& q2 = ends[i + 1];
+        const double width = q2.offset - p.offset;
+        if (!(width > 0.0)) continue;
+        const double aP = ne * p.sin + nn * p.cos, aQ = ne * q2.sin + nn * q2.cos;
+        const double aInt = ne * (p.cos - q2.cos) + nn * (q2.sin - p.sin);
+        // Upper limit the zenith: integral_el^(pi/2) (a cos el + N_up sin el) cos el d el.
+        piK += aInt * (kPi / 4.0) + nu * width * 0.5;
+        // Which limit holds on the piece: the plane against `lower` at its middle azimuth, the
+        // bisector (p + q2) / |p + q2| (a is linear in the azimuth's unit vector).
+        const double midSin = p.sin + q2.sin, midCos = p.cos + q2.cos;
+        const double midLength = std::sqrt(midSin * midSin + midCos * midCos);
+        if ((aP + aQ) * cosL + nu * sinL * midLength < 0.0) {
+            const double bP = ne * p.cos - nn * p.sin, bQ = ne * q2.cos - nn * q2.sin;
+            piK += 0.5 * (planeJ(aQ, bQ) - planeJ(aP, bP) + nu * mMinus1 * width);
+        } else {
+            piK -= aInt * constantCos2 + nu * width * constantSinCos;
+        }
+    }
+    return piK;
+}
+
 /// Antiderivatives in elevation of cos^2 and sin cos (d omega = cos(el) d el d az).
 inline double cos2Antiderivative(double theta) {
     return theta == kHalfPi ? kPi / 4.0 : 0.5 * theta + 0.25 * fastSinCos(2.0 * theta).sin;

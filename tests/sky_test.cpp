@@ -1,11 +1,14 @@
 // Sky factors: analytic cases (flat, tilted plane, V valley, paraboloid pit, wall), patches,
 // f_sky limits, monotonicity, the dense reference, and the streaming grid driver.
 #include "lighting/sky.h"
+#include "lighting/sky_wedge.h"
 
 #include "src/error.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -364,6 +367,58 @@ std::vector<const Grid<float>*> pointers(const std::vector<Grid<float>>& grids) 
     return out;
 }
 
+// The accumulator's algebraic sector integral (cut azimuths as unit vectors, no angles) against
+// the general wedge (cut angles by asin, pieces by angle): random normals from flat to nearly
+// vertical, sectors of D = 5..64 and arbitrary narrow ranges, lower limits anywhere and near the
+// plane's own elevation inside the range, so that pieces with 0, 1 and 2 cuts all occur.
+TEST(Sky, AlgebraicSectorMatchesTheGeneralWedge) {
+    std::mt19937 rng(20261122);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int cutCases[3] = {0, 0, 0};
+    double worst = 0.0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const double slopeDeg = trial % 7 == 0 ? 89.9 + 0.099 * unit(rng) : 89.0 * unit(rng);
+        EnuVector n = slopeNormal(slopeDeg, 360.0 * unit(rng));
+        if (trial % 11 == 0) n = {1e-9, -2e-9, 1.0};  // barely tilted
+        double az0Deg, az1Deg;
+        if (trial % 2 == 0) {
+            const int d = std::array{5, 8, 16, 32, 64}[static_cast<std::size_t>(trial / 2) % 5];
+            const double w = 360.0 / d;
+            az0Deg = w * std::floor(d * unit(rng)) - 0.5 * w;
+            az1Deg = az0Deg + w;
+        } else {
+            az0Deg = 720.0 * unit(rng) - 360.0;
+            az1Deg = az0Deg + 89.9 * unit(rng) + 0.01;
+        }
+        // Lower limit: anywhere, or the plane's elevation at a random azimuth of the range.
+        double lowerDeg = 180.0 * unit(rng) - 90.0;
+        if (trial % 3 != 0) lowerDeg = planeElevationDeg(n, az0Deg + (az1Deg - az0Deg) * unit(rng));
+        if (trial % 97 == 0) lowerDeg = trial % 2 ? 90.0 : -90.0;
+        const double lower = lowerDeg * kDeg;
+        const detail::AzimuthRange r = detail::makeAzimuthRange(az0Deg * kDeg, az1Deg * kDeg);
+        const double fast = detail::sectorPiKAboveLower(n.east, n.north, n.up, r, lower, std::sin(lower),
+                                                        std::cos(lower)) / kPi;
+        const double general = skyKWedge(n, az0Deg, az1Deg, lowerDeg);
+        worst = std::max(worst, std::abs(fast - general));
+        ASSERT_NEAR(fast, general, 1e-9) << "trial " << trial << " slope " << slopeDeg << " range " << az0Deg
+                                         << ".." << az1Deg << " lower " << lowerDeg;
+        // Cuts inside the range: sign changes of plane-above-lower along a fine sampling.
+        int changes = 0;
+        bool above = false;
+        for (int i = 0; i <= 400; ++i) {
+            const double az = az0Deg + (az1Deg - az0Deg) * i / 400.0;
+            const bool a = planeElevationDeg(n, az) > lowerDeg;
+            if (i > 0 && a != above) ++changes;
+            above = a;
+        }
+        ++cutCases[std::min(changes, 2)];
+    }
+    std::cout << "[ sky ] algebraic sector vs general wedge: worst |dK| " << worst << "; ranges with 0/1/2 cuts "
+              << cutCases[0] << "/" << cutCases[1] << "/" << cutCases[2] << "\n";
+    EXPECT_GT(cutCases[1], 1000);
+    EXPECT_GT(cutCases[2], 20);
+}
+
 TEST(SkyGrid, MatchesPerCellKernelsAndIsThreadDeterministic) {
     const int d = 16;
     TestScene s = randomScene(23, 17, d, 3);
@@ -412,6 +467,28 @@ TEST(SkyGrid, StreamingInAnyOrderAndAlbedoRaster) {
     EXPECT_TRUE(std::isnan(m.skyFactor(2, 3)));
     EXPECT_FALSE(std::isnan(m.skyK(2, 3)));
     EXPECT_TRUE(m.patchK.empty());
+}
+
+TEST(SkyGrid, FinishingInPlaceGivesTheSameMaps) {
+    const int d = 8;
+    const TestScene s = randomScene(11, 7, d, 8);
+    const SkyPatches patches = parseSkyPatches("sectors:2");
+    SkyAccumulator acc(s.east, s.north, s.up, d, patches);
+    for (int i = 0; i < d; ++i) acc.addDirection(static_cast<std::size_t>(i), s.horizons[static_cast<std::size_t>(i)]);
+    const SkyMaps copied = acc.finish(0.3);
+    const SkyMaps again = acc.finish(0.3);  // the const form leaves the sums as they were
+    const SkyMaps moved = std::move(acc).finish(0.3);
+    auto same = [](const Grid<float>& a, const Grid<float>& b) {
+        return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    };
+    for (const SkyMaps* m : {&again, &moved}) {
+        EXPECT_TRUE(same(copied.svfHorizontal, m->svfHorizontal));
+        EXPECT_TRUE(same(copied.skyFraction, m->skyFraction));
+        EXPECT_TRUE(same(copied.skyK, m->skyK));
+        EXPECT_TRUE(same(copied.skyFactor, m->skyFactor));
+        ASSERT_EQ(m->patchK.size(), 2u);
+        EXPECT_TRUE(same(copied.patchK[1], m->patchK[1]));
+    }
 }
 
 TEST(SkyGrid, RejectsBadUse) {
