@@ -665,19 +665,21 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
     reference.maxDistanceM = std::numeric_limits<double>::infinity();
     reference.threads = kThreads;
 
-    // Horizon: one sweep per azimuth with each plan's parameters.
+    // Horizon: one sweep per azimuth with each plan's parameters; a third run is auto with one
+    // scan line per cell (HorizonParams::nearestLine), the cheaper model no plan uses.
     {
-        std::vector<double> ref, h[2];
-        double s[2] = {0, 0}, work[2] = {0, 0};
+        std::vector<double> ref, h[3];
+        double s[3] = {0, 0, 0}, work[2] = {0, 0};
         for (double az : kAutoVsFullAzimuthsDeg) {
             reference.azimuthDeg = az;
             for (const HorizonSample& x : referenceHorizonAt(t, reference, cells)) ref.push_back(x.angleDeg);
-            for (int q = 0; q < 2; ++q) {
-                HorizonParams p = planHorizonParams(plans[q], budget.refraction, kThreads);
+            for (int q = 0; q < 3; ++q) {
+                HorizonParams p = planHorizonParams(plans[q == 1 ? 1 : 0], budget.refraction, kThreads);
                 p.azimuthDeg = az;
+                p.nearestLine = q == 2;
                 HorizonMap m;
                 s[q] += medianSeconds(o.repeats, [&] { m = sweepHorizon(t, p); });
-                work[q] += estimateSweepSteps(t, p);
+                if (q < 2) work[q] += estimateSweepSteps(t, p);
                 for (const CellIndex& c : cells) h[q].push_back(m.angleDeg(c.col, c.row));
             }
         }
@@ -686,11 +688,14 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         const auto [am, ap] = clampedMedianP99(h[0], ref, e);
         const auto [fm, fp] = clampedMedianP99(h[1], ref, e);
         const auto [fam, fap] = clampedMedianP99(h[1], ref, plans[1].expectedError.aboveElevationDeg);
+        const auto [nm, np] = clampedMedianP99(h[2], ref, e);
         const double n = static_cast<double>(std::size(kAutoVsFullAzimuthsDeg));
         rows.push_back({name, "horizon (1 azimuth)", fmt("median abs deg (h >= %g deg)", e), s[0] / n, s[1] / n,
                         work[1] / work[0], am, fm,
                         fmt("p99 auto %.2f", ap) + fmt(" full %.2f deg", fp) +
-                            fmt("; full on every horizon: median %.3f", fam) + fmt(" p99 %.2f deg", fap)});
+                            fmt("; full on every horizon: median %.3f", fam) + fmt(" p99 %.2f deg", fap) +
+                            fmt("; auto with one scan line: %.4g ms", s[2] / n * 1e3) +
+                            fmt(" (full/that %.2f)", s[1] / s[2]) + fmt(" median %.4g", nm) + fmt(" p99 %.2f deg", np)});
     }
 
     // Sun: a frame as `demlight sun` computes it, at a low and a high sun.
@@ -698,9 +703,10 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         const SunField field = SunField::uniform(kSunAzimuthDeg, elevation);
         reference.azimuthDeg = kSunAzimuthDeg;
         const std::vector<HorizonSample> ref = referenceHorizonAt(t, reference, cells);
-        double s[2], mae[2], distance[2];
-        for (int q = 0; q < 2; ++q) {
-            const SunFrameParams fp = planSunFrameParams(plans[q], kSunDiameterDeg, budget.refraction, kThreads);
+        double s[3], mae[3], distance[3];
+        for (int q = 0; q < 3; ++q) {
+            SunFrameParams fp = planSunFrameParams(plans[q == 1 ? 1 : 0], kSunDiameterDeg, budget.refraction, kThreads);
+            fp.nearestLine = q == 2;
             SunFrame frame;
             s[q] = medianSeconds(o.repeats, [&] { frame = computeSunFrame(t, normals, field, fp); });
             double sum = 0;
@@ -713,7 +719,9 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
             distance[q] = frame.maxDistanceM;
         }
         rows.push_back({name, fmt("sun at %.0f deg", elevation), "visibility MAE", s[0], s[1], 0, mae[0], mae[1],
-                        fmt("distance auto %.1f km", distance[0] / 1000) + fmt(", full %.1f km", distance[1] / 1000)});
+                        fmt("distance auto %.1f km", distance[0] / 1000) + fmt(", full %.1f km", distance[1] / 1000) +
+                            fmt("; auto with one scan line: %.4g ms", s[2] * 1e3) + fmt(" (full/that %.2f)", s[1] / s[2]) +
+                            fmt(" MAE %.4g", mae[2])});
     }
 
     // Sky: the plan's directions, as `demlight sky` computes it.

@@ -116,6 +116,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.curvature = params.curvature;
     hp.threads = params.threads;
     hp.truncationFlags = false;
+    hp.nearestLine = params.nearestLine;
     hp.maxDistanceM = frame.maxDistanceM;
     hp.azimuthDeg = field.centreAzimuthDeg;
     hp.azimuthAtDeg = [&field](double col, double row) { return field.at(col + 0.5, row + 0.5).first; };

@@ -29,6 +29,10 @@ struct SunFrameParams {
     /// As HorizonParams::curvature and HorizonParams::directionToleranceDeg (the scene plan's).
     bool curvature = true;
     double directionToleranceDeg = 0;
+    /// HorizonParams::nearestLine for the sun's sweeps (one scan line per cell). No scene plan
+    /// sets it: the bench measures it (docs/bench/auto_vs_full.csv, sun rows' notes), 20-25 %
+    /// faster than two lines but with up to 14x the visibility error on ridges.
+    bool nearestLine = false;
     int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.
     SunSweepStrategy strategy = SunSweepStrategy::Cheapest;
