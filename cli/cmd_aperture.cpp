@@ -61,7 +61,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
                  {&maps.solidAngleSr, nullptr, "visible_solid_angle_sr", "sr"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
-                  std::to_string(directions) + " directions, " + formatNumber(seconds) + " s compute");
+                  std::to_string(directions) + " directions, " + formatSeconds(seconds) + " compute");
 }
 
 }  // namespace

@@ -83,7 +83,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(azimuths.size()) +
                   " horizon bands, degrees) and " + truncationPath(o.out.path) +
                   " (truncation mask); max distance " + formatNumber(params.maxDistanceM) +
-                  " m; " + formatNumber(seconds) + " s compute, " + formatNumber(nsPerCellDir) +
+                  " m; " + formatSeconds(seconds) + " compute, " + formatNumber(nsPerCellDir) +
                   " ns per cell per direction");
 }
 

@@ -248,7 +248,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     writeRaster(o.out.path, bands, dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + o.out.path + " (" + (colour ? prefix + "_r, _g, _b" : prefix) + "; " +
                   std::string(lightingModelName(model)) + " sun + " + o.skyModel + " sky), " +
-                  formatNumber(seconds) + " s compute");
+                  formatSeconds(seconds) + " compute");
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ void runHemisphere(const SkyOptions& o, const CliContext& ctx, const Dem& dem,
                   "normalised irradiance from a unit sky and ground of albedo C, "
                   "(1 + N_up)/2 + C (1 - N_up)/2 (Hargreaves; no terrain occlusion)"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
-    note(ctx, "wrote " + o.out.path + " (1 band: sky_hemisphere); " + formatNumber(seconds) + " s compute");
+    note(ctx, "wrote " + o.out.path + " (1 band: sky_hemisphere); " + formatSeconds(seconds) + " compute");
 }
 
 void runSky(const SkyOptions& o, const CliContext& ctx) {

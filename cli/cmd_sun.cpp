@@ -132,8 +132,8 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
                   (sunUp ? "" : "; the sun is below the horizon: everything is in shadow"));
     note(ctx, "wrote " + o.out.path + " (band 1 sun_visibility, band 2 sun_irradiance); model " +
                   std::string(lightingModelName(model)) + ", " + out.sweeps + ", max distance " +
-                  formatNumber(std::round(out.maxDistanceM)) + " m, " + formatNumber(seconds) +
-                  " s compute");
+                  formatNumber(std::round(out.maxDistanceM)) + " m, " + formatSeconds(seconds) +
+                  " compute");
 }
 
 }  // namespace

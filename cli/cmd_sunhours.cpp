@@ -162,7 +162,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(seq.instants.size()) + " instants every " +
                   formatNumber(o.stepMin) + " min, " + std::to_string(maps.instantsSwept) +
-                  " with the sun up, " + formatNumber(seconds) + " s compute");
+                  " with the sun up, " + formatSeconds(seconds) + " compute");
 }
 
 }  // namespace

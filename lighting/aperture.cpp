@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace demlight {
 
@@ -85,6 +86,110 @@ void addApertureSector(const EnuVector& n, const detail::AzimuthRange& r, double
             }
         }
     });
+}
+
+/// addApertureSector for a sector narrower than pi on detail::forEachAlgebraicPiece's pieces, in
+/// closed form (no Gauss-Legendre, no angles). On a plane piece (lower limit thetaP, with
+/// tan thetaP = -a / N_up, a = R sin psi, psi = phi + delta, k = R / N_up):
+///  - solid angle: width - [asin(R cos psi)] = width - [asin b];
+///  - up: (1/2) integral d psi / (1 + k^2 sin^2 psi) = L / 2 (detail::planeLWithoutPsi);
+///  - east and north: integral (sin phi, cos phi) (pi/4 + g) with g = (atan x + x / (1 + x^2)) / 2,
+///    x = k sin psi. With sin phi = sin psi cos delta - cos psi sin delta (cos phi likewise),
+///    I_c = integral cos psi g = sin psi atan(k sin psi) / 2 (substitute u = sin psi: the
+///    logarithms cancel) and I_s = integral sin psi g = (k L - cos psi atan(k sin psi)) / 2 (by
+///    parts; the rest sums to k integral d psi / (1 + k^2 sin^2 psi)).
+/// `n` is a unit normal with horizontal part R >= kFlatNormalEps.
+void addApertureSectorAlgebraic(const EnuVector& n, const detail::AzimuthRange& r, double lower,
+                                double sinL, double cosL, ApertureSums& s) {
+    const double ne = n.east, nn = n.north, nu = n.up;
+    const double horizontal = std::sqrt(ne * ne + nn * nn);
+    const detail::PlaneConstants c = detail::planeConstants(horizontal, nu);
+    const double cosDelta = ne / horizontal, sinDelta = nn / horizontal;
+    const double cos2Lower = 0.5 * lower + 0.5 * sinL * cosL;
+    // Per end: arcsine of b (fast: asin x = atan(x / sqrt(1 - x^2))), L without its psi term,
+    // and I_s, I_c without I_s's psi term (k width / (2 m), added per piece).
+    auto planeTerms = [&](const detail::PieceEnd& e, double& asinB, double& l, double& iS, double& iC) {
+        const double bUnit = std::clamp(e.b, -1.0, 1.0);
+        asinB = fastAtan(bUnit / std::sqrt(std::max(0.0, 1.0 - bUnit * bUnit)));
+        l = detail::planeLWithoutPsi(c, e);
+        const double atanX = fastAtan(e.a / nu);  // atan(k sin psi)
+        iC = 0.5 * (e.a / horizontal) * atanX;
+        iS = 0.5 * (c.k * l - (e.b / horizontal) * atanX);
+    };
+    detail::forEachAlgebraicPiece(ne, nn, nu, horizontal, r, sinL, cosL,
+                                  [&](const detail::PieceEnd& p, const detail::PieceEnd& q, double width,
+                                      bool plane) {
+        const double cosDrop = p.cos - q.cos, sinRise = q.sin - p.sin;
+        if (!plane) {
+            const double cos2 = kPi / 4.0 - cos2Lower;
+            s.omega += width * (1.0 - sinL);
+            s.ve += cosDrop * cos2;
+            s.vn += sinRise * cos2;
+            s.vu += width * (0.5 - 0.5 * sinL * sinL);
+            return;
+        }
+        double asinP, lP, sP, cP, asinQ, lQ, sQ, cQ;
+        planeTerms(p, asinP, lP, sP, cP);
+        planeTerms(q, asinQ, lQ, sQ, cQ);
+        const double deltaL = lQ - lP + width / c.m;
+        const double deltaS = sQ - sP + 0.5 * c.k * width / c.m, deltaC = cQ - cP;
+        s.omega += width - (asinQ - asinP);
+        s.ve += kPi / 4.0 * cosDrop + cosDelta * deltaS - sinDelta * deltaC;
+        s.vn += kPi / 4.0 * sinRise + cosDelta * deltaC + sinDelta * deltaS;
+        s.vu += 0.5 * deltaL;
+    });
+}
+
+/// A sector's constants for accumulateApertureRowFast.
+struct FastApertureSector {
+    double sin1, cos1, sin2, cos2;
+    double cosDrop, sinRise;  // cos phi1 - cos phi2, sin phi2 - sin phi1
+    double width;             // radians
+    bool narrow;              // narrower than pi: the plane test and the algebraic pieces apply
+};
+
+FastApertureSector makeFastApertureSector(const detail::AzimuthRange& r) {
+    return {r.sin1, r.cos1, r.sin2, r.cos2, r.cos1 - r.cos2, r.sin2 - r.sin1, r.phi2 - r.phi1,
+            r.phi2 - r.phi1 < kPi};
+}
+
+/// One row of one sector, branch-free so the compiler vectorises it (double, as the sums): the
+/// constant-limit closed form of addApertureSector for every cell whose tangent plane stays below
+/// its horizon across the sector (a flat cell's plane is the horizontal, so its limit is
+/// max(h, 0)); the others get kept = 0 and are left to the caller (kept is a double, not a byte
+/// flag: GCC does not narrow double-lane masks to bytes). NaN inputs make omega NaN.
+/// The pointers do not alias (restrict: nine arrays are more than the vectoriser checks).
+template <bool Narrow>
+void accumulateApertureRowFast(const float* __restrict h, const float* __restrict e,
+                               const float* __restrict n, const float* __restrict u,
+                               double* __restrict omega, double* __restrict ve, double* __restrict vn,
+                               double* __restrict vu, double* __restrict kept, std::size_t cols,
+                               const FastApertureSector c) {
+    constexpr double kFlatEps2 = detail::kFlatNormalEps * detail::kFlatNormalEps;
+    for (std::size_t col = 0; col < cols; ++col) {
+        const double hc = h[col], ec = e[col], nc = n[col], uc = u[col];
+        const double up = std::max(uc, kMinNormalUp);  // NaN stays NaN
+        const double inverseLength = 1.0 / std::sqrt(ec * ec + nc * nc + up * up);
+        const double ne = ec * inverseLength, nn = nc * inverseLength, nu = up * inverseLength;
+        const double horizontal2 = ne * ne + nn * nn;
+        const bool flat = horizontal2 < kFlatEps2;
+        const double clamped = std::clamp(hc, -90.0, 90.0) * kDegToRad;  // NaN stays NaN
+        const double lower = std::max(clamped, flat ? 0.0 : -kHalfPi);
+        const SinCos l = fastSinCosElevation(lower);
+        // detail::planeBelowAcross: the lowest a(phi) over the sector against `lower`.
+        const bool steepestDescentInside =
+            ne * c.cos1 - nn * c.sin1 <= 0.0 && ne * c.cos2 - nn * c.sin2 >= 0.0;
+        const double aMin = steepestDescentInside ? -std::sqrt(horizontal2)
+                                                  : std::min(ne * c.sin1 + nn * c.cos1, ne * c.sin2 + nn * c.cos2);
+        const bool planeRises = !flat && (!Narrow || aMin * l.cos + nu * l.sin < 0.0);
+        const double keep = planeRises ? 0.0 : 1.0;
+        const double cos2 = kPi / 4.0 - (0.5 * lower + 0.5 * l.sin * l.cos);
+        omega[col] += keep * c.width * (1.0 - l.sin) + (hc + ec + nc + uc) * 0.0;
+        ve[col] += keep * c.cosDrop * cos2;
+        vn[col] += keep * c.sinRise * cos2;
+        vu[col] += keep * c.width * (0.5 - 0.5 * l.sin * l.sin);
+        kept[col] = keep;
+    }
 }
 
 
@@ -235,21 +340,45 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
     const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
     const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::size_t width = east_.width();
+    const FastApertureSector fast = makeFastApertureSector(sector);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+        thread_local std::vector<double> keptBuffer;
+        keptBuffer.resize(width);
+        double* kept = keptBuffer.data();
+        const float* h = horizonDeg.rowPtr(row);
+        const float* e = east_.rowPtr(row);
+        const float* n = north_.rowPtr(row);
+        const float* u = up_.rowPtr(row);
+        double* omega = omega_.rowPtr(row);
+        double* ve = ve_.rowPtr(row);
+        double* vn = vn_.rowPtr(row);
+        double* vu = vu_.rowPtr(row);
+        // Pass 1, vectorised: the sector where the constant lower limit holds throughout.
+        if (fast.narrow) {
+            accumulateApertureRowFast<true>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
+        } else {
+            accumulateApertureRowFast<false>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
+        }
+        // Pass 2: where the tangent plane rises above the horizon inside the sector.
         for (std::size_t col = 0; col < width; ++col) {
-            const float h = horizonDeg(col, row);
-            const float e = east_(col, row), n = north_(col, row), u = up_(col, row);
-            if (std::isnan(h) || std::isnan(e) || std::isnan(n) || std::isnan(u)) {
-                omega_(col, row) = kNaN;
+            if (kept[col] != 0.0) continue;
+            if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
+                omega[col] = kNaN;
                 continue;
             }
-            ApertureSums s{omega_(col, row), ve_(col, row), vn_(col, row), vu_(col, row)};
-            addApertureSector(detail::unitNormal({e, n, u}), sector,
-                              std::clamp<double>(h, -90.0, 90.0) * kDegToRad, s);
-            omega_(col, row) = s.omega;
-            ve_(col, row) = s.ve;
-            vn_(col, row) = s.vn;
-            vu_(col, row) = s.vu;
+            ApertureSums sums{omega[col], ve[col], vn[col], vu[col]};
+            const EnuVector unit = detail::unitNormal({e[col], n[col], u[col]});
+            const double lower = std::clamp<double>(h[col], -90.0, 90.0) * kDegToRad;
+            if (fast.narrow) {
+                const auto [sinL, cosL] = fastSinCosElevation(lower);
+                addApertureSectorAlgebraic(unit, sector, lower, sinL, cosL, sums);
+            } else {
+                addApertureSector(unit, sector, lower, sums);
+            }
+            omega[col] = sums.omega;
+            ve[col] = sums.ve;
+            vn[col] = sums.vn;
+            vu[col] = sums.vu;
         }
     });
 }

@@ -436,7 +436,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
     const std::size_t width = east_.width();
-    const bool quarterSector = phi2 - phi1 < 0.5 * kPi;  // detail::sectorPiKAboveLower applies
+    const bool narrowSector = phi2 - phi1 < kPi;  // detail::sectorPiKAboveLower applies
     const FastSector fast = makeFastSector(sector);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<std::uint8_t> risesBuffer;
@@ -469,7 +469,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             const double hRad = clampElevationRad(h[col]);
             const auto [sinH, cosH] = fastSinCosElevation(hRad);
             const double sectorK =
-                quarterSector ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
+                narrowSector ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
                                                             sinH, cosH) / kPi
                               : wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
             k[col] += static_cast<float>(sectorK);

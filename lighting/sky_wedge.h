@@ -149,25 +149,34 @@ void forEachWedgePiece(const NormalFrame& f, double phi1, double phi2, double lo
     }
 }
 
-/// pi * K over the sector r (narrower than pi/2) from the constant lower limit `lower` (radians,
-/// with its sine and cosine, cosL >= 0) up to the zenith, clipped to the tangent plane of the
-/// unit normal (ne, nn, nu) with a horizontal part. The integral of forEachWedgePiece and the
-/// piece formulas in sky.cpp, without angles: with a(phi) = N_e sin phi + N_n cos phi = R sin psi
-/// and b(phi) = N_e cos phi - N_n sin phi = R cos psi (psi = phi + delta), the cut azimuths, where
-/// a = -N_up tan(lower), are unit vectors (sin psi = s, cos psi = +-sqrt(1 - s^2), turned back by
-/// delta), a piece's width is one arctangent of the cross and dot products of its ends, and the
-/// plane antiderivative J(psi) = -R cos psi atan(k sin psi) + N_up (m atan(...) + (m - 1) psi)
-/// is written in a and b, its psi term becoming (m - 1) times the width.
-inline double sectorPiKAboveLower(double ne, double nn, double nu, const AzimuthRange& r,
-                                  double lower, double sinL, double cosL) {
-    struct End {
-        double sin, cos, offset;  // azimuth as a unit vector, and its angle from phi1
+/// An end of an algebraic wedge piece: its azimuth as a unit vector (sin, cos), its angle from
+/// the range's start, and a(phi) = N_e sin phi + N_n cos phi, b(phi) = N_e cos phi - N_n sin phi
+/// (R sin psi and R cos psi, psi = phi + delta: the tangent plane rises to atan(-a / N_up)).
+struct PieceEnd {
+    double sin, cos, offset, a, b;
+};
+
+/// Angle in (0, pi) of a direction whose sine and cosine relative to a reference are (y > 0, x).
+inline double angleAbove(double y, double x) {
+    return x > 0.0 ? fastAtan(y / x) : kHalfPi + fastAtan(-x / y);
+}
+
+/// The pieces of forEachWedgePiece for the range r (narrower than pi), the lower limit `lower`
+/// (given by its sine and cosine, cosL >= 0) and the zenith as upper limit, without angles: the
+/// cut azimuths, where a(phi) cos(lower) + N_up sin(lower) = 0, are unit vectors
+/// (sin psi = s, cos psi = +-sqrt(1 - s^2), turned back by delta), and a piece's width is one
+/// arctangent of the cross and dot products of its ends. Calls piece(p, q, width, planeLower)
+/// for each piece [p, q] in order; the normal (ne, nn, nu) is a unit normal with a horizontal
+/// part R = horizontal > 0.
+template <class Piece>
+void forEachAlgebraicPiece(double ne, double nn, double nu, double horizontal, const AzimuthRange& r,
+                           double sinL, double cosL, Piece&& piece) {
+    auto end = [&](double sinPhi, double cosPhi, double offset) {
+        return PieceEnd{sinPhi, cosPhi, offset, ne * sinPhi + nn * cosPhi, ne * cosPhi - nn * sinPhi};
     };
-    const double horizontal = std::sqrt(ne * ne + nn * nn);
-    std::array<End, 4> ends{};
+    std::array<PieceEnd, 4> ends{};
     std::size_t count = 0;
-    ends[count++] = {r.sin1, r.cos1, 0.0};
-    // a(phi) cos(lower) + N_up sin(lower) = 0  <=>  sin psi = s.
+    ends[count++] = end(r.sin1, r.cos1, 0.0);
     const double t = nu * sinL, q = horizontal * cosL;
     if (std::abs(t) < q) {
         const double s = -t / q;
@@ -177,43 +186,69 @@ inline double sectorPiKAboveLower(double ne, double nn, double nu, const Azimuth
             const double cosPhi = (cosPsi * ne + s * nn) / horizontal;
             const double fromStart = sinPhi * r.cos1 - cosPhi * r.sin1;  // sin(phi - phi1)
             const double toEnd = cosPhi * r.sin2 - sinPhi * r.cos2;      // sin(phi2 - phi)
-            if (fromStart > 0.0 && toEnd > 0.0)  // strictly inside; cos(phi - phi1) > 0 below
-                ends[count++] = {sinPhi, cosPhi,
-                                 fastAtan(fromStart / (cosPhi * r.cos1 + sinPhi * r.sin1))};
+            if (fromStart > 0.0 && toEnd > 0.0)                          // strictly inside
+                ends[count++] = end(sinPhi, cosPhi,
+                                    angleAbove(fromStart, cosPhi * r.cos1 + sinPhi * r.sin1));
         }
         if (count == 3 && ends[2].offset < ends[1].offset) std::swap(ends[1], ends[2]);
     }
-    ends[count++] = {r.sin2, r.cos2, r.phi2 - r.phi1};
+    ends[count++] = end(r.sin2, r.cos2, r.phi2 - r.phi1);
+    for (std::size_t i = 0; i + 1 < count; ++i) {
+        const PieceEnd& p = ends[i];
+        const PieceEnd& qEnd = ends[i + 1];
+        const double width = qEnd.offset - p.offset;
+        if (!(width > 0.0)) continue;
+        // Which limit holds on the piece: the plane against `lower` at its middle azimuth, the
+        // bisector (p + q) / |p + q| (a is linear in the azimuth's unit vector).
+        const double midSin = p.sin + qEnd.sin, midCos = p.cos + qEnd.cos;
+        const double midLength = std::sqrt(midSin * midSin + midCos * midCos);
+        piece(p, qEnd, width, (p.a + qEnd.a) * cosL + nu * sinL * midLength < 0.0);
+    }
+}
 
+/// The tangent plane's constants: k = R / N_up, m = sqrt(1 + k^2), m - 1 without cancellation.
+struct PlaneConstants {
+    double k, m, mMinus1;
+};
+inline PlaneConstants planeConstants(double horizontal, double nu) {
     const double k = horizontal / nu;
     const double m = std::sqrt(1.0 + k * k);
-    const double mMinus1 = k * k / (m + 1.0);
-    auto planeJ = [&](double a, double b) {
-        return -b * fastAtan(a / nu) + nu * m * fastAtan(mMinus1 * a * b / (b * b + m * a * a));
+    return {k, m, k * k / (m + 1.0)};
+}
+
+/// L(psi) = integral d psi / (1 + k^2 sin^2 psi) = (psi + atan((m - 1) sin cos / (cos^2 + m sin^2))) / m
+/// at a piece end, without its psi term (the caller adds width / m): written in a and b.
+inline double planeLWithoutPsi(const PlaneConstants& c, const PieceEnd& e) {
+    return fastAtan(c.mMinus1 * e.a * e.b / (e.b * e.b + c.m * e.a * e.a)) / c.m;
+}
+
+/// pi * K over the sector r (narrower than pi) from the constant lower limit `lower` (radians,
+/// with its sine and cosine, cosL >= 0) up to the zenith, clipped to the tangent plane of the
+/// unit normal (ne, nn, nu) with a horizontal part: the integral of forEachWedgePiece and the
+/// piece formulas in sky.cpp, on forEachAlgebraicPiece's pieces. The plane antiderivative
+/// J(psi) = -R cos psi atan(k sin psi) + N_up (m atan(...) + (m - 1) psi) is written in a and b,
+/// its psi term becoming (m - 1) times the width.
+inline double sectorPiKAboveLower(double ne, double nn, double nu, const AzimuthRange& r,
+                                  double lower, double sinL, double cosL) {
+    const double horizontal = std::sqrt(ne * ne + nn * nn);
+    const PlaneConstants c = planeConstants(horizontal, nu);
+    auto planeJ = [&](const PieceEnd& e) {
+        return -e.b * fastAtan(e.a / nu) + nu * c.m * fastAtan(c.mMinus1 * e.a * e.b / (e.b * e.b + c.m * e.a * e.a));
     };
     const double constantCos2 = 0.5 * lower + 0.5 * sinL * cosL;  // cos2Antiderivative(lower)
     const double constantSinCos = 0.5 * sinL * sinL;              // sinCosAntiderivative(lower)
     double piK = 0.0;
-    for (std::size_t i = 0; i + 1 < count; ++i) {
-        const End& p = ends[i];
-        const End& q2 = ends[i + 1];
-        const double width = q2.offset - p.offset;
-        if (!(width > 0.0)) continue;
-        const double aP = ne * p.sin + nn * p.cos, aQ = ne * q2.sin + nn * q2.cos;
-        const double aInt = ne * (p.cos - q2.cos) + nn * (q2.sin - p.sin);
+    forEachAlgebraicPiece(ne, nn, nu, horizontal, r, sinL, cosL,
+                          [&](const PieceEnd& p, const PieceEnd& q, double width, bool plane) {
+        const double aInt = ne * (p.cos - q.cos) + nn * (q.sin - p.sin);
         // Upper limit the zenith: integral_el^(pi/2) (a cos el + N_up sin el) cos el d el.
         piK += aInt * (kPi / 4.0) + nu * width * 0.5;
-        // Which limit holds on the piece: the plane against `lower` at its middle azimuth, the
-        // bisector (p + q2) / |p + q2| (a is linear in the azimuth's unit vector).
-        const double midSin = p.sin + q2.sin, midCos = p.cos + q2.cos;
-        const double midLength = std::sqrt(midSin * midSin + midCos * midCos);
-        if ((aP + aQ) * cosL + nu * sinL * midLength < 0.0) {
-            const double bP = ne * p.cos - nn * p.sin, bQ = ne * q2.cos - nn * q2.sin;
-            piK += 0.5 * (planeJ(aQ, bQ) - planeJ(aP, bP) + nu * mMinus1 * width);
+        if (plane) {
+            piK += 0.5 * (planeJ(q) - planeJ(p) + nu * c.mMinus1 * width);
         } else {
             piK -= aInt * constantCos2 + nu * width * constantSinCos;
         }
-    }
+    });
     return piK;
 }
 
