@@ -213,11 +213,22 @@ double apertureRadiusDeg(double solidAngleSr) {
 
 Aperture aperture(std::span<const float> horizonDeg, const EnuVector& normal) {
     const EnuVector unit = detail::unitNormal(normal);
+    const bool tilted = unit.east * unit.east + unit.north * unit.north >=
+                        detail::kFlatNormalEps * detail::kFlatNormalEps;
     ApertureSums s;
     for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
         const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
-        addApertureSector(unit, detail::makeAzimuthRange(phi1, phi2),
-                          std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad, s);
+        const detail::AzimuthRange range = detail::makeAzimuthRange(phi1, phi2);
+        const double lower = std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad;
+        const auto [sinL, cosL] = fastSinCosElevation(lower);
+        // Closed form where it applies (a tilted plane, a sector narrower than 180 deg); else
+        // cut angles with Gauss-Legendre directions, which miss the steep rise of a nearly
+        // vertical plane by up to 0.01 (tests/aperture_test.cpp).
+        if (tilted && phi2 - phi1 < kPi && !detail::planeBelowAcross(range, unit.east, unit.north, unit.up, sinL, cosL)) {
+            addApertureSectorAlgebraic(unit, range, lower, sinL, cosL, s);
+        } else {
+            addApertureSector(unit, range, lower, s);
+        }
     }
     return finishAperture(s, normal);
 }
