@@ -25,10 +25,11 @@ struct Aperture {
     double radiusDeg = 0.0;     ///< r_p = arccos(1 - A_p / 2 pi) (degrees), in [0, 90]
 };
 
-/// Aperture from D sector horizons (degrees) and the unit ENU normal. A_p and the vertical
-/// part of the mean direction are exact closed forms per sector; the horizontal components on
-/// the parts of a sector clipped by the tangent plane use 8-point Gauss-Legendre on pieces at
-/// most 22.5 degrees wide (relative error below 1e-12 for these smooth integrands).
+/// Aperture from D sector horizons (degrees) and the unit ENU normal. A_p and the mean
+/// direction are closed forms per sector, also where the tangent plane clips it (lighting/
+/// aperture.cpp); only sectors of 180 degrees or wider (D <= 2) fall back to 8-point
+/// Gauss-Legendre directions on pieces at most 22.5 degrees wide, which a nearly vertical plane's
+/// steep rise defeats (errors up to 0.01, tests/aperture_test.cpp).
 Aperture aperture(std::span<const float> horizonDeg, const EnuVector& normal);
 
 /// r_p (degrees) of the cap whose area is solidAngleSr: arccos(1 - A / 2 pi).
