@@ -159,7 +159,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string formatSeconds(double seconds) { return formatNumber(std::round(seconds * 100) / 100) + " s"; }
+std::string formatSeconds(double seconds) {
+    // Below a tenth of a second, milliseconds (small DEMs would print "0 s").
+    if (seconds < 0.1) return formatNumber(std::round(seconds * 1e4) / 10) + " ms";
+    return formatNumber(std::round(seconds * 100) / 100) + " s";
+}
 
 std::string formatDistance(double metres) {
     return std::isfinite(metres) ? formatNumber(std::round(metres)) + " m" : std::string("the whole DEM");

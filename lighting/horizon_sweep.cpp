@@ -601,6 +601,27 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     return geo;
 }
 
+/// combineRow's two-line case without flags, branch-free so the compiler vectorises it: the
+/// tangents of the two lines bracketing each cell (plane A weighted frac, plane B 1 - frac;
+/// either one alone where the other met no terrain; plane A alone where frac = 0, plane B then
+/// holding nothing of this region) into a horizon angle. frac is per cell along X-major lines
+/// (fracs[col]) and one value per row along Y-major ones. Plane A is NaN where the sweep served
+/// nothing (nodata cells: reset to NaN, never served), and the angle stays NaN there.
+template <bool XMajor>
+void combineTwoLines(float* __restrict planeA, const float* __restrict planeB, const double* __restrict fracs,
+                     double rowFrac, std::size_t cols) {
+    const float none = -std::numeric_limits<float>::infinity();
+    for (std::size_t col = 0; col < cols; ++col) {
+        const double frac = XMajor ? fracs[col] : rowFrac;
+        const float a = planeA[col], b = planeB[col];
+        const auto mixed = static_cast<float>(frac * a + (1.0 - frac) * b);
+        const float both = a == none ? b : b != none ? mixed : a;
+        const float slope = frac > 0.0 ? both : a;
+        const auto angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+        planeA[col] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
+    }
+}
+
 /// Turns the two planes of tangents into angles for the region's window, and sets the
 /// truncation flag from the distance to the DEM edge along the region's direction.
 void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, std::size_t row,
@@ -615,6 +636,15 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
             const float slope = a[col];
             const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
             a[col] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
+        }
+        return;
+    }
+    if (!truncated && !geo.nearestLine) {
+        const std::size_t offset = row * W + w.col0, cols = w.col1 - w.col0;
+        if (geo.xMajor) {
+            combineTwoLines<true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, cols);
+        } else {
+            combineTwoLines<false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], cols);
         }
         return;
     }

@@ -2,10 +2,12 @@
 
 #include "lighting/quality.h"
 #include "src/angles.h"
+#include "src/fast_math.h"
 #include "src/parallel.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace demlight {
@@ -20,6 +22,39 @@ double diagonalM(const Terrain& t) {
     for (double h : t.cellHeightM) heightM += h;
     const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
     return std::hypot(widthM, heightM);
+}
+
+/// sunTerms() along one row, branch-free so the compiler vectorises it: the horizon clamped to
+/// the tangent plane in the sun's azimuth, the visible fraction of the disk (seed Eq. 5-7; a
+/// point sun when !Disk) and the Lambert term. Normals of a height field have N_up > 0
+/// (computeNormals), where sunTerms() takes the same arctangent; NaN horizons (nodata) give
+/// NaN. The pointers do not alias (restrict).
+template <bool Disk>
+void shadeRow(const float* __restrict horizonDeg, const float* __restrict east, const float* __restrict north,
+              const float* __restrict up, const detail::SunRowAngles sun, float* __restrict visibility,
+              float* __restrict irradiance, std::size_t cols, double diameterDeg) {
+    const double* __restrict sinAz = sun.sinAzimuth;
+    const double* __restrict cosAz = sun.cosAzimuth;
+    const double* __restrict sinEl = sun.sinElevation;
+    const double* __restrict cosEl = sun.cosElevation;
+    const double* __restrict elDeg = sun.elevationDeg;
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t col = 0; col < cols; ++col) {
+        const double h = horizonDeg[col], ne = east[col], nn = north[col], nu = up[col];
+        const double toward = ne * sinAz[col] + nn * cosAz[col];  // N_h . (sun's azimuth)
+        const double planeDeg = fastAtan(-toward / nu) * kRadToDeg;
+        const double effective = std::max(h, planeDeg);  // NaN horizon stays NaN
+        double o;
+        if constexpr (Disk) {  // as sunVisibility()
+            const double thetaMin = elDeg[col] - 0.5 * diameterDeg, thetaMax = elDeg[col] + 0.5 * diameterDeg;
+            o = std::clamp((thetaMax - effective) / (thetaMax - thetaMin), 0.0, 1.0);
+        } else {
+            o = effective < elDeg[col] ? 1.0 : effective > elDeg[col] ? 0.0 : effective == elDeg[col] ? 0.5 : kNaN;
+        }
+        const double cosine = toward * cosEl[col] + nu * sinEl[col];
+        visibility[col] = static_cast<float>(o);
+        irradiance[col] = static_cast<float>(o * std::max(0.0, cosine));
+    }
 }
 
 /// Interpolating strategy: largest spread of the sun's azimuth served by one sweep, and the
@@ -80,6 +115,20 @@ std::vector<double> sunSweepAzimuthsDeg(const SunField& field, std::size_t width
 }
 
 }  // namespace
+
+namespace detail {
+
+void shadeSunRow(const float* horizonDeg, const float* east, const float* north, const float* up,
+                 const SunRowAngles& sun, float* visibility, float* irradiance, std::size_t cols,
+                 double sunDiameterDeg) {
+    if (sunDiameterDeg > 0.0) {
+        shadeRow<true>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
+    } else {
+        shadeRow<false>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
+    }
+}
+
+}  // namespace detail
 
 double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double sunDiameterDeg) {
     const auto [lo, hi] = heightRangeM(t.heightsM);
@@ -189,6 +238,29 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         const double f = u - static_cast<double>(i0);
         return (1 - f) * horizons[i0].angleDeg(col, row) + f * horizons[i0 + 1].angleDeg(col, row);
     };
+    if (horizons.size() == 1) {
+        // One sweep: the sun's angles of a row into buffers, then the vectorised shading pass.
+        const std::size_t width = t.width();
+        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+            thread_local std::vector<double> buffer;
+            buffer.resize(5 * width);
+            detail::SunRowAngles angles{buffer.data(), buffer.data() + width, buffer.data() + 2 * width,
+                                buffer.data() + 3 * width, buffer.data() + 4 * width};
+            forEachSunInRow(field, row, width, [&](std::size_t col, const SunAngles& sun) {
+                angles.sinAzimuth[col] = sun.sinAzimuth;
+                angles.cosAzimuth[col] = sun.cosAzimuth;
+                angles.sinElevation[col] = sun.sinElevation;
+                angles.cosElevation[col] = sun.cosElevation;
+                angles.elevationDeg[col] = sun.elevationDeg;
+            });
+            const float* h = horizons[0].angleDeg.rowPtr(row);
+            float* visibility = frame.light.visibility.rowPtr(row);
+            float* irradiance = frame.light.irradiance.rowPtr(row);
+            detail::shadeSunRow(h, normals.east.rowPtr(row), normals.north.rowPtr(row), normals.up.rowPtr(row),
+                                angles, visibility, irradiance, width, params.sunDiameterDeg);
+        });
+        return frame;
+    }
     parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
         forEachSunInRow(field, row, t.width(), [&](std::size_t col, const SunAngles& sun) {
             if (std::isnan(t.heightsM(col, row))) return;

@@ -44,6 +44,26 @@ struct SunFrame {
     double maxDistanceM = 0;              ///< the search distance used
 };
 
+namespace detail {
+
+/// The sun's angles along one row (forEachSunInRow), one array per quantity.
+struct SunRowAngles {
+    double* sinAzimuth;
+    double* cosAzimuth;
+    double* sinElevation;
+    double* cosElevation;
+    double* elevationDeg;
+};
+
+/// computeSunFrame's shading of one row from one horizon grid: sunTerms() for every cell
+/// (tests/sun_frame_test.cpp holds it to that), branch-free so it vectorises. Normals must have
+/// N_up > 0, as computeNormals gives; NaN horizons give NaN. No array may overlap another.
+void shadeSunRow(const float* horizonDeg, const float* east, const float* north, const float* up,
+                 const SunRowAngles& sun, float* visibility, float* irradiance, std::size_t cols,
+                 double sunDiameterDeg);
+
+}  // namespace detail
+
 /// Calls fn(col, sun) for every column of `row` with the field's sun at the cell's centre
 /// (SunField::at; the azimuth unwrapped like the field). Along a row the field is linear within each lattice interval, so each
 /// interval's cells take azimuth and elevation linearly between its end cells, and their sines

@@ -169,6 +169,29 @@ TEST(Horizon, CurvatureAndRefractionDropFarTerrain) {
     EXPECT_EQ(sweepHorizon(flat, p).angleDeg(w - 1, 2), 0.0f);
 }
 
+// Without truncation flags the two-line combine runs branch-free (combineTwoLines); the flagged
+// pass is its reference: the same angles bit for bit, along X- and Y-major lines, on and off the
+// grid axes, with nodata holes, several regions and a range limit.
+TEST(Horizon, CombineWithoutFlagsGivesTheSameAngles) {
+    Terrain t = makeTerrain(157, 131, 30.0, hills);
+    for (std::size_t r = 40; r < 60; ++r)
+        for (std::size_t c = 70; c < 95; ++c) t.heightsM(c, r) = kNaN;
+    t.heightsM(3, 100) = kNaN;
+    for (const double az : {0.0, 17.0, 45.0, 90.0, 123.4, 200.0, 301.7}) {
+        for (const double maxDistanceM : {std::numeric_limits<double>::infinity(), 1500.0}) {
+            HorizonParams p = flatEarth(az);
+            p.maxDistanceM = maxDistanceM;
+            p.directionToleranceDeg = 0.05;  // several regions off-axis
+            const HorizonMap flagged = sweepHorizon(t, p);
+            p.truncationFlags = false;
+            const HorizonMap plain = sweepHorizon(t, p);
+            ASSERT_EQ(plain.angleDeg.size(), flagged.angleDeg.size());
+            EXPECT_EQ(std::memcmp(plain.angleDeg.data(), flagged.angleDeg.data(), plain.angleDeg.size() * sizeof(float)), 0)
+                << "azimuth " << az << ", max distance " << maxDistanceM;
+        }
+    }
+}
+
 TEST(Horizon, AzimuthFieldFollowsEachCellsOwnAzimuth) {
     const Terrain t = makeTerrain(120, 90, 25.0, hills);
     HorizonParams p;

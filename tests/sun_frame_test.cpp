@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -85,6 +86,47 @@ INSTANTIATE_TEST_SUITE_P(BothStrategies, SunFrameStrategy,
                              return std::string(param.param == SunSweepStrategy::Following ? "Following"
                                                                                           : "Interpolating");
                          });
+
+// The one-sweep frame shades whole rows in a vectorised pass; it must give sunTerms() for every
+// cell: random normals (flat to 85 deg), horizons below, near and above the tangent plane and the
+// sun (and NaN), sun angles varying along the row, a disk and a point sun.
+TEST(SunFrame, RowShadingIsSunTermsPerCell) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const std::size_t cols = 997;
+    std::vector<float> h(cols), e(cols), n(cols), u(cols), vis(cols), irr(cols);
+    std::vector<double> sinAz(cols), cosAz(cols), sinEl(cols), cosEl(cols), elDeg(cols);
+    std::vector<SunAngles> suns(cols);
+    for (std::size_t c = 0; c < cols; ++c) {
+        const double slope = 85.0 * unit(rng) * (c % 5 == 0 ? 0.0 : 1.0), aspect = 360.0 * unit(rng);
+        e[c] = static_cast<float>(std::sin(slope * kDegToRad) * std::sin(aspect * kDegToRad));
+        n[c] = static_cast<float>(std::sin(slope * kDegToRad) * std::cos(aspect * kDegToRad));
+        u[c] = static_cast<float>(std::cos(slope * kDegToRad));
+        // The elevation a float holds exactly, so that a horizon set to it ties.
+        const double az = 360.0 * unit(rng), el = static_cast<float>(100.0 * unit(rng) - 10.0);
+        suns[c] = {az, el, std::sin(az * kDegToRad), std::cos(az * kDegToRad), std::sin(el * kDegToRad),
+                   std::cos(el * kDegToRad)};
+        sinAz[c] = suns[c].sinAzimuth, cosAz[c] = suns[c].cosAzimuth;
+        sinEl[c] = suns[c].sinElevation, cosEl[c] = suns[c].cosElevation, elDeg[c] = el;
+        // Horizon: anywhere, at the sun's elevation (exact ties), or within the disk.
+        const double pick = unit(rng);
+        h[c] = static_cast<float>(pick < 0.4 ? 180.0 * unit(rng) - 90.0 : pick < 0.6 ? el : el + unit(rng) - 0.5);
+        if (c % 97 == 3) h[c] = std::numeric_limits<float>::quiet_NaN();
+    }
+    const detail::SunRowAngles angles{sinAz.data(), cosAz.data(), sinEl.data(), cosEl.data(), elDeg.data()};
+    for (const double diameter : {kSunDiameterDeg, 0.0}) {
+        detail::shadeSunRow(h.data(), e.data(), n.data(), u.data(), angles, vis.data(), irr.data(), cols, diameter);
+        for (std::size_t c = 0; c < cols; ++c) {
+            const SunTerms want = sunTerms(Enu{e[c], n[c], u[c]}, h[c], suns[c], diameter);
+            if (std::isnan(h[c])) {
+                EXPECT_TRUE(std::isnan(vis[c]) && std::isnan(irr[c])) << c;
+                continue;
+            }
+            EXPECT_NEAR(vis[c], want.visibility, 1e-6) << "col " << c << " diameter " << diameter;
+            EXPECT_NEAR(irr[c], want.irradiance, 1e-6) << "col " << c << " diameter " << diameter;
+        }
+    }
+}
 
 TEST(SunFrame, RowAnglesMatchTheFieldAndTheLibraryTrigonometry) {
     // forEachSunInRow against SunField::at and <cmath> at every cell: a field slanted across
