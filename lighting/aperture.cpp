@@ -177,10 +177,7 @@ void accumulateApertureRowFast(const float* __restrict h, const float* __restric
         const double lower = std::max(clamped, flat ? 0.0 : -kHalfPi);
         const SinCos l = fastSinCosElevation(lower);
         // detail::planeBelowAcross: the lowest a(phi) over the sector against `lower`.
-        const bool steepestDescentInside =
-            ne * c.cos1 - nn * c.sin1 <= 0.0 && ne * c.cos2 - nn * c.sin2 >= 0.0;
-        const double aMin = steepestDescentInside ? -std::sqrt(horizontal2)
-                                                  : std::min(ne * c.sin1 + nn * c.cos1, ne * c.sin2 + nn * c.cos2);
+        const double aMin = detail::lowestA(ne, nn, c.sin1, c.cos1, c.sin2, c.cos2);
         const bool planeRises = !flat && (!Narrow || aMin * l.cos + nu * l.sin < 0.0);
         const double keep = planeRises ? 0.0 : 1.0;
         const double cos2 = kPi / 4.0 - (0.5 * lower + 0.5 * l.sin * l.cos);

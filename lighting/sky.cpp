@@ -156,11 +156,7 @@ void accumulateRowFast(const float* __restrict h, const float* __restrict e,
                                  nu * c.width * (0.5f - 0.5f * sinL * sinL)) /
                                 kPiF;
         // detail::planeBelowAcross: the lowest a(phi) over the sector against `lower`.
-        const bool steepestDescentInside =
-            ne * c.cos1 - nn * c.sin1 <= 0.0f && ne * c.cos2 - nn * c.sin2 >= 0.0f;
-        const float aMin = steepestDescentInside
-                               ? -std::sqrt(horizontal2)
-                               : std::min(ne * c.sin1 + nn * c.cos1, ne * c.sin2 + nn * c.cos2);
+        const float aMin = detail::lowestA(ne, nn, c.sin1, c.cos1, c.sin2, c.cos2);
         const bool flat = horizontal2 < kFlatEps2;
         const bool planeRises = !flat && (!c.narrow || aMin * cosL + nu * sinL < 0.0f);
         const float add = flat ? hc * 0.0f + uc * 0.0f : kConstant;

@@ -75,17 +75,25 @@ inline bool rangeContainsAzimuthOf(const AzimuthRange& r, double e, double n) {
     return e * r.cos1 - n * r.sin1 >= 0.0 && n * r.sin2 - e * r.cos2 >= 0.0;
 }
 
+/// The lowest a(phi) = N_e sin phi + N_n cos phi over an azimuth range narrower than pi with
+/// ends (sin1, cos1) and (sin2, cos2): at an end, or -R if the range contains the azimuth of
+/// (-N_e, -N_n) (rangeContainsAzimuthOf). Branch-free, in float or double, for the vectorised
+/// row passes of the sky and the aperture as for planeBelowAcross.
+template <class T>
+inline T lowestA(T ne, T nn, T sin1, T cos1, T sin2, T cos2) {
+    const bool steepestDescentInside = ne * cos1 - nn * sin1 <= T(0) && ne * cos2 - nn * sin2 >= T(0);
+    return steepestDescentInside ? -std::sqrt(ne * ne + nn * nn)
+                                 : std::min(ne * sin1 + nn * cos1, ne * sin2 + nn * cos2);
+}
+
 /// True if the tangent plane lies at or below the elevation with sine/cosine (sinE, cosE,
 /// cosE >= 0) at every azimuth of r, so the constant lower limit applies across the whole range
-/// and no cut is needed. Plane elevation <= e  <=>  a(phi) cos e + N_up sin e >= 0; the minimum
-/// of a(phi) = N_e sin phi + N_n cos phi is at an end of r or, if r contains it, at the azimuth
-/// of (-N_e, -N_n) where a = -R. Only decides for ranges narrower than pi (returns false else).
+/// and no cut is needed. Plane elevation <= e  <=>  a(phi) cos e + N_up sin e >= 0 (lowestA).
+/// Only decides for ranges narrower than pi (returns false else).
 inline bool planeBelowAcross(const AzimuthRange& r, double ne, double nn, double nu, double sinE,
                              double cosE) {
     if (!(r.phi2 - r.phi1 < kPi)) return false;
-    double aMin = std::min(ne * r.sin1 + nn * r.cos1, ne * r.sin2 + nn * r.cos2);
-    if (rangeContainsAzimuthOf(r, -ne, -nn)) aMin = -std::sqrt(ne * ne + nn * nn);
-    return aMin * cosE + nu * sinE >= 0.0;
+    return lowestA(ne, nn, r.sin1, r.cos1, r.sin2, r.cos2) * cosE + nu * sinE >= 0.0;
 }
 
 /// True if the tangent plane lies strictly above the elevation with sine/cosine (sinE, cosE,
