@@ -71,7 +71,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
                   std::to_string(image.height) + "); quality " + std::string(qualityName(plan.quality)) +
                   ": sun max distance " + formatNumber(std::round(frame.maxDistanceM)) + " m, " +
                   std::to_string(skyDirections) + " sky directions to " +
-                  formatDistance(skyParams.maxDistanceM) + "; " + formatNumber(seconds) + " s");
+                  formatDistance(skyParams.maxDistanceM) + "; " + formatSeconds(seconds));
 }
 
 }  // namespace

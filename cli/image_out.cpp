@@ -1,10 +1,9 @@
 // Picture output; see image_out.h.
 #include "cli/image_out.h"
 
+#include "cli/oiio_loader.h"
 #include "geo/png_writer.h"
 #include "src/error.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,12 +29,15 @@ std::string extensionOf(const std::string& path) {
     return ext;
 }
 
-std::unique_ptr<OIIO::ImageOutput> createOutput(const std::string& path) {
-    const std::string ext = extensionOf(path);
+/// The file's lower-case extension, checked against what the OpenImageIO plugin can write (PNG
+/// needs no plugin). Returns whether the format keeps alpha.
+bool checkedFormat(const std::string& path, const std::string& ext) {
     if (ext.empty()) throw Error(path + ": the output needs an image extension (.png, .jpg, .exr, .gif)");
-    auto out = OIIO::ImageOutput::create(ext);
-    if (!out) throw Error(path + ": OpenImageIO cannot write '." + ext + "' files");
-    return out;
+    if (ext == "png") return true;
+    int alpha = 0;
+    char err[512];
+    if (oiioPlugin().check(ext.c_str(), &alpha, err, sizeof err) != 0) throw Error(path + ": " + err);
+    return alpha != 0;
 }
 
 /// A hidden temporary name beside `path`, so the rename stays on one file system.
@@ -57,11 +59,10 @@ void commit(const fs::path& tmp, const std::string& path) {
     }
 }
 
-[[noreturn]] void fail(OIIO::ImageOutput& out, const fs::path& tmp, const std::string& path) {
-    const std::string msg = out.geterror();
+[[noreturn]] void fail(const char* why, const fs::path& tmp, const std::string& path) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw Error(path + ": cannot write image: " + msg);
+    throw Error(path + ": cannot write image: " + why);
 }
 
 /// RGBA to RGB copy for formats without alpha.
@@ -97,7 +98,7 @@ std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& de
     return bands;
 }
 
-void checkImagePath(const std::string& path) { createOutput(path); }
+void checkImagePath(const std::string& path) { checkedFormat(path, extensionOf(path)); }
 
 void writeImage(const std::string& path, const Image8& image) {
     if (extensionOf(path) == "png") {
@@ -113,69 +114,54 @@ void writeImage(const std::string& path, const Image8& image) {
         commit(tmp, path);
         return;
     }
-    auto out = createOutput(path);
-    const bool alpha = out->supports("alpha");
-    const int channels = alpha ? 4 : 3;
-    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), channels,
-                         OIIO::TypeDesc::UINT8);
-    if (alpha) spec.alpha_channel = 3;
+    const std::string ext = extensionOf(path);
+    const bool alpha = checkedFormat(path, ext);
     const fs::path tmp = tempPathFor(path);
-    if (!out->open(tmp.string(), spec)) fail(*out, tmp, path);
     const std::vector<std::uint8_t> rgb = alpha ? std::vector<std::uint8_t>() : dropAlpha(image);
     const std::uint8_t* data = alpha ? image.rgba.data() : rgb.data();
-    if (!out->write_image(OIIO::TypeDesc::UINT8, data) || !out->close()) fail(*out, tmp, path);
+    char err[512];
+    if (oiioPlugin().write(tmp.string().c_str(), ext.c_str(), data, image.width, image.height, alpha ? 4 : 3, err,
+                           sizeof err) != 0)
+        fail(err, tmp, path);
     commit(tmp, path);
 }
 
 struct GifWriter::Impl {
-    std::unique_ptr<OIIO::ImageOutput> out;
-    OIIO::ImageSpec spec;
+    void* gif = nullptr;
     fs::path tmp;
-    bool open = false;
 };
 
 GifWriter::GifWriter(std::string path, int framesPerSecond)
     : path_(std::move(path)), fps_(framesPerSecond), impl_(std::make_unique<Impl>()) {
-    impl_->out = OIIO::ImageOutput::create("gif");
-    if (!impl_->out) throw Error(path_ + ": this OpenImageIO cannot write GIF");
-    if (!impl_->out->supports("appendsubimage"))
-        throw Error(path_ + ": this OpenImageIO's GIF writer cannot write animations");
     impl_->tmp = tempPathFor(path_);
+    char err[512];
+    impl_->gif = oiioPlugin().gifOpen(impl_->tmp.string().c_str(), fps_, err, sizeof err);
+    if (!impl_->gif) throw Error(path_ + ": " + err);
 }
 
 GifWriter::~GifWriter() {
-    if (impl_ && impl_->open) {
-        impl_->out->close();
+    if (impl_ && impl_->gif) {
+        oiioPlugin().gifFree(impl_->gif);
         std::error_code ec;
         fs::remove(impl_->tmp, ec);
     }
 }
 
 void GifWriter::add(const Image8& frame) {
-    if (frames_ == 0) {
-        impl_->spec = OIIO::ImageSpec(static_cast<int>(frame.width), static_cast<int>(frame.height),
-                                      3, OIIO::TypeDesc::UINT8);
-        const int fps[2] = {fps_, 1};
-        impl_->spec.attribute("FramesPerSecond", OIIO::TypeRational, fps);
-        impl_->spec.attribute("oiio:LoopCount", 0);
-        if (!impl_->out->open(impl_->tmp.string(), impl_->spec)) fail(*impl_->out, impl_->tmp, path_);
-        impl_->open = true;
-    } else {
-        if (static_cast<int>(frame.width) != impl_->spec.width ||
-            static_cast<int>(frame.height) != impl_->spec.height)
-            throw Error(path_ + ": GIF frames differ in size");
-        if (!impl_->out->open(impl_->tmp.string(), impl_->spec, OIIO::ImageOutput::AppendSubimage))
-            fail(*impl_->out, impl_->tmp, path_);
-    }
     const std::vector<std::uint8_t> rgb = dropAlpha(frame);
-    if (!impl_->out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(*impl_->out, impl_->tmp, path_);
+    char err[512];
+    if (oiioPlugin().gifAdd(impl_->gif, rgb.data(), frame.width, frame.height, err, sizeof err) != 0)
+        fail(err, impl_->tmp, path_);
     ++frames_;
 }
 
 void GifWriter::finish() {
     if (frames_ == 0) throw Error(path_ + ": no frames to write");
-    impl_->open = false;
-    if (!impl_->out->close()) fail(*impl_->out, impl_->tmp, path_);
+    char err[512];
+    const int closed = oiioPlugin().gifClose(impl_->gif, err, sizeof err);
+    oiioPlugin().gifFree(impl_->gif);
+    impl_->gif = nullptr;
+    if (closed != 0) fail(err, impl_->tmp, path_);
     commit(impl_->tmp, path_);
 }
 

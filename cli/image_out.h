@@ -1,4 +1,5 @@
-// Pictures: the colour raster used as albedo, and output through OpenImageIO: single images (PNG, JPEG, EXR, ... chosen by extension)
+// Pictures: the colour raster used as albedo, and output: single images (PNG natively; JPEG, EXR, ... chosen by
+// extension, through the OpenImageIO plugin, cli/oiio_loader.h)
 // and animated GIFs. Files are written under a temporary name and renamed on success.
 #pragma once
 
@@ -18,7 +19,7 @@ namespace demlight::cli {
 std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& dem,
                                           const std::string& option);
 
-/// Fails early if `path`'s extension names no format OIIO can write.
+/// Fails early if `path`'s extension names no format demlight can write.
 void checkImagePath(const std::string& path);
 
 /// Writes an 8-bit RGBA image; formats without alpha (JPEG) get RGB (nodata shows as the

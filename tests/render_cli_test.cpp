@@ -140,6 +140,46 @@ TEST(RenderCli, DayPngHasTheDemSize) {
     fs::remove_all(d);
 }
 
+// Pictures other than PNG go through libdemlight_oiio.so, loaded from demlight's own folder on
+// first use: a JPEG is written with it beside the binary; a binary copied away from it still
+// writes PNG, and for a JPEG says which file it needs.
+TEST(RenderCli, PicturePluginLoadsFromTheBinarysFolder) {
+    const fs::path d = scratch("plugin");
+    const std::string args = " --time 2024-06-21T09:00 --tz America/Los_Angeles";
+    std::string err;
+    ASSERT_EQ(runCli("render '" + kDem + "' -o '" + (d / "day.jpg").string() + "'" + args, &err), 0) << err;
+    std::ifstream jpeg(d / "day.jpg", std::ios::binary);
+    unsigned char magic[3] = {0, 0, 0};
+    jpeg.read(reinterpret_cast<char*>(magic), 3);
+    EXPECT_TRUE(magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF) << "not a JPEG";
+
+    const fs::path alone = d / "alone";
+    fs::create_directories(alone);
+    fs::copy_file(DEMLIGHT_CLI_PATH, alone / "demlight");
+    const auto run = [&](const std::string& out) {
+        // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "'" + std::string.
+        std::string cmd = "'";
+        cmd += (alone / "demlight").string();
+        cmd += "' -q render '" + kDem + "' -o '";
+        cmd += (d / out).string();
+        cmd += "'" + args + " 2>'";
+        cmd += (d / "err.txt").string();
+        cmd += "'";
+        const int status = std::system(cmd.c_str());
+        std::ifstream f(d / "err.txt");
+        std::stringstream ss;
+        ss << f.rdbuf();
+        err = ss.str();
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    EXPECT_EQ(run("alone.png"), 0) << err;
+    expectPngOfDemSize(d / "alone.png");
+    EXPECT_NE(run("alone.jpg"), 0);
+    EXPECT_NE(err.find("libdemlight_oiio.so"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(d / "alone.jpg"));
+    fs::remove_all(d);
+}
+
 // Guards "never black noise at night": twilight sky fill keeps the relief visible and smooth.
 TEST(RenderCli, NightImageIsNotBlack) {
     const fs::path d = scratch("night");

@@ -1,0 +1,22 @@
+// Loads libdemlight_oiio.so (cli/plugin/oiio_plugin.h) on first use, from the folder of the
+// running demlight binary.
+#pragma once
+
+#include "cli/plugin/oiio_plugin.h"
+
+namespace demlight::cli {
+
+struct OiioPlugin {
+    decltype(&demlight_oiio_check) check;
+    decltype(&demlight_oiio_write) write;
+    decltype(&demlight_oiio_gif_open) gifOpen;
+    decltype(&demlight_oiio_gif_add) gifAdd;
+    decltype(&demlight_oiio_gif_close) gifClose;
+    decltype(&demlight_oiio_gif_free) gifFree;
+};
+
+/// The plugin's functions; loads it the first time (thread-safe). Throws Error, naming the
+/// file looked for, when it is missing or of another version.
+const OiioPlugin& oiioPlugin();
+
+}  // namespace demlight::cli
