@@ -114,7 +114,8 @@ struct FastSector {
     float sin1, cos1, sin2, cos2;
     float cosDrop, sinRise;  // cos phi1 - cos phi2, sin phi2 - sin phi1
     float width;             // radians
-    bool narrow;             // narrower than pi: detail::planeBelowAcross decides
+    bool narrow;             // narrower than pi: detail::planeBelowAcross and
+                             // detail::sectorPiKAboveLower apply
 };
 
 FastSector makeFastSector(const detail::AzimuthRange& r) {
@@ -164,7 +165,6 @@ void accumulateRowFast(const float* __restrict h, const float* __restrict e,
         rises[col] = planeRises;
     }
 }
-
 
 /// Overlap of a sector (radians) with every patch, shifting patches by whole turns.
 struct PatchPiece {
@@ -432,7 +432,6 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
     const std::size_t width = east_.width();
-    const bool narrowSector = phi2 - phi1 < kPi;  // detail::sectorPiKAboveLower applies
     const FastSector fast = makeFastSector(sector);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<std::uint8_t> risesBuffer;
@@ -465,7 +464,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             const double hRad = clampElevationRad(h[col]);
             const auto [sinH, cosH] = fastSinCosElevation(hRad);
             const double sectorK =
-                narrowSector ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
+                fast.narrow ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
                                                             sinH, cosH) / kPi
                               : wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
             k[col] += static_cast<float>(sectorK);
