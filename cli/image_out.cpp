@@ -29,15 +29,13 @@ std::string extensionOf(const std::string& path) {
     return ext;
 }
 
-/// The file's lower-case extension, checked against what the OpenImageIO plugin can write (PNG
-/// needs no plugin). Returns whether the format keeps alpha.
-bool checkedFormat(const std::string& path, const std::string& ext) {
+/// Throws unless `ext` (the file's lower-case extension) names a format demlight can write: PNG
+/// natively, anything else through the OpenImageIO plugin.
+void checkFormat(const std::string& path, const std::string& ext) {
     if (ext.empty()) throw Error(path + ": the output needs an image extension (.png, .jpg, .exr, .gif)");
-    if (ext == "png") return true;
-    int alpha = 0;
+    if (ext == "png") return;
     char err[512];
-    if (oiioPlugin().check(ext.c_str(), &alpha, err, sizeof err) != 0) throw Error(path + ": " + err);
-    return alpha != 0;
+    if (oiioPlugin().check(ext.c_str(), err, sizeof err) != 0) throw Error(path + ": " + err);
 }
 
 /// A hidden temporary name beside `path`, so the rename stays on one file system.
@@ -65,14 +63,6 @@ void commit(const fs::path& tmp, const std::string& path) {
     throw Error(path + ": cannot write image: " + why);
 }
 
-/// RGBA to RGB copy for formats without alpha.
-std::vector<std::uint8_t> dropAlpha(const Image8& image) {
-    std::vector<std::uint8_t> rgb(image.width * image.height * 3);
-    for (std::size_t i = 0; i < image.width * image.height; ++i)
-        std::copy_n(image.rgba.data() + 4 * i, 3, rgb.data() + 3 * i);
-    return rgb;
-}
-
 }  // namespace
 
 std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& dem,
@@ -98,7 +88,7 @@ std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& de
     return bands;
 }
 
-void checkImagePath(const std::string& path) { checkedFormat(path, extensionOf(path)); }
+void checkImagePath(const std::string& path) { checkFormat(path, extensionOf(path)); }
 
 void writeImage(const std::string& path, const Image8& image) {
     if (extensionOf(path) == "png") {
@@ -115,12 +105,10 @@ void writeImage(const std::string& path, const Image8& image) {
         return;
     }
     const std::string ext = extensionOf(path);
-    const bool alpha = checkedFormat(path, ext);
+    if (ext.empty()) checkFormat(path, ext);  // throws, naming the missing extension
     const fs::path tmp = tempPathFor(path);
-    const std::vector<std::uint8_t> rgb = alpha ? std::vector<std::uint8_t>() : dropAlpha(image);
-    const std::uint8_t* data = alpha ? image.rgba.data() : rgb.data();
     char err[512];
-    if (oiioPlugin().write(tmp.string().c_str(), ext.c_str(), data, image.width, image.height, alpha ? 4 : 3, err,
+    if (oiioPlugin().write(tmp.string().c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
                            sizeof err) != 0)
         fail(err, tmp, path);
     commit(tmp, path);
@@ -148,9 +136,8 @@ GifWriter::~GifWriter() {
 }
 
 void GifWriter::add(const Image8& frame) {
-    const std::vector<std::uint8_t> rgb = dropAlpha(frame);
     char err[512];
-    if (oiioPlugin().gifAdd(impl_->gif, rgb.data(), frame.width, frame.height, err, sizeof err) != 0)
+    if (oiioPlugin().gifAdd(impl_->gif, frame.rgba.data(), frame.width, frame.height, err, sizeof err) != 0)
         fail(err, impl_->tmp, path_);
     ++frames_;
 }

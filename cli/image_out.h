@@ -35,7 +35,7 @@ public:
     ~GifWriter();
     GifWriter(const GifWriter&) = delete;
     GifWriter& operator=(const GifWriter&) = delete;
-    /// Adds a frame; every frame must have the first frame's size. RGB only (no alpha).
+    /// Adds a frame; every frame must have the first frame's size. Alpha is dropped (GIF keeps RGB).
     void add(const Image8& frame);
     void finish();
     std::size_t frames() const { return frames_; }

@@ -13,7 +13,7 @@ namespace demlight::cli {
 namespace {
 
 constexpr const char* kPluginName = "libdemlight_oiio.so";
-constexpr int kPluginVersion = 1;  // demlight_oiio_version() of the plugin this build expects
+constexpr int kPluginVersion = 2;  // demlight_oiio_version() of the plugin this build expects
 
 template <class Fn>
 Fn symbol(void* handle, const char* name, const std::string& path) {

@@ -35,32 +35,31 @@ struct ApertureSums {
     double omega = 0.0, ve = 0.0, vn = 0.0, vu = 0.0;
 };
 
-/// Adds the wedge [phi1, phi2] x [horizon, 90 deg] (clipped to the normal hemisphere).
-void addApertureSector(const EnuVector& n, const detail::AzimuthRange& r, double lower,
-                       ApertureSums& s) {
+/// Adds an azimuth piece of the given width whose lower limit is the constant `lower` (with its
+/// sine and cosine) up to the zenith; cosDrop = cos phiA - cos phiB, sinRise = sin phiB - sin phiA.
+void addConstantLowerPiece(double width, double cosDrop, double sinRise, double lower, double sinL,
+                           double cosL, ApertureSums& s) {
+    const double cos2 = kPi / 4.0 - (0.5 * lower + 0.5 * sinL * cosL);
+    s.omega += width * (1.0 - sinL);
+    s.ve += cosDrop * cos2;
+    s.vn += sinRise * cos2;
+    s.vu += width * (0.5 - 0.5 * sinL * sinL);
+}
+
+/// The wedge where the tangent plane rises, for sectors of 180 degrees or more (D <= 2), where
+/// the algebraic pieces do not apply: cut angles, and Gauss-Legendre directions on the plane
+/// pieces (which a nearly vertical plane's steep rise defeats).
+void addApertureSectorGaussLegendre(const EnuVector& n, const detail::AzimuthRange& r, double lower,
+                                    double sinL, double cosL, ApertureSums& s) {
     const double cos2Top = detail::cos2Antiderivative(kHalfPi);
     const double sinCosTop = detail::sinCosAntiderivative(kHalfPi);
-    const auto [sinL, cosL] = fastSinCosElevation(lower);  // lower is an elevation
-    if (detail::planeBelowAcross(r, n.east, n.north, n.up, sinL, cosL)) {
-        // Fast path: constant lower limit across the sector, ends' trig precomputed.
-        const double width = r.phi2 - r.phi1;
-        const double cos2 = cos2Top - (0.5 * lower + 0.5 * sinL * cosL);
-        s.omega += width * (1.0 - sinL);
-        s.ve += (r.cos1 - r.cos2) * cos2;
-        s.vn += (r.sin2 - r.sin1) * cos2;
-        s.vu += width * (sinCosTop - 0.5 * sinL * sinL);
-        return;
-    }
     const detail::NormalFrame f = detail::makeNormalFrame(n);
     const double phi1 = r.phi1, phi2 = r.phi2;
     detail::forEachWedgePiece(f, phi1, phi2, lower, kHalfPi, [&](double a, double b,
                                                                  detail::PieceLower kind) {
         if (kind == detail::PieceLower::Constant) {
-            const double cos2 = cos2Top - detail::cos2Antiderivative(lower);
-            s.omega += (b - a) * (1.0 - std::sin(lower));
-            s.ve += (std::cos(a) - std::cos(b)) * cos2;
-            s.vn += (std::sin(b) - std::sin(a)) * cos2;
-            s.vu += (b - a) * (sinCosTop - detail::sinCosAntiderivative(lower));
+            addConstantLowerPiece(b - a, std::cos(a) - std::cos(b), std::sin(b) - std::sin(a), lower, sinL,
+                                  cosL, s);
             return;
         }
         // Tangent-plane lower limit. Solid angle: integral of sin(thetaP) d psi
@@ -105,7 +104,6 @@ void addApertureSectorAlgebraic(const EnuVector& n, const detail::AzimuthRange& 
     const double horizontal = std::sqrt(ne * ne + nn * nn);
     const detail::PlaneConstants c = detail::planeConstants(horizontal, nu);
     const double cosDelta = ne / horizontal, sinDelta = nn / horizontal;
-    const double cos2Lower = 0.5 * lower + 0.5 * sinL * cosL;
     // Per end: arcsine of b (fast: asin x = atan(x / sqrt(1 - x^2))), L without its psi term,
     // and I_s, I_c without I_s's psi term (k width / (2 m), added per piece).
     auto planeTerms = [&](const detail::PieceEnd& e, double& asinB, double& l, double& iS, double& iC) {
@@ -121,11 +119,7 @@ void addApertureSectorAlgebraic(const EnuVector& n, const detail::AzimuthRange& 
                                       bool plane) {
         const double cosDrop = p.cos - q.cos, sinRise = q.sin - p.sin;
         if (!plane) {
-            const double cos2 = kPi / 4.0 - cos2Lower;
-            s.omega += width * (1.0 - sinL);
-            s.ve += cosDrop * cos2;
-            s.vn += sinRise * cos2;
-            s.vu += width * (0.5 - 0.5 * sinL * sinL);
+            addConstantLowerPiece(width, cosDrop, sinRise, lower, sinL, cosL, s);
             return;
         }
         double asinP, lP, sP, cP, asinQ, lQ, sQ, cQ;
@@ -189,6 +183,22 @@ void accumulateApertureRowFast(const float* __restrict h, const float* __restric
     }
 }
 
+/// Adds the wedge [phi1, phi2] x [lower, 90 deg] of a unit normal, clipped to its hemisphere:
+/// the constant limit where the tangent plane stays below `lower` across the sector, else the
+/// closed form on algebraic pieces (a tilted plane, a sector narrower than 180 degrees), else
+/// Gauss-Legendre.
+void addApertureSector(const EnuVector& n, const detail::AzimuthRange& r, double lower, ApertureSums& s) {
+    const auto [sinL, cosL] = fastSinCosElevation(lower);  // lower is an elevation
+    if (detail::planeBelowAcross(r, n.east, n.north, n.up, sinL, cosL)) {
+        addConstantLowerPiece(r.phi2 - r.phi1, r.cos1 - r.cos2, r.sin2 - r.sin1, lower, sinL, cosL, s);
+    } else if (r.phi2 - r.phi1 < kPi &&
+               n.east * n.east + n.north * n.north >= detail::kFlatNormalEps * detail::kFlatNormalEps) {
+        addApertureSectorAlgebraic(n, r, lower, sinL, cosL, s);
+    } else {
+        addApertureSectorGaussLegendre(n, r, lower, sinL, cosL, s);
+    }
+}
+
 
 Aperture finishAperture(const ApertureSums& s, const EnuVector& normal) {
     Aperture a;
@@ -210,22 +220,11 @@ double apertureRadiusDeg(double solidAngleSr) {
 
 Aperture aperture(std::span<const float> horizonDeg, const EnuVector& normal) {
     const EnuVector unit = detail::unitNormal(normal);
-    const bool tilted = unit.east * unit.east + unit.north * unit.north >=
-                        detail::kFlatNormalEps * detail::kFlatNormalEps;
     ApertureSums s;
     for (std::size_t i = 0; i < horizonDeg.size(); ++i) {
         const auto [phi1, phi2] = detail::sectorBoundsRad(i, horizonDeg.size());
-        const detail::AzimuthRange range = detail::makeAzimuthRange(phi1, phi2);
-        const double lower = std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad;
-        const auto [sinL, cosL] = fastSinCosElevation(lower);
-        // Closed form where it applies (a tilted plane, a sector narrower than 180 deg); else
-        // cut angles with Gauss-Legendre directions, which miss the steep rise of a nearly
-        // vertical plane by up to 0.01 (tests/aperture_test.cpp).
-        if (tilted && phi2 - phi1 < kPi && !detail::planeBelowAcross(range, unit.east, unit.north, unit.up, sinL, cosL)) {
-            addApertureSectorAlgebraic(unit, range, lower, sinL, cosL, s);
-        } else {
-            addApertureSector(unit, range, lower, s);
-        }
+        addApertureSector(unit, detail::makeAzimuthRange(phi1, phi2),
+                          std::clamp<double>(horizonDeg[i], -90.0, 90.0) * kDegToRad, s);
     }
     return finishAperture(s, normal);
 }
@@ -377,7 +376,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
             ApertureSums sums{omega[col], ve[col], vn[col], vu[col]};
             const EnuVector unit = detail::unitNormal({e[col], n[col], u[col]});
             const double lower = std::clamp<double>(h[col], -90.0, 90.0) * kDegToRad;
-            if (fast.narrow) {
+            if (fast.narrow) {  // pass 1 found the plane rising: the algebraic pieces directly
                 const auto [sinL, cosL] = fastSinCosElevation(lower);
                 addApertureSectorAlgebraic(unit, sector, lower, sinL, cosL, sums);
             } else {

@@ -639,7 +639,7 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
         }
         return;
     }
-    if (!truncated && !geo.nearestLine) {
+    if (!truncated) {  // two lines per cell, no flags
         const std::size_t offset = row * W + w.col0, cols = w.col1 - w.col0;
         if (geo.xMajor) {
             combineTwoLines<true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, cols);
@@ -648,16 +648,15 @@ void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, 
         }
         return;
     }
+    // With truncation flags.
     const double stepLengthM = geo.stepLengthM[row];
     for (std::size_t col = w.col0; col < w.col1; ++col) {
         const std::size_t idx = row * W + col;
         const std::size_t m = geo.xMajor ? col : row;
         const std::size_t j = geo.xMajor ? row : col;
         // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
-        if (truncated) {
-            const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
-            truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
-        }
+        const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
+        truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
 
         if (std::isnan(t.heightsM.data()[idx])) {
             planeA[idx] = std::numeric_limits<float>::quiet_NaN();

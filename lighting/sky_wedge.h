@@ -224,11 +224,16 @@ inline PlaneConstants planeConstants(double horizontal, double nu) {
     return {k, m, k * k / (m + 1.0)};
 }
 
-/// L(psi) = integral d psi / (1 + k^2 sin^2 psi) = (psi + atan((m - 1) sin cos / (cos^2 + m sin^2))) / m
-/// at a piece end, without its psi term (the caller adds width / m): written in a and b.
-inline double planeLWithoutPsi(const PlaneConstants& c, const PieceEnd& e) {
-    return fastAtan(c.mMinus1 * e.a * e.b / (e.b * e.b + c.m * e.a * e.a)) / c.m;
+/// atan((m - 1) sin psi cos psi / (cos^2 psi + m sin^2 psi)) at a piece end, written in a and b:
+/// atan(m tan psi) - psi without its branch jump, the part of L (below) and of the sky's
+/// plane antiderivative J that is not linear in psi.
+inline double planeAtan(const PlaneConstants& c, const PieceEnd& e) {
+    return fastAtan(c.mMinus1 * e.a * e.b / (e.b * e.b + c.m * e.a * e.a));
 }
+
+/// L(psi) = integral d psi / (1 + k^2 sin^2 psi) = (psi + planeAtan) / m at a piece end, without
+/// its psi term (the caller adds width / m).
+inline double planeLWithoutPsi(const PlaneConstants& c, const PieceEnd& e) { return planeAtan(c, e) / c.m; }
 
 /// pi * K over the sector r (narrower than pi) from the constant lower limit `lower` (radians,
 /// with its sine and cosine, cosL >= 0) up to the zenith, clipped to the tangent plane of the
@@ -240,9 +245,7 @@ inline double sectorPiKAboveLower(double ne, double nn, double nu, const Azimuth
                                   double lower, double sinL, double cosL) {
     const double horizontal = std::sqrt(ne * ne + nn * nn);
     const PlaneConstants c = planeConstants(horizontal, nu);
-    auto planeJ = [&](const PieceEnd& e) {
-        return -e.b * fastAtan(e.a / nu) + nu * c.m * fastAtan(c.mMinus1 * e.a * e.b / (e.b * e.b + c.m * e.a * e.a));
-    };
+    auto planeJ = [&](const PieceEnd& e) { return -e.b * fastAtan(e.a / nu) + nu * c.m * planeAtan(c, e); };
     const double constantCos2 = 0.5 * lower + 0.5 * sinL * cosL;  // cos2Antiderivative(lower)
     const double constantSinCos = 0.5 * sinL * sinL;              // sinCosAntiderivative(lower)
     double piK = 0.0;

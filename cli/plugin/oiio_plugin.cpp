@@ -7,10 +7,11 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;
 
 int failWith(const std::string& message, char* err, std::size_t errSize) {
     if (err && errSize > 0) {
@@ -19,6 +20,13 @@ int failWith(const std::string& message, char* err, std::size_t errSize) {
         err[n] = '\0';
     }
     return 1;
+}
+
+/// The RGB channels of an RGBA image, for formats without alpha.
+std::vector<std::uint8_t> rgbOf(const std::uint8_t* rgba, std::size_t width, std::size_t height) {
+    std::vector<std::uint8_t> rgb(width * height * 3);
+    for (std::size_t i = 0; i < width * height; ++i) std::copy_n(rgba + 4 * i, 3, rgb.data() + 3 * i);
+    return rgb;
 }
 
 struct Gif {
@@ -35,20 +43,22 @@ extern "C" {
 
 int demlight_oiio_version() { return kVersion; }
 
-int demlight_oiio_check(const char* ext, int* alpha, char* err, std::size_t errSize) {
-    auto out = OIIO::ImageOutput::create(ext);
-    if (!out) return failWith(std::string("OpenImageIO cannot write '.") + ext + "' files", err, errSize);
-    if (alpha) *alpha = out->supports("alpha") ? 1 : 0;
+int demlight_oiio_check(const char* ext, char* err, std::size_t errSize) {
+    if (!OIIO::ImageOutput::create(ext))
+        return failWith(std::string("OpenImageIO cannot write '.") + ext + "' files", err, errSize);
     return 0;
 }
 
-int demlight_oiio_write(const char* path, const char* ext, const std::uint8_t* pixels, std::size_t width,
-                        std::size_t height, int channels, char* err, std::size_t errSize) {
+int demlight_oiio_write(const char* path, const char* ext, const std::uint8_t* rgba, std::size_t width,
+                        std::size_t height, char* err, std::size_t errSize) {
     auto out = OIIO::ImageOutput::create(ext);
     if (!out) return failWith(std::string("OpenImageIO cannot write '.") + ext + "' files", err, errSize);
-    OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), channels, OIIO::TypeDesc::UINT8);
-    if (channels == 4) spec.alpha_channel = 3;
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels) || !out->close())
+    const bool alpha = out->supports("alpha");
+    OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), alpha ? 4 : 3, OIIO::TypeDesc::UINT8);
+    if (alpha) spec.alpha_channel = 3;
+    const std::vector<std::uint8_t> rgb = alpha ? std::vector<std::uint8_t>() : rgbOf(rgba, width, height);
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, alpha ? rgba : rgb.data()) ||
+        !out->close())
         return failWith(out->geterror(), err, errSize);
     return 0;
 }
@@ -69,7 +79,7 @@ void* demlight_oiio_gif_open(const char* path, int framesPerSecond, char* err, s
     return gif.release();
 }
 
-int demlight_oiio_gif_add(void* handle, const std::uint8_t* rgb, std::size_t width, std::size_t height, char* err,
+int demlight_oiio_gif_add(void* handle, const std::uint8_t* rgba, std::size_t width, std::size_t height, char* err,
                           std::size_t errSize) {
     Gif& gif = *static_cast<Gif*>(handle);
     if (!gif.open) {
@@ -85,7 +95,8 @@ int demlight_oiio_gif_add(void* handle, const std::uint8_t* rgb, std::size_t wid
         if (!gif.out->open(gif.path, gif.spec, OIIO::ImageOutput::AppendSubimage))
             return failWith(gif.out->geterror(), err, errSize);
     }
-    if (!gif.out->write_image(OIIO::TypeDesc::UINT8, rgb)) return failWith(gif.out->geterror(), err, errSize);
+    const std::vector<std::uint8_t> rgb = rgbOf(rgba, width, height);
+    if (!gif.out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) return failWith(gif.out->geterror(), err, errSize);
     return 0;
 }
 

@@ -14,19 +14,17 @@ extern "C" {
 /// Bumped whenever a signature below changes; the loader refuses a plugin of another version.
 int demlight_oiio_version();
 
-/// Whether OpenImageIO can write files with extension `ext` (lower case, no dot); sets *alpha to
-/// whether the format keeps an alpha channel.
-int demlight_oiio_check(const char* ext, int* alpha, char* err, std::size_t errSize);
+/// Whether OpenImageIO can write files with extension `ext` (lower case, no dot).
+int demlight_oiio_check(const char* ext, char* err, std::size_t errSize);
 
-/// Writes an 8-bit image of `channels` (3 or 4) interleaved channels to `path`, in the format of
-/// `ext`.
-int demlight_oiio_write(const char* path, const char* ext, const std::uint8_t* pixels, std::size_t width,
-                        std::size_t height, int channels, char* err, std::size_t errSize);
+/// Writes an 8-bit RGBA image to `path` in the format of `ext`; formats without alpha get RGB.
+int demlight_oiio_write(const char* path, const char* ext, const std::uint8_t* rgba, std::size_t width,
+                        std::size_t height, char* err, std::size_t errSize);
 
-/// Animated GIF: open (returns a handle or null), add RGB frames (all of the first one's size),
-/// close (completes the file), free (discards an unclosed one).
+/// Animated GIF: open (returns a handle or null), add RGBA frames (all of the first one's size;
+/// alpha is dropped), close (completes the file), free (discards an unclosed one).
 void* demlight_oiio_gif_open(const char* path, int framesPerSecond, char* err, std::size_t errSize);
-int demlight_oiio_gif_add(void* gif, const std::uint8_t* rgb, std::size_t width, std::size_t height, char* err,
+int demlight_oiio_gif_add(void* gif, const std::uint8_t* rgba, std::size_t width, std::size_t height, char* err,
                           std::size_t errSize);
 int demlight_oiio_gif_close(void* gif, char* err, std::size_t errSize);
 void demlight_oiio_gif_free(void* gif);
