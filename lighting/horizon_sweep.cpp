@@ -61,11 +61,12 @@ double trueAzimuthOfDirection(const Terrain& t, double dirCol, double dirRow, do
     return std::atan2(east, north) * kRadToDeg + t.convergence.at(col, row);
 }
 
-double azimuthDifferenceDeg(double a, double b) {
+/// a - b wrapped to (-180, 180] degrees.
+double signedAzimuthDifferenceDeg(double a, double b) {
     double d = std::fmod(a - b, 360.0);
     if (d > 180.0) d -= 360.0;
-    if (d < -180.0) d += 360.0;
-    return std::abs(d);
+    if (d <= -180.0) d += 360.0;
+    return d;
 }
 
 /// The azimuth wanted at (col, row): the params' field, or the one azimuth.
@@ -82,16 +83,21 @@ void splitRegion(const Terrain& t, const AzimuthTarget& target, double tolerance
     const double cm = 0.5 * (c0 + c1), rm = 0.5 * (r0 + r1);
     SweepRegion region{w, 0.0, 0.0};
     localGridDirection(t, target(cm, rm), cm, rm, region.dirCol, region.dirRow);
+    // Signed error of the region's direction at (c, r); zero at the centre by construction.
     auto err = [&](double c, double r) {
-        return azimuthDifferenceDeg(trueAzimuthOfDirection(t, region.dirCol, region.dirRow, c, r),
-                                    target(c, r));
+        return signedAzimuthDifferenceDeg(trueAzimuthOfDirection(t, region.dirCol, region.dirRow, c, r),
+                                          target(c, r));
     };
     // Nine samples: corners, edge midpoints, centre.
-    const double eLeft = std::max({err(c0, r0), err(c0, rm), err(c0, r1)});
-    const double eRight = std::max({err(c1, r0), err(c1, rm), err(c1, r1)});
-    const double eTop = std::max({err(c0, r0), err(cm, r0), err(c1, r0)});
-    const double eBottom = std::max({err(c0, r1), err(cm, r1), err(c1, r1)});
-    const double worst = std::max({eLeft, eRight, eTop, eBottom, err(cm, rm)});
+    const double rows[3] = {r0, rm, r1}, cols[3] = {c0, cm, c1};
+    double e[3][3];  // e[i][k] at (cols[k], rows[i])
+    double worst = 0;
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            e[i][k] = err(cols[k], rows[i]);
+            worst = std::max(worst, std::abs(e[i][k]));
+        }
+    }
     const std::size_t w_ = w.col1 - w.col0, h_ = w.row1 - w.row0;
     const bool canSplitCols = w_ >= 2 * kMinRegionCells;
     const bool canSplitRows = h_ >= 2 * kMinRegionCells;
@@ -99,10 +105,16 @@ void splitRegion(const Terrain& t, const AzimuthTarget& target, double tolerance
         out.push_back(region);
         return;
     }
-    // Halve along the axis whose opposite edges disagree most with the azimuth.
-    const double colVariation = std::abs(err(c0, rm) - err(c1, rm)) + std::max(eLeft, eRight);
-    const double rowVariation = std::abs(err(cm, r0) - err(cm, r1)) + std::max(eTop, eBottom);
-    const bool splitCols = canSplitCols && (!canSplitRows || colVariation > rowVariation);
+    // Halve across the axis along which the error changes most (its largest change between
+    // opposite edges), so the halves' errors shrink. (Unsigned errors cannot tell: a corner's
+    // error carries the other axis's change too, and a wrong pick halves the same way forever.)
+    double colVariation = 0, rowVariation = 0;
+    for (int i = 0; i < 3; ++i) {
+        colVariation = std::max(colVariation, std::abs(e[i][2] - e[i][0]));
+        rowVariation = std::max(rowVariation, std::abs(e[2][i] - e[0][i]));
+    }
+    const bool splitCols = canSplitCols && (!canSplitRows || colVariation > rowVariation ||
+                                            (colVariation == rowVariation && w_ >= h_));
     CellWindow a = w, b = w;
     if (splitCols) {
         a.col1 = b.col0 = w.col0 + w_ / 2;
