@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "demlight " DEMLIGHT_VERSION);
     app.add_flag("-q,--quiet", ctx.quiet, "No progress output");
     app.require_subcommand(1);
+    app.fallthrough();  // subcommands inherit it: -q also works after the subcommand
     cli::registerInfo(app, ctx);
     cli::registerSunpos(app, ctx);
     cli::registerHorizon(app, ctx);

@@ -175,6 +175,17 @@ TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
     EXPECT_GT(shadow, 1000u);  // and the crater and west flanks are in shadow
 }
 
+// Global options may follow the subcommand too, as users type them.
+TEST(CliOutputs, QuietAfterTheSubcommand) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_quiet";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string out = (dir / "h.tif").string();
+    const auto r = runDemlight("horizon " + kRocky + " -o " + out + " --azimuth 90 --threads 2 -q");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
 TEST(CliOutputs, InfoJsonReportsMetricCellSizes) {
     const auto r = runDemlight("info " + kRocky + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
