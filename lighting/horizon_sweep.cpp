@@ -283,14 +283,6 @@ struct LineGeometry {
     std::vector<double> edgeStepsMajor, edgeStepsMinor;
 };
 
-/// A served cell's tangent (slope of the steepest sight line) as a horizon angle in degrees;
-/// -inf (no terrain in range) gives kNoHorizonDeg.
-inline float slopeToAngleDeg(float slope) {
-    return slope == -std::numeric_limits<float>::infinity()
-               ? static_cast<float>(kNoHorizonDeg)
-               : static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
-}
-
 /// minor = base + frac for the line k = 0 at major index m. Shared by the sweep and the combine
 /// pass (through LineGeometry::base/frac) so both see the same bits.
 inline void lineOffset(double slope, long m, long& base, double& frac) {
@@ -635,57 +627,38 @@ void combineTwoLines(float* __restrict planeA, const float* __restrict planeB, c
 }
 
 /// Turns the two planes of tangents into angles for the region's window, and sets the
-/// truncation flag from the distance to the DEM edge along the region's direction.
-void combineRow(const Terrain& t, const LineGeometry& geo, double maxDistanceM, std::size_t row,
+/// truncation flag from the distance to the DEM edge along the region's direction. Plane A is
+/// NaN at nodata cells (never served), so their angle stays NaN. Both loops are branch-free.
+void combineRow(const LineGeometry& geo, double maxDistanceM, std::size_t W, std::size_t row,
                 const CellWindow& w, float* planeA, const float* planeB, std::uint8_t* truncated) {
-    const std::size_t W = t.width();
-    const float none = -std::numeric_limits<float>::infinity();
-    if (geo.nearestLine && !truncated) {
-        // One line per cell and no flags: plane A holds the tangents, NaN where the sweep served
-        // nothing (nodata), so the angles need no per-cell branches and the loop vectorises.
-        float* a = planeA + row * W;
-        for (std::size_t col = w.col0; col < w.col1; ++col) {
-            const float slope = a[col];
-            const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
-            a[col] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
-        }
-        return;
-    }
-    if (!truncated) {  // two lines per cell, no flags
-        const std::size_t offset = row * W + w.col0, cols = w.col1 - w.col0;
-        if (geo.xMajor) {
-            combineTwoLines<true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, cols);
-        } else {
-            combineTwoLines<false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], cols);
-        }
-        return;
-    }
-    // With truncation flags.
-    const double stepLengthM = geo.stepLengthM[row];
-    for (std::size_t col = w.col0; col < w.col1; ++col) {
-        const std::size_t idx = row * W + col;
-        const std::size_t m = geo.xMajor ? col : row;
-        const std::size_t j = geo.xMajor ? row : col;
+    const std::size_t offset = row * W + w.col0, cols = w.col1 - w.col0;
+    if (truncated) {
         // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
-        const double steps = std::min(geo.edgeStepsMajor[m], geo.edgeStepsMinor[j]);
-        truncated[idx] = steps * stepLengthM < maxDistanceM ? 1 : 0;
-
-        if (std::isnan(t.heightsM.data()[idx])) {
-            planeA[idx] = std::numeric_limits<float>::quiet_NaN();
-            continue;
+        const double stepM = geo.stepLengthM[row];
+        std::uint8_t* flags = truncated + offset;
+        if (geo.xMajor) {
+            const double minor = geo.edgeStepsMinor[row];
+            const double* major = geo.edgeStepsMajor.data() + w.col0;
+            for (std::size_t i = 0; i < cols; ++i) flags[i] = std::min(major[i], minor) * stepM < maxDistanceM;
+        } else {
+            const double major = geo.edgeStepsMajor[row];
+            const double* minor = geo.edgeStepsMinor.data() + w.col0;
+            for (std::size_t i = 0; i < cols; ++i) flags[i] = std::min(major, minor[i]) * stepM < maxDistanceM;
         }
-        const double frac = geo.frac[m];
-        const float a = planeA[idx];
-        float slope = a;
-        if (frac > 0.0 && !geo.nearestLine) {
-            const float b = planeB[idx];
-            if (a == none) {
-                slope = b;
-            } else if (b != none) {
-                slope = static_cast<float>(frac * a + (1.0 - frac) * b);
-            }
+    }
+    if (geo.nearestLine) {
+        // One line per cell: plane A holds the tangents.
+        const float none = -std::numeric_limits<float>::infinity();
+        float* a = planeA + offset;
+        for (std::size_t i = 0; i < cols; ++i) {
+            const float slope = a[i];
+            const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+            a[i] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
         }
-        planeA[idx] = slopeToAngleDeg(slope);
+    } else if (geo.xMajor) {
+        combineTwoLines<true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, cols);
+    } else {
+        combineTwoLines<false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], cols);
     }
 }
 
@@ -822,7 +795,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         });
         if (progress) progress->throwIfCancelled();
         parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
-            combineRow(terrain, geo, params.maxDistanceM, row, w, out.angleDeg.data(), planeB.data(),
+            combineRow(geo, params.maxDistanceM, terrain.width(), row, w, out.angleDeg.data(), planeB.data(),
                        params.truncationFlags ? out.truncated.data() : nullptr);
         }, 16);
         if (progress) {
