@@ -46,7 +46,7 @@ public:
         putU32(head, static_cast<std::uint32_t>(n));
         std::memcpy(head + 4, type, 4);
         std::uint32_t crc = libdeflate_crc32(0, head + 4, 4);
-        crc = libdeflate_crc32(crc, data, n);
+        if (n > 0) crc = libdeflate_crc32(crc, data, n);  // a NULL buffer would restart the CRC at 0
         std::uint8_t tail[4];
         putU32(tail, crc);
         raw(head, 8);

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <vector>
@@ -49,6 +50,50 @@ TEST(PngWriter, RoundTripsThroughAnIndependentDecoder) {
         EXPECT_EQ(static_cast<std::size_t>(rh), h);
         EXPECT_TRUE(back == rgba) << w << " x " << h;
     }
+    fs::remove_all(dir);
+}
+
+/// CRC-32 (ISO 3309, as PNG uses it), bit by bit: independent of the encoder's libdeflate.
+std::uint32_t bitwiseCrc32(const std::uint8_t* p, std::size_t n) {
+    std::uint32_t c = 0xffffffffu;
+    for (std::size_t i = 0; i < n; ++i) {
+        c ^= p[i];
+        for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xffffffffu;
+}
+
+// libpng only warns on a bad CRC in IEND, so the round trip above cannot see it; strict readers
+// (ImageMagick) refuse the file. Every chunk's CRC, IEND's included, must be right.
+TEST(PngWriter, EveryChunkCarriesItsCrc) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_png_crc";
+    fs::create_directories(dir);
+    const std::string path = (dir / "crc.png").string();
+    std::vector<std::uint8_t> rgba(37 * 11 * 4);
+    for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = static_cast<std::uint8_t>(i * 7);
+    writePngRgba(path, rgba, 37, 11);
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    ASSERT_NE(f, nullptr);
+    std::vector<std::uint8_t> bytes;
+    for (int c; (c = std::fgetc(f)) != EOF;) bytes.push_back(static_cast<std::uint8_t>(c));
+    std::fclose(f);
+    auto u32 = [&](std::size_t at) {
+        return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) |
+               (std::uint32_t{bytes[at + 2]} << 8) | std::uint32_t{bytes[at + 3]};
+    };
+    std::size_t at = 8, chunks = 0;
+    std::string last;
+    while (at + 12 <= bytes.size()) {
+        const std::uint32_t n = u32(at);
+        ASSERT_LE(at + 12 + n, bytes.size());
+        last.assign(reinterpret_cast<const char*>(&bytes[at + 4]), 4);
+        EXPECT_EQ(u32(at + 8 + n), bitwiseCrc32(&bytes[at + 4], 4 + n)) << "chunk " << last;
+        at += 12 + n;
+        ++chunks;
+    }
+    EXPECT_EQ(at, bytes.size());
+    EXPECT_EQ(last, "IEND");
+    EXPECT_GE(chunks, 3u);
     fs::remove_all(dir);
 }
 
