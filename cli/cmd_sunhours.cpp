@@ -27,6 +27,8 @@ namespace {
 /// Default integration step (minutes): trapezoid error of sun hours ≤ ~0.3 % of a day's total
 /// on the samples (README).
 constexpr double kDefaultStepMin = 10.0;
+/// first_lit / last_lit of a valid cell the sun never reaches (hours; no clock time is negative).
+constexpr float kNeverLitClock = -1.0f;
 
 struct SunhoursOptions {
     std::string demPath;
@@ -105,7 +107,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const Grid<float> skyFactor = std::move(skyAcc).finish(o.albedo).skyFactor;
 
     ProgressCounter counter(bar.callback(), "sunhours", seq.instants.size());
-    const SunHoursMaps maps = integrateSunHours(
+    SunHoursMaps maps = integrateSunHours(
         t, normals, seq.instants,
         [&](std::size_t i) {
             return computeSunField(dem, seq.utc[i], site, SpaOptions{}, plan.sunLatticeStepCells);
@@ -124,9 +126,17 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     bar.finish();
     const double seconds = secondsSince(start);
 
+    // Never lit: -1, not NaN, which the writer turns into the DEM's nodata value (a void).
+    for (Grid<float>* clock : {&maps.firstLitClock, &maps.lastLitClock}) {
+        const float* h = dem.terrain.heightsM.data();
+        float* v = clock->data();
+        for (std::size_t i = 0; i < clock->size(); ++i)
+            if (std::isnan(v[i]) && !std::isnan(h[i])) v[i] = kNeverLitClock;
+    }
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.insert({
         {"DEMLIGHT_PRODUCT", "sunhours"},
+        {"DEMLIGHT_NEVER_LIT", formatNumber(kNeverLitClock) + " in first_lit and last_lit"},
         {"DEMLIGHT_FIRST_DATE", formatDate(d0)},
         {"DEMLIGHT_LAST_DATE", formatDate(d1)},
         {"DEMLIGHT_TIME_ZONE", zone.describe()},
@@ -155,9 +165,9 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
                   "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
                   "(1 h of unit sky on open flat ground = 1)"},
                  {&maps.firstLitClock, nullptr, "first_lit",
-                  "local clock hours (" + zone.describe() + ") when half the sun first shows; NaN = never"},
+                  "local clock hours (" + zone.describe() + ") when half the sun first shows; -1 = never"},
                  {&maps.lastLitClock, nullptr, "last_lit",
-                  "local clock hours (" + zone.describe() + ") when half the sun last shows; NaN = never"}},
+                  "local clock hours (" + zone.describe() + ") when half the sun last shows; -1 = never"}},
                 dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(seq.instants.size()) + " instants every " +

@@ -184,6 +184,28 @@ TEST_F(OptionsCli, SunhoursSkyIrradiationIsSkyFactorTimesDayLength) {
     EXPECT_GT(checked, skyIrr.size() / 2);
 }
 
+// A cell the sun never reaches gets -1 in first_lit and last_lit: NaN would be written as the
+// DEM's nodata value and show as a void. Here: the floor of a 60 m wide, 1 km deep east-west
+// trench on the winter solstice at 46 N (the sun peaks near 20 deg).
+TEST_F(OptionsCli, SunhoursMarksNeverLitCellsMinusOne) {
+    Grid<float> h(40, 40, 1000.0f);
+    for (std::size_t c = 0; c < 40; ++c) h(c, 20) = h(c, 21) = 0.0f;
+    GeoReference ref;
+    ref.geoTransform = {560000, 30, 0, 5120000, 0, -30};
+    ref.crsWkt = kUtm10Wkt;
+    writeRaster(path("trench.tif"), {{&h, nullptr, "height", "m"}}, ref, WriteOptions{});
+    run("-q sunhours " + path("trench.tif") + " -o " + path("sh.tif") +
+        " --date 2024-12-21 --tz America/Los_Angeles --step 20 --threads 2");
+    const std::vector<Grid<float>> b = readRasterBands(path("sh.tif"));
+    for (std::size_t c = 5; c < 35; ++c) {
+        EXPECT_EQ(b[0](c, 20), 0.0f) << c;    // no sun hours on the trench floor
+        EXPECT_EQ(b[3](c, 20), -1.0f) << c;   // first_lit: never
+        EXPECT_EQ(b[4](c, 21), -1.0f) << c;   // last_lit: never
+        EXPECT_GT(b[3](c, 5), 7.0f) << c;     // the plain: sunrise after 07:00 PST
+        EXPECT_LT(b[4](c, 5), 17.0f) << c;    // sunset before 17:00
+    }
+}
+
 // --model aperture must reach the sun term. With the sky off the output is the sun term alone:
 // on open flat ground both models give sin(sun elevation) (the sun cap lies inside an almost
 // hemispherical aperture); in the hill's cast shadow the horizon model gives 0 while a single
