@@ -5,6 +5,8 @@
 #include "lighting/sequence_fit.h"
 #include "src/error.h"
 
+#include <algorithm>
+
 namespace demlight::cli {
 namespace {
 
@@ -40,7 +42,10 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
                     " .. " + item("DEMLIGHT_FIT_T1_UTC"));
     bands.resize(static_cast<std::size_t>(fit.degree) + 1);
     fit.coefficients = std::move(bands);
-    const Grid<float> value = evaluateSequence(fit, t);
+    // Normalised irradiance lies in [0, 1] (max(0, N.s) times visibility); the polynomial
+    // overshoots near sunrise, sunset and shadow edges.
+    Grid<float> value = evaluateSequence(fit, t);
+    for (float& v : value.values()) v = std::clamp(v, 0.0f, 1.0f);  // NaN (nodata) stays NaN
 
     WriteOptions w;
     w.format = o.out.format;
@@ -49,8 +54,14 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
                   {"DEMLIGHT_COMMAND", ctx.commandLine},
                   {"DEMLIGHT_INPUT", o.fitPath},
                   {"DEMLIGHT_PRODUCT", "sequence reconstruction"},
-                  {"DEMLIGHT_TIME_UTC", formatInstant(when.utc, std::string())}};
-    writeRaster(o.out.path, {{&value, nullptr, "sun_irradiance", "normalised irradiance (reconstructed)"}},
+                  {"DEMLIGHT_TIME_UTC", formatInstant(when.utc, std::string())},
+                  {"DEMLIGHT_TIME_LOCAL", formatInstant(when.utc, when.zone)},
+                  {"DEMLIGHT_FIT_RMS_NOTE", "per-cell RMS residual of the fit: band rms_error of the input"}};
+    // The fit's plan and accuracy statement describe this output too.
+    for (const char* key : {"DEMLIGHT_QUALITY", "DEMLIGHT_PLAN", "DEMLIGHT_CURVATURE", "DEMLIGHT_EXPECTED_ERROR_DEG",
+                            "DEMLIGHT_FIT_DEGREE", "DEMLIGHT_FIT_MEAN_RMS"})
+        if (const auto it = info.metadata.find(key); it != info.metadata.end()) w.metadata.insert(*it);
+    writeRaster(o.out.path, {{&value, nullptr, "sun_irradiance", "normalised irradiance (reconstructed, clamped to [0, 1])"}},
                 info.ref, w, o.fitPath);
     note(ctx, "wrote " + o.out.path + " (sun_irradiance at " + formatInstant(when.utc, when.zone) +
                   " from degree-" + std::to_string(fit.degree) + " polynomials)");

@@ -190,7 +190,7 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
 /// Writes DIR/sequence_fit.tif: the Legendre coefficients of sun_irradiance over the frame span
 /// and the per-cell RMS residual; `demlight sequence` reconstructs any instant from it.
 void writeSequenceFit(const SequenceFitter& fitter, const std::vector<UtcInstant>& instants,
-                      const Dem& dem, const TimelapseOptions& o, const CliContext& ctx) {
+                      const Dem& dem, const TimelapseOptions& o, const ScenePlan& plan, const CliContext& ctx) {
     const SequenceFit fit = fitter.finish();
     std::vector<OutputBand> bands;
     for (int j = 0; j <= fit.degree; ++j)
@@ -207,7 +207,8 @@ void writeSequenceFit(const SequenceFitter& fitter, const std::vector<UtcInstant
     const double meanRms = n ? sum / static_cast<double>(n) : 0.0;
     OutputOptions out;
     out.path = (std::filesystem::path(o.outDir) / "sequence_fit.tif").string();
-    const std::map<std::string, std::string> meta = {
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
         {"DEMLIGHT_PRODUCT", "sequence fit"},
         {"DEMLIGHT_FIT_DEGREE", std::to_string(fit.degree)},
         {"DEMLIGHT_FIT_BASIS", "Legendre P_j(x), x = 2 (t - t0) / (t1 - t0) - 1"},
@@ -215,7 +216,7 @@ void writeSequenceFit(const SequenceFitter& fitter, const std::vector<UtcInstant
         {"DEMLIGHT_FIT_T1_UTC", formatInstant(instants.back(), std::string())},
         {"DEMLIGHT_FIT_FRAMES", std::to_string(instants.size())},
         {"DEMLIGHT_FIT_MEAN_RMS", formatNumber(meanRms)},
-    };
+    });
     writeRaster(out.path, bands, dem.band.ref, makeWriteOptions(out, ctx, dem, meta), o.demPath);
     note(ctx, "wrote " + out.path + ": sun_irradiance as degree-" + std::to_string(fit.degree) +
                   " polynomials, " + std::to_string(fit.degree + 1) + " bands for " +
@@ -386,7 +387,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         if (!formats.count("png"))  // the PNGs were only the video's input
             for (std::size_t i = 0; i < n; ++i) fs::remove(fs::path(o.outDir) / frameName(i, n, "png"));
     }
-    if (fitter) writeSequenceFit(*fitter, frames.instants, dem, o, ctx);
+    if (fitter) writeSequenceFit(*fitter, frames.instants, dem, o, plan, ctx);
     const double total = seconds(clock::now() - tStart);
     note(ctx, "frames: " + std::to_string(n) + " (" + frames.description + ", " +
                   formatInstant(frames.instants.front(), frames.zone) + " .. " +

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace demlight {
 namespace {
@@ -109,8 +110,11 @@ SequenceFit SequenceFitter::finish() const {
             fit.coefficients[i].data()[cell] = static_cast<float>(c[i]);
             explained += c[i] * moments_[i].data()[cell];
         }
-        const double rss = std::max(0.0, sumSquares_.data()[cell] - explained);
-        fit.rmsError.data()[cell] = static_cast<float>(std::sqrt(rss / static_cast<double>(times_.size())));
+        // (std::max would turn a nodata cell's NaN into 0.)
+        const double rss = sumSquares_.data()[cell] - explained;
+        fit.rmsError.data()[cell] =
+            std::isnan(rss) ? std::numeric_limits<float>::quiet_NaN()
+                            : static_cast<float>(std::sqrt(std::max(0.0, rss) / static_cast<double>(times_.size())));
     }
     return fit;
 }

@@ -225,9 +225,17 @@ TEST(CliOutputs, SequenceFitRoundTrip) {
     const RasterBand exact = readRasterBand((dir / "frame_003.tif").string());
     const RasterBand back = readRasterBand(rec);
     double sum = 0;
-    for (std::size_t i = 0; i < exact.values.size(); ++i)
+    for (std::size_t i = 0; i < exact.values.size(); ++i) {
         sum += std::abs(exact.values.data()[i] - back.values.data()[i]);
+        EXPECT_GE(back.values.data()[i], 0.0f) << i;  // normalised irradiance, within [0, 1]
+        EXPECT_LE(back.values.data()[i], 1.0f) << i;
+    }
     EXPECT_LT(sum / static_cast<double>(exact.values.size()), 0.05);
+    // The fit's plan and accuracy statement travel to the reconstruction.
+    const RasterSummary recInfo = inspectRaster(rec);
+    EXPECT_EQ(recInfo.metadata.at("DEMLIGHT_EXPECTED_ERROR_DEG"), fit.metadata.at("DEMLIGHT_EXPECTED_ERROR_DEG"));
+    EXPECT_EQ(recInfo.metadata.at("DEMLIGHT_QUALITY"), "auto");
+    EXPECT_EQ(recInfo.metadata.at("DEMLIGHT_TIME_LOCAL"), "2024-06-21T09:00:00-06:00");
     r = runDemlight("sequence " + (dir / "sequence_fit.tif").string() + " -o " + rec +
                     " --time 2024-06-22T09:00-06:00");
     EXPECT_NE(r.exitCode, 0);

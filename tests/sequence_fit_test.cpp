@@ -34,6 +34,7 @@ TEST(SequenceFit, ReproducesAPolynomialOfItsDegreeExactly) {
         EXPECT_TRUE(std::isnan(v(1, 0)));
     }
     EXPECT_LT(fit.rmsError(0, 0), 1e-5);
+    EXPECT_TRUE(std::isnan(fit.rmsError(1, 0)));  // nodata has no residual, not a perfect fit
 }
 
 TEST(SequenceFit, ResidualEqualsDirectEvaluationForAShadowStep) {
