@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <strings.h>
 #include <sstream>
 #include <unistd.h>
 #include <utility>
@@ -19,11 +20,34 @@ namespace fs = std::filesystem;
 /// Input nodata values at least this large in magnitude are carried into outputs.
 constexpr double kCarriedNodataMagnitude = 10000.0;
 
+namespace {
+
+/// CLI::PositiveNumber and NonNegativeNumber print DBL_MAX in full as the range's upper end.
+CLI::Validator numberAtLeast(double lowest, bool inclusive, const std::string& what) {
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
+            if (inclusive ? v >= lowest : v > lowest) return {};
+            return "must be " + what + ", got " + text;
+        },
+        inclusive ? "NUMBER >= 0" : "NUMBER > 0");
+}
+CLI::Validator positiveNumber() { return numberAtLeast(0.0, false, "> 0"); }
+CLI::Validator nonNegativeNumber() { return numberAtLeast(0.0, true, ">= 0"); }
+
+}  // namespace
+
 void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
     cmd->add_option("-o,--output", o.path, "Output raster path")->required();
     cmd->add_option("--of", o.format, "Output format (also -of): GTiff (tiled, ZSTD level 1, band-interleaved) or COG (DEFLATE)")
-        ->check(CLI::IsMember({"GTiff", "COG"}, CLI::ignore_case))
-        ->transform([](std::string s) { return (s == "cog" || s == "COG") ? "COG" : "GTiff"; });
+        ->transform(
+            [](std::string s) -> std::string {
+                if (strcasecmp(s.c_str(), "GTiff") == 0) return "GTiff";
+                if (strcasecmp(s.c_str(), "COG") == 0) return "COG";
+                throw CLI::ValidationError("must be GTiff or COG, got '" + s + "'");
+            },
+            "{GTiff,COG}");
     cmd->add_option("--co", o.creationOptions,
                     "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=DEFLATE for readers without ZSTD");
 }
@@ -33,14 +57,14 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
                     "Horizon search distance (metres). Default (--quality auto): relief / tan(2 deg), "
                     "or the whole DEM when that is half its diagonal or more (sky and aperture "
                     "integrals: the whole DEM unless a range limit saves sweep work); full: the whole DEM")
-        ->check(CLI::PositiveNumber);
+        ->check(positiveNumber());
     cmd->add_option("--refraction", o.refraction,
                     "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
                     "0 = pure geometry")
         ->check(CLI::Range(0.0, 0.99))
         ->capture_default_str();
     cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(nonNegativeNumber())
         ->capture_default_str();
     cmd->add_option("--quality", o.quality,
                     "auto: model only what the scene needs within --tolerance; full: every effect "

@@ -50,6 +50,27 @@ int main(int argc, char** argv) {
         if (a == "-of" || a == "-co") a = "-" + a;
     std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
 
+    // Argument errors in the same form as the others, naming the command's own help.
+    app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
+        std::string help = "demlight";
+        if (failed && !failed->get_subcommands().empty()) help += " " + failed->get_subcommands().front()->get_name();
+        return std::string("demlight: error: ") + e.what() + "\nRun '" + help + " --help' for the options.\n";
+    });
+    // An unknown first word is a mistyped command, not a missing one.
+    if (!args.empty()) {
+        const std::string& first = args.back();  // reversed
+        std::string names;
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+            known = known || sub->get_name() == first;
+        }
+        if (!first.empty() && first[0] != '-' && !known) {
+            std::cerr << "demlight: error: unknown command '" << first << "' (commands: " << names << ")\n";
+            return 109;
+        }
+    }
+
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {

@@ -95,6 +95,28 @@ std::vector<std::string> creationOptions(const WriteOptions& options, bool float
     return defaults;
 }
 
+/// The user's -co options against the driver's option list (GDALValidateCreationOptions), so a
+/// misspelt key or value is an error instead of a silently different file.
+void validateUserCreationOptions(GDALDriver* driver, const WriteOptions& options) {
+    if (options.creationOptions.empty()) return;
+    CPLStringList list;
+    for (const auto& kv : options.creationOptions) list.AddString(kv.c_str());
+    std::string messages;
+    CPLPushErrorHandlerEx(
+        [](CPLErr, CPLErrorNum, const char* message) {
+            auto* out = static_cast<std::string*>(CPLGetErrorHandlerUserData());
+            if (!message) return;
+            if (!out->empty()) *out += "; ";
+            *out += message;
+        },
+        &messages);
+    const int ok = GDALValidateCreationOptions(driver, list.List());
+    CPLPopErrorHandler();
+    if (!ok)
+        throw Error("invalid creation option for " + options.format + ": " + messages +
+                    " (gdalinfo --format " + options.format + " lists them)");
+}
+
 }  // namespace
 
 RasterBand readRasterBand(const std::string& path) {
@@ -259,6 +281,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
     if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
+    validateUserCreationOptions(driver, options);
     const std::vector<std::string> co = creationOptions(options, type == GDT_Float32);
     CPLStringList coList;
     for (const auto& kv : co) coList.AddString(kv.c_str());

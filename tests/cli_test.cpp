@@ -105,6 +105,18 @@ TEST_F(CliBadInput, OutOfRangeOptions) {
                   "--sun-diameter", 0);
     expectFailure("horizon " + kHelens + " -o " + out(), "--azimuth", 0);
     expectFailure("sky " + kHelens + " -o " + out() + " --patches sectors:0", "sectors", 0);
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --threads -1",
+                  "demlight: error: --threads: must be >= 0, got -1", 0);
+}
+
+// A format or creation option GDAL would ignore must not silently give a different file.
+TEST_F(CliBadInput, UnknownFormatsAndCreationOptions) {
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --of PNG", "must be GTiff or COG", 0);
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 -co COMPRESS=BOGUS",
+                  "invalid creation option for GTiff", 0);
+    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --of COG -co NOSUCHKEY=1",
+                  "invalid creation option for COG", 0);
+    expectFailure("horizn " + kHelens + " -o " + out(), "unknown command 'horizn'", 0);
 }
 
 TEST_F(CliBadInput, UnwritableOutput) {
