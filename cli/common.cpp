@@ -86,6 +86,8 @@ ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestE
     budget.refraction = o.refraction;
     budget.maxDistanceM = o.maxDistanceM.value_or(0.0);
     const ScenePlan plan = planScene(terrain, parseQuality(o.quality), budget);
+    if (plan.quality == Quality::Full && o.toleranceDeg != kDefaultToleranceDeg)
+        note(ctx, "note: --tolerance is not used by --quality full (every effect at its finest setting)");
     if (o.verbose && !ctx.quiet) {
         note(ctx, "scene plan (--quality " + o.quality + "):");
         for (const auto& r : plan.reasons) note(ctx, "  " + r);

@@ -31,7 +31,7 @@ struct SearchOptions {
     double refraction = 0.13;
     int threads = 0;
     std::string quality = "auto";
-    double toleranceDeg = 0.1;
+    double toleranceDeg = kDefaultToleranceDeg;
     bool verbose = false;
 };
 void addSearchOptions(CLI::App* cmd, SearchOptions& o);

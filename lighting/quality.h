@@ -27,9 +27,13 @@ inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections
 /// Directions used by `full`.
 inline constexpr int kFullSkyDirections = 64;
 
+/// The default horizon error budget of --quality auto (degrees); the expected errors of
+/// ExpectedError were measured with it.
+inline constexpr double kDefaultToleranceDeg = 0.1;
+
 struct QualityBudget {
     /// Horizon angle error the user accepts from modelling choices (degrees).
-    double toleranceDeg = 0.1;
+    double toleranceDeg = kDefaultToleranceDeg;
     /// Lowest sun (or sky) elevation whose shadows matter (degrees); sets the search distance.
     double lowestElevationDeg = 2.0;
     /// Effective-radius refraction coefficient k the user asked for.

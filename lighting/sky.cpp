@@ -343,7 +343,7 @@ SkyPatches parseSkyPatches(std::string_view specIn) {
             const double el1 = bands[b + 1];
             result.patches.push_back(
                 {az0, az1, el0, el1,
-                 "az " + formatDeg(az0) + ".." + formatDeg(az1) + " el " + formatDeg(bands[b]) +
+                 "az " + formatDeg(az0) + ".." + formatDeg(az1) + " el " + formatDeg(el0) +
                      ".." + formatDeg(el1)});
         }
     }

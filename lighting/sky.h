@@ -105,8 +105,9 @@ struct SkyPatches {
 ///   "sectors:N"                 N equal azimuth wedges, the first centred on true north
 ///                               (sectors:4 -> N, E, S, W wedges of 90 degrees)
 ///   "bands:E0,E1,...,En"        elevation bands (degrees), strictly increasing, En = 90,
-///                               E0 in [-90, 90); sky below E0 (negative horizons) is counted
-///                               in the first band so that the patches still sum to K
+///                               E0 in [-90, 90); the first band reaches down to -90 (all sky
+///                               below E1, negative horizons included) so that the patches
+///                               still sum to K, and its name says so ("el -90..E1")
 ///   "sectors:N,bands:E0,...,En" both; patch index = sector * bands + band
 /// Whitespace is ignored. Throws Error naming the offending part and what was expected.
 SkyPatches parseSkyPatches(std::string_view spec);

@@ -69,6 +69,24 @@ TEST(Quality, ExpectedErrorScope) {
     EXPECT_EQ(resolvedElevationDeg(cone(200, 30, 50), 9000), -90.0);
 }
 
+// The figures were measured at the default budget; a looser --tolerance lets auto add up to it
+// to full's error, and the statement must say so. A tighter one models more, within them.
+TEST(Quality, ExpectedErrorGrowsWithALooserTolerance) {
+    const Terrain t = cone(200, 30, 50);
+    const ExpectedError measured = planScene(t, Quality::Auto, {}).expectedError;
+    QualityBudget loose;
+    loose.toleranceDeg = 2.0;
+    const ExpectedError e = planScene(t, Quality::Auto, loose).expectedError;
+    EXPECT_DOUBLE_EQ(e.medianDeg, measured.medianDeg + 2.0);
+    EXPECT_DOUBLE_EQ(e.p99Deg, measured.p99Deg + 2.0);
+    EXPECT_NE(e.source.find("--tolerance 2"), std::string::npos) << e.source;
+    QualityBudget tight;
+    tight.toleranceDeg = 0.01;
+    EXPECT_EQ(planScene(t, Quality::Auto, tight).expectedError.medianDeg, measured.medianDeg);
+    EXPECT_EQ(planScene(t, Quality::Full, loose).expectedError.medianDeg,
+              planScene(t, Quality::Full, {}).expectedError.medianDeg);
+}
+
 TEST(Quality, ExpectedErrorIsLargerOnElongatedCells) {
     // The stability suite measured a larger sweep error on 4.8:1 cells (78 N lat/lon).
     Terrain elongated = cone(100, 30, 50);

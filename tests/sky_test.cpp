@@ -263,6 +263,9 @@ TEST(Sky, PatchSpecParsing) {
     EXPECT_EQ(p.patches[0].elevation0Deg, -90.0);  // first band reaches down to -90
     EXPECT_EQ(p.patches[1].elevation0Deg, 45.0);
     EXPECT_EQ(p.patches[7].azimuth0Deg, 225.0);
+    // Names say what the patch holds: the first band from -90, whatever E0 was.
+    EXPECT_EQ(p.patches[0].name, "az -45..45 el -90..45");
+    EXPECT_EQ(parseSkyPatches("bands:10,30,90").patches[0].name, "az 0..360 el -90..30");
     EXPECT_EQ(parseSkyPatches(" sky ").size(), 1u);
 
     for (const char* bad : {"", "sectors:", "sectors:0", "sectors:2.5", "sectors:x", "sectors:400",
