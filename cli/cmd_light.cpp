@@ -270,13 +270,14 @@ void registerLight(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions for the stewart-langer sky and the aperture models "
                     "(default: 16 with --quality auto, 64 with full)")
-        ->check(CLI::Range(1, 360));
+        ->check(CLI::Range(4, 1024));
     cmd->add_option("--sun-color", o->sunColor, "Linear sun radiance R,G,B (gives three bands)");
     cmd->add_option("--sky-color", o->skyColor, "Linear sky radiance R,G,B (gives three bands)");
-    cmd->add_option("--albedo", o->albedo, "Albedo C for interreflection (0-1; default 0.2)")
-        ->check(CLI::Range(0.0, 1.0));
+    auto* albedo = cmd->add_option("--albedo", o->albedo, "Albedo C for interreflection (0-1; default 0.2)")
+                       ->check(CLI::Range(0.0, 1.0));
     cmd->add_option("--albedo-raster", o->albedoRaster, "Per-cell albedo raster (band 1, 0-1)")
-        ->check(CLI::ExistingFile);
+        ->check(CLI::ExistingFile)
+        ->excludes(albedo);
     cmd->add_option("--color-raster", o->colorRaster,
                     "3-band linear albedo raster (R, G, B, 0-1), resampled to the DEM: per-channel "
                     "albedo for interreflection, and the output is albedo x light in three bands "

@@ -98,7 +98,7 @@ void registerRender(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions for the sky fill (default: " + std::to_string(kAutoSkyDirections) +
                         " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
-        ->check(CLI::Range(1, 360));
+        ->check(CLI::Range(4, 1024));
     cmd->add_option("--sun-diameter", o->sunDiameterDeg,
                     "Angular diameter of the sun disk (degrees); larger = softer shadows")
         ->check(CLI::Range(0.0, 20.0))

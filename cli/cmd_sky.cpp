@@ -141,8 +141,9 @@ void registerSky(CLI::App& app, CliContext& ctx) {
         ->check(CLI::ExistingFile)
         ->excludes(albedo);
     cmd->add_option("--patches", o->patches,
-                    "Sky patches, one sky_K band each, summing to sky_K: 'sectors:N', "
-                    "'bands:E0,E1,...' (elevations, deg), or 'sectors:N,bands:...'");
+                    "Sky patches, one sky_K band each, summing to sky_K: 'sky' (one patch), 'sectors:N', "
+                    "'bands:E0,E1,...,90' (elevations, deg; the first band reaches down to -90), or "
+                    "'sectors:N,bands:...'");
     cmd->add_option("--model", o->model,
                     "Sky model: stewart-langer (horizon-based SVF, K and f_sky) or hemisphere "
                     "(Hargreaves (1 + N_up)/2 sky + albedo (1 - N_up)/2 ground, no occlusion)")

@@ -55,6 +55,7 @@ struct TimelapseOptions {
     std::string colorRaster;
     double sunDiameterDeg = kSunDiameterDeg;
     int fitDegree = 0;  ///< > 0: also store the sun_irradiance sequence as a polynomial fit
+    std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
 };
 
 /// Seconds since the Unix epoch, the clock the sequence fit's times use.
@@ -182,8 +183,11 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
         t1 = b.utc;
         f.description = "start to end";
     }
+    const auto count = static_cast<std::size_t>((t1 - t0) / step) + 1;
+    if (count > o.maxFrames)
+        throw Error("timelapse: " + std::to_string(count) + " frames at --step " + o.step + ", more than --max-frames " +
+                    std::to_string(o.maxFrames) + "; use a longer --step or raise --max-frames");
     for (UtcInstant t = t0; t <= t1; t += step) f.instants.push_back(t);
-    if (f.instants.size() > 100000) throw Error("--step " + o.step + ": more than 100000 frames");
     return f;
 }
 
@@ -424,6 +428,10 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (default UTC)");
     cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (plain number = minutes)")
         ->capture_default_str();
+    cmd->add_option("--max-frames", o->maxFrames,
+                    "Refuse a sequence of more frames than this (guards against a mistyped --step)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+        ->capture_default_str();
     cmd->add_option("--horizon-mode", o->horizonMode,
                     "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N "
                     "directions swept once, horizons interpolated in azimuth; N = 64 by default)")
@@ -438,7 +446,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
                     "Horizon directions for the sky term (default: " + std::to_string(kAutoSkyDirections) +
                         " with --quality auto, " + std::to_string(kFullSkyDirections) +
                         " with full; --horizon-mode interpolated:N uses its N)")
-        ->check(CLI::Range(1, 360));
+        ->check(CLI::Range(4, 1024));
     cmd->add_option("--color-raster", o->colorRaster, "RGB raster used as preview albedo")
         ->check(CLI::ExistingFile);
     cmd->add_option("--albedo", o->albedo, "Linear preview albedo without a colour raster")

@@ -119,6 +119,14 @@ TEST_F(CliBadInput, UnknownFormatsAndCreationOptions) {
     expectFailure("horizn " + kHelens + " -o " + out(), "unknown command 'horizn'", 0);
 }
 
+TEST_F(CliBadInput, TimelapseRefusesAMistypedStep) {
+    const auto r = runDemlight("timelapse " + kRocky + " -o " + out() +
+                               " --start 2024-06-21T10:00Z --end 2024-06-22T10:00Z --step 1s --formats tif");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("86401 frames at --step 1s, more than --max-frames 10000"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out()));
+}
+
 TEST_F(CliBadInput, UnwritableOutput) {
     const auto r = runDemlight("horizon " + kHelens + " -o " + (dir_ / "no" / "such" / "out.tif").string() +
                                " --azimuth 90");
