@@ -50,7 +50,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_PRODUCT", "aperture"},
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
+        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
     });
     writeRaster(o.out.path,

@@ -69,7 +69,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_PRODUCT", "horizon"},
         {"DEMLIGHT_METHOD", o.method},
         {"DEMLIGHT_AZIMUTHS_DEG", azimuthList},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
+        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
         {"DEMLIGHT_TRUNCATION_MASK", truncationPath(o.out.path)},
     });
@@ -81,9 +81,9 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
 
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.terrain.heightsM.size() * azimuths.size());
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(azimuths.size()) +
-                  " horizon bands, degrees) and " + truncationPath(o.out.path) +
-                  " (truncation mask); max distance " + formatNumber(params.maxDistanceM) +
-                  " m; " + formatSeconds(seconds) + " compute, " + formatNumber(nsPerCellDir) +
+                  (azimuths.size() == 1 ? " horizon band" : " horizon bands") + ", degrees) and " +
+                  truncationPath(o.out.path) + " (truncation mask); max distance " +
+                  formatDistance(params.maxDistanceM) + "; " + formatSeconds(seconds) + " compute, " + formatNumber(std::round(nsPerCellDir * 10) / 10) +
                   " ns per cell per direction");
 }
 

@@ -229,8 +229,8 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
                             : o.albedoRaster.empty() ? formatNumber(albedo) : o.albedoRaster},
         {"DEMLIGHT_COLOR_RASTER", o.colorRaster},
         {"DEMLIGHT_CLOUD_SHADOW", o.cloudShadow},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(sun.maxDistanceM)},
-        {"DEMLIGHT_SKY_MAX_DISTANCE_M", sweeps > 0 ? formatNumber(hp.maxDistanceM) : std::string()},
+        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, sun.maxDistanceM)},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", sweeps > 0 ? metadataDistanceM(dem.terrain, hp.maxDistanceM) : std::string()},
         {"DEMLIGHT_REFRACTION", formatNumber(o.search.refraction)},
     });
     const std::string unit =

@@ -109,7 +109,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
         {"DEMLIGHT_ALBEDO", o.albedoRaster.empty() ? formatNumber(o.albedo) : o.albedoRaster},
         {"DEMLIGHT_PATCHES", o.patches},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(params.maxDistanceM)},
+        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, params.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
     });
     const auto writeStart = std::chrono::steady_clock::now();

@@ -114,7 +114,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(directions)},
-        {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(out.maxDistanceM)},
+        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, out.maxDistanceM)},
         {"DEMLIGHT_REFRACTION", formatNumber(o.search.refraction)},
     });
     writeRaster(o.out.path,

@@ -152,7 +152,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
         {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
         {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
-        {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(hp.maxDistanceM)},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, hp.maxDistanceM)},
         {"DEMLIGHT_ALBEDO", formatNumber(o.albedo)},
         {"DEMLIGHT_DAYLIGHT", "SPA sunrise to sunset at the cell, no terrain (geometric elevation of the "
                               "sun's centre > " + formatNumber(kSunriseGeometricElevationDeg) + " deg)"},

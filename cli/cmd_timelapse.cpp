@@ -296,7 +296,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         meta.insert({
             {"DEMLIGHT_PRODUCT", "timelapse sky"},
             {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
-            {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(skyParams.maxDistanceM)},
+            {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, skyParams.maxDistanceM)},
             {"DEMLIGHT_REFRACTION", formatNumber(skyParams.refraction)},
         });
         OutputOptions out;
@@ -356,10 +356,10 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                 {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
                 {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
                 {"DEMLIGHT_METHOD", stackDirections > 0 ? "sweep, interpolated:" + std::to_string(stackDirections) : "sweep"},
-                {"DEMLIGHT_MAX_DISTANCE_M", formatNumber(frame.maxDistanceM)},
+                {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, frame.maxDistanceM)},
                 {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
                 {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
-                {"DEMLIGHT_SKY_MAX_DISTANCE_M", formatNumber(skyParams.maxDistanceM)},
+                {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, skyParams.maxDistanceM)},
             });
         }
         computeS += seconds(clock::now() - c0);

@@ -195,6 +195,10 @@ std::string formatDistance(double metres) {
     return std::isfinite(metres) ? formatNumber(std::round(metres)) + " m" : std::string("the whole DEM");
 }
 
+std::string metadataDistanceM(const Terrain& terrain, double metres) {
+    return formatNumber(std::round(std::isfinite(metres) ? metres : demDiagonalM(terrain)));
+}
+
 std::string formatNumber(double value) {
     std::ostringstream s;
     s.precision(10);

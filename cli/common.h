@@ -83,6 +83,9 @@ std::string formatNumber(double value);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
 std::string formatDistance(double metres);
+/// A search distance for metadata, always a number (metres): the DEM diagonal for the whole
+/// DEM (an infinite distance), which is the same search.
+std::string metadataDistanceM(const Terrain& terrain, double metres);
 
 /// Seconds elapsed since `start` (steady clock), for the time notes of the commands.
 double secondsSince(std::chrono::steady_clock::time_point start);

@@ -555,6 +555,7 @@ void SkyAccumulator::finishInPlace(SkyMaps& maps, const Grid<float>* albedo, dou
             const double unitUp = detail::unitNormal({ec, nc, nu}).up;
             double k = flat ? unitUp * (1.0 - sumSin2 / d) : sumK;
             if (std::isnan(sumK)) k = sumK;
+            k = std::clamp(k, 0.0, 1.0);  // rounding of the sector sums (NaN stays NaN)
             skyK[col] = static_cast<float>(k);
             const double c = albedo ? (*albedo)(col, row) : constantAlbedo;
             factor[col] = std::isnan(k) || std::isnan(c) ? kNaNf : static_cast<float>(skyFactor(k, c));

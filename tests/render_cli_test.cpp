@@ -233,7 +233,7 @@ TEST(TimelapseCli, FramesMatchDemlightSun) {
     std::string err;
     ASSERT_EQ(runCli("timelapse '" + kDem + "' -o '" + (d / "out").string() +
                          "' --start 2024-06-21T07:30:00-07:00 --end 2024-06-21T07:30:00-07:00 "
-                         "--formats tif --sky-directions 1",
+                         "--formats tif --sky-directions 4",
                      &err),
               0)
         << err;
