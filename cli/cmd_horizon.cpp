@@ -16,6 +16,9 @@
 namespace demlight::cli {
 namespace {
 
+/// Truncation mask value at DEM voids (declared as the mask's nodata).
+constexpr std::uint8_t kMaskNodata = 255;
+
 struct HorizonOptions {
     std::string demPath;
     OutputOptions out;
@@ -75,8 +78,16 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     });
     WriteOptions wo = makeWriteOptions(o.out, ctx, dem, meta);
     writeRaster(o.out.path, bands, dem.band.ref, wo, o.demPath);
+    // The mask says nothing at DEM voids: 255 there, declared as its nodata value.
     WriteOptions maskOptions = wo;
     maskOptions.format = "GTiff";
+    maskOptions.nodata = kMaskNodata;
+    for (HorizonMap& m : maps) {
+        const float* h = dem.terrain.heightsM.data();
+        std::uint8_t* flag = m.truncated.data();
+        for (std::size_t k = 0; k < m.truncated.size(); ++k)
+            if (std::isnan(h[k])) flag[k] = kMaskNodata;
+    }
     writeRaster(truncationPath(o.out.path), masks, dem.band.ref, maskOptions, o.demPath);
 
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.terrain.heightsM.size() * azimuths.size());

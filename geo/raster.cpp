@@ -326,6 +326,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         if (!b.unit.empty()) out->SetUnitType(b.unit.c_str());
         CPLErr err;
         if (type == GDT_Byte) {
+            if (options.nodata >= 0 && options.nodata <= 255) out->SetNoDataValue(options.nodata);
             err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
                                 const_cast<std::uint8_t*>(b.mask->data()), static_cast<int>(width),
                                 static_cast<int>(height), GDT_Byte, 0, 0);

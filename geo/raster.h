@@ -61,7 +61,8 @@ struct WriteOptions {
     std::vector<std::string> creationOptions;
     /// Dataset metadata items (DEMLIGHT_* keys: command line, version, parameters).
     std::map<std::string, std::string> metadata;
-    /// Nodata value written for NaN cells of Float32 bands (NaN by default).
+    /// Nodata value written for NaN cells of Float32 bands (NaN by default); Byte bands declare
+    /// it as their nodata value when it is in 0..255 (their cells are written as given).
     double nodata = std::numeric_limits<double>::quiet_NaN();
 };
 

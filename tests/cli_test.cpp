@@ -164,6 +164,35 @@ TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
     EXPECT_EQ(mask.descriptions[1], "truncated_azimuth=123.5");
 }
 
+// The truncation mask is nodata (255) exactly at the DEM's voids, 0 or 1 elsewhere.
+TEST(CliOutputs, TruncationMaskIsNodataAtVoids) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_mask";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string out = (dir / "h.tif").string();
+    const auto r = runDemlight("-q horizon " + kHelens + " -o " + out + " --azimuth 200 --threads 2 --max-distance 3000");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string maskPath = (dir / "h.truncated.tif").string();
+    ASSERT_TRUE(inspectRaster(maskPath).nodata.has_value());
+    EXPECT_EQ(*inspectRaster(maskPath).nodata, 255.0);
+    const RasterBand dem = readRasterBand(kHelens);
+    const RasterBand mask = readRasterBand(maskPath);  // nodata read as NaN
+    std::size_t voids = 0, flagged = 0, clear = 0;
+    for (std::size_t k = 0; k < dem.values.size(); ++k) {
+        const float m = mask.values.data()[k];
+        if (std::isnan(dem.values.data()[k])) {
+            EXPECT_TRUE(std::isnan(m)) << k;
+            ++voids;
+        } else {
+            ASSERT_TRUE(m == 0.0f || m == 1.0f) << k << " " << m;
+            ++(m == 1.0f ? flagged : clear);
+        }
+    }
+    EXPECT_EQ(voids, 4151u);
+    EXPECT_GT(flagged, 0u);  // cells within 3 km of the DEM's south-west edges
+    EXPECT_GT(clear, 0u);
+}
+
 TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
     const fs::path dir = fs::temp_directory_path() / "demlight_cli_sun";
     fs::remove_all(dir);
