@@ -74,7 +74,7 @@ void registerAperture(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--directions", o->directions,
                     "Number of horizon directions integrated (default: 16 with --quality auto, "
                     "64 with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runAperture(*o, ctx); });
 }

@@ -110,7 +110,7 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
                    ->expected(1, -1);
     auto* dirs = cmd->add_option("--directions", o->directions,
                                  "N azimuths evenly spaced from 0 (0, 360/N, ...)")
-                     ->check(CLI::Range(1, 4096));
+                     ->check(finiteRange(1, 4096));
     az->excludes(dirs);
     addSearchOptions(cmd, o->search);
     cmd->add_option("--method", o->method, "sweep (fast, default) or reference (brute-force ray march)")

@@ -270,11 +270,11 @@ void registerLight(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions for the stewart-langer sky and the aperture models "
                     "(default: 16 with --quality auto, 64 with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     cmd->add_option("--sun-color", o->sunColor, "Linear sun radiance R,G,B (gives three bands)");
     cmd->add_option("--sky-color", o->skyColor, "Linear sky radiance R,G,B (gives three bands)");
     auto* albedo = cmd->add_option("--albedo", o->albedo, "Albedo C for interreflection (0-1; default 0.2)")
-                       ->check(CLI::Range(0.0, 1.0));
+                       ->check(finiteRange(0.0, 1.0));
     cmd->add_option("--albedo-raster", o->albedoRaster, "Per-cell albedo raster (band 1, 0-1)")
         ->check(CLI::ExistingFile)
         ->excludes(albedo);
@@ -286,7 +286,7 @@ void registerLight(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--cloud-shadow", o->cloudShadow, "Raster multiplying the sun term (band 1)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--sun-diameter", o->sunDiameterDeg, "Angular diameter of the sun disk (degrees)")
-        ->check(CLI::Range(0.0, 20.0))
+        ->check(finiteRange(0.0, 20.0))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runLight(*o, ctx); });

@@ -90,18 +90,18 @@ void registerRender(CLI::App& app, CliContext& ctx) {
                     "RGB raster used as albedo (resampled to the DEM; 0-255 or 0-1, gamma 2.2)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--albedo", o->albedo, "Linear albedo without a colour raster")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(finiteRange(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--exposure", o->exposure, "Multiplies linear light before gamma")
-        ->check(CLI::Range(0.0, 1000.0))
+        ->check(finiteRange(0.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions for the sky fill (default: " + std::to_string(kAutoSkyDirections) +
                         " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     cmd->add_option("--sun-diameter", o->sunDiameterDeg,
                     "Angular diameter of the sun disk (degrees); larger = softer shadows")
-        ->check(CLI::Range(0.0, 20.0))
+        ->check(finiteRange(0.0, 20.0))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runRender(*o, ctx); });

@@ -132,9 +132,9 @@ void registerSky(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--directions", o->directions,
                     "Number of horizon directions (sectors) integrated (default: 16 with --quality "
                     "auto, 64 with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     auto* albedo = cmd->add_option("--albedo", o->albedo, "Constant ground albedo C for f_sky, in [0, 1]")
-                       ->check(CLI::Range(0.0, 1.0))
+                       ->check(finiteRange(0.0, 1.0))
                        ->capture_default_str();
     cmd->add_option("--albedo-raster", o->albedoRaster,
                     "Albedo raster (band 1, 0-1), resampled bilinearly onto the DEM grid")

@@ -77,6 +77,8 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         throw Error("--model hemisphere is a sky-only model (no sun term); use 'demlight sky "
                     "--model hemisphere', or --model horizon, aperture or aperture-smooth");
     const bool horizon = model == LightingModel::Horizon;
+    if (horizon && o.directions)
+        note(ctx, "note: --directions is used by the aperture models only; --model horizon sweeps the sun's azimuth");
     checkOutputPath(o.out.path, o.demPath);
     const Dem dem = loadDem(o.demPath);
     const Terrain& t = dem.terrain;
@@ -150,13 +152,13 @@ void registerSun(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--tz", o->tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
     cmd->add_option("--sun-diameter", o->sunDiameterDeg,
                     "Angular diameter of the sun disk (degrees); larger = softer shadows")
-        ->check(CLI::Range(0.0, 20.0))
+        ->check(finiteRange(0.0, 20.0))
         ->capture_default_str();
     cmd->add_option("--pressure", o->pressureHpa, "Air pressure for solar refraction (hPa)")
-        ->check(CLI::Range(0.0, 1200.0))
+        ->check(finiteRange(0, kMaxPressureHpa))
         ->capture_default_str();
     cmd->add_option("--temperature", o->temperatureC, "Air temperature for solar refraction (C)")
-        ->check(CLI::Range(-100.0, 60.0))
+        ->check(finiteRange(-100, 100))
         ->capture_default_str();
     cmd->add_option("--model", o->model,
                     "Sun model: horizon (horizon angle in the sun's azimuth), aperture (sun cap "
@@ -166,7 +168,7 @@ void registerSun(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--directions", o->directions,
                     "Aperture models: number of horizon directions integrated into the aperture "
                     "(default: 16 with --quality auto, 64 with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runSun(*o, ctx); });
 }

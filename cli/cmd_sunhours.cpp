@@ -188,19 +188,19 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--end", o->endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
     cmd->add_option("--tz", o->tz, "IANA time zone of the days and clock times (default UTC)");
     cmd->add_option("--step", o->stepMin, "Integration step (minutes, trapezoid rule)")
-        ->check(CLI::Range(0.1, 120.0))
+        ->check(finiteRange(0.1, 120.0))
         ->capture_default_str();
     cmd->add_option("--sun-diameter", o->sunDiameterDeg,
                     "Angular diameter of the sun disk (degrees)")
-        ->check(CLI::Range(0.0, 20.0))
+        ->check(finiteRange(0.0, 20.0))
         ->capture_default_str();
     cmd->add_option("--albedo", o->albedo,
                     "Ground albedo C of the sky term f_sky = K / (1 - C(1 - K)) (0-1)")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(finiteRange(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runSunhours(*o, ctx); });
 }

@@ -1,6 +1,7 @@
 // demlight sunpos --time T [--tz ZONE] --lat DEG --lon DEG [...] [--json]: where the sun is (NREL
 // SPA, topocentric and refracted) and sunrise, transit and sunset of the local day.
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "geo/solar_position.h"
 #include "geo/time.h"
 
@@ -18,7 +19,6 @@ namespace demlight::cli {
 namespace {
 
 /// SPA's stated input limits (Reda & Andreas, Table 1) where tighter than physics.
-constexpr double kMaxPressureHpa = 5000;
 constexpr double kMaxAbsDeltaTSec = 8000;
 
 struct SunposOptions {
@@ -28,23 +28,6 @@ struct SunposOptions {
     std::optional<double> deltaTSec;
     bool json = false;
 };
-
-/// A range check that also rejects NaN (CLI::Range lets NaN through). lowOpen: lo excluded.
-CLI::Validator finiteRange(double lo, double hi, bool lowOpen = false) {
-    const std::string description =
-        std::string(lowOpen ? "(" : "[") + CLI::detail::to_string(lo) + ", " +
-        CLI::detail::to_string(hi) + "]";
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            double v = 0;
-            if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
-                return "expected a finite number, got '" + text + "'";
-            if (v < lo || v > hi || (lowOpen && v == lo))
-                return "value " + text + " is outside " + description;
-            return {};
-        },
-        description);
-}
 
 std::string fixed6(double v) {
     char buf[48];
@@ -156,7 +139,7 @@ void registerSunpos(CLI::App& app, CliContext& /*ctx*/) {
         ->check(finiteRange(-1000, 100000))
         ->capture_default_str();
     cmd->add_option("--pressure", o->site.pressureHpa, "Mean air pressure for refraction (hPa)")
-        ->check(finiteRange(0, kMaxPressureHpa, /*lowOpen=*/true))
+        ->check(finiteRange(0, kMaxPressureHpa))
         ->capture_default_str();
     cmd->add_option("--temperature", o->site.temperatureC,
                     "Mean air temperature for refraction (degrees C)")

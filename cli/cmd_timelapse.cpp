@@ -430,7 +430,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
         ->capture_default_str();
     cmd->add_option("--max-frames", o->maxFrames,
                     "Refuse a sequence of more frames than this (guards against a mistyped --step)")
-        ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+        ->check(finiteRange(1, 1000000))
         ->capture_default_str();
     cmd->add_option("--horizon-mode", o->horizonMode,
                     "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N "
@@ -438,29 +438,29 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
         ->capture_default_str();
     cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)")
         ->capture_default_str();
-    cmd->add_option("--fps", o->fps, "GIF frames per second")->check(CLI::Range(1, 100))->capture_default_str();
+    cmd->add_option("--fps", o->fps, "GIF frames per second")->check(finiteRange(1, 100))->capture_default_str();
     cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
-        ->check(CLI::Range(16, 100000))
+        ->check(finiteRange(16, 100000))
         ->capture_default_str();
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions for the sky term (default: " + std::to_string(kAutoSkyDirections) +
                         " with --quality auto, " + std::to_string(kFullSkyDirections) +
                         " with full; --horizon-mode interpolated:N uses its N)")
-        ->check(CLI::Range(4, 1024));
+        ->check(finiteRange(4, 1024));
     cmd->add_option("--color-raster", o->colorRaster, "RGB raster used as preview albedo")
         ->check(CLI::ExistingFile);
     cmd->add_option("--albedo", o->albedo, "Linear preview albedo without a colour raster")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(finiteRange(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--exposure", o->exposure, "Preview exposure (multiplies linear light)")
-        ->check(CLI::Range(0.0, 1000.0))
+        ->check(finiteRange(0.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("--fit-degree", o->fitDegree,
                     "Also store sun_irradiance as per-cell Legendre polynomials of this degree in "
                     "DIR/sequence_fit.tif (0 = off); read back with demlight sequence")
-        ->check(CLI::Range(0, 12));
+        ->check(finiteRange(0, 12));
     cmd->add_option("--sun-diameter", o->sunDiameterDeg, "Angular diameter of the sun disk (degrees)")
-        ->check(CLI::Range(0.0, 20.0))
+        ->check(finiteRange(0.0, 20.0))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runTimelapse(*o, ctx); });

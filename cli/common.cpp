@@ -20,6 +20,23 @@ namespace fs = std::filesystem;
 /// Input nodata values at least this large in magnitude are carried into outputs.
 constexpr double kCarriedNodataMagnitude = 10000.0;
 
+/// A range check that also rejects NaN (CLI::Range lets NaN through). lowOpen: lo excluded.
+CLI::Validator finiteRange(double lo, double hi, bool lowOpen) {
+    const std::string description =
+        std::string(lowOpen ? "(" : "[") + CLI::detail::to_string(lo) + ", " +
+        CLI::detail::to_string(hi) + "]";
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
+                return "expected a finite number, got '" + text + "'";
+            if (v < lo || v > hi || (lowOpen && v == lo))
+                return "value " + text + " is outside " + description;
+            return {};
+        },
+        description);
+}
+
 namespace {
 
 /// CLI::PositiveNumber and NonNegativeNumber print DBL_MAX in full as the range's upper end.
@@ -61,7 +78,7 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--refraction", o.refraction,
                     "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
                     "0 = pure geometry")
-        ->check(CLI::Range(0.0, 0.99))
+        ->check(finiteRange(0.0, 0.99))
         ->capture_default_str();
     cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
         ->check(nonNegativeNumber())
@@ -73,7 +90,7 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
         ->capture_default_str();
     cmd->add_option("--tolerance", o.toleranceDeg,
                     "Horizon error budget for --quality auto (degrees)")
-        ->check(CLI::Range(0.001, 10.0))
+        ->check(finiteRange(0.001, 10.0))
         ->capture_default_str();
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
 }

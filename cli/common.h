@@ -83,6 +83,11 @@ std::string formatNumber(double value);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
 std::string formatDistance(double metres);
+/// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen:
+/// lo excluded.
+CLI::Validator finiteRange(double lo, double hi, bool lowOpen = false);
+/// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1); 0 = no atmospheric refraction.
+inline constexpr double kMaxPressureHpa = 5000;
 /// A search distance for metadata, always a number (metres): the DEM diagonal for the whole
 /// DEM (an infinite distance), which is the same search.
 std::string metadataDistanceM(const Terrain& terrain, double metres);

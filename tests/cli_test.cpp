@@ -101,6 +101,7 @@ TEST_F(CliBadInput, OutOfRangeOptions) {
     expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --refraction 1.5", "--refraction", 0);
     expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --max-distance -5", "--max-distance", 0);
     expectFailure("sky " + kHelens + " -o " + out() + " --albedo 2", "--albedo", 0);
+    expectFailure("sky " + kHelens + " -o " + out() + " --albedo nan", "--albedo: expected a finite number", 0);
     expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00Z --sun-diameter -1",
                   "--sun-diameter", 0);
     expectFailure("horizon " + kHelens + " -o " + out(), "--azimuth", 0);

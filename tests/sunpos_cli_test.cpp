@@ -77,7 +77,7 @@ TEST(SunposCli, BadInputsFailWithAClearMessage) {
         {"--time 2024-06-21T12:00Z --lat 91 --lon 7", "--lat"},
         {"--time 2024-06-21T12:00Z --lat 45 --lon -181", "--lon"},
         {"--time 2024-06-21T12:00Z --lat nan --lon 7", "finite"},
-        {"--time 2024-06-21T12:00Z --lat 45 --lon 7 --pressure 0", "--pressure"},
+        {"--time 2024-06-21T12:00Z --lat 45 --lon 7 --pressure 6000", "--pressure"},
         {"--time 2024-06-21T12:00Z --lat 45 --lon 7 --pressure -5", "--pressure"},
         {"--time 2024-06-21T12:00Z --lat 45 --lon 7 --temperature -300", "--temperature"},
         {"--time 2024-06-21T12:00Z --lat 45 --lon 7 --delta-t 1e6", "--delta-t"},
