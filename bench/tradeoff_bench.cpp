@@ -506,6 +506,7 @@ private:
             hp.maxDistanceM = frame.maxDistanceM;
             hp.curvature = fp.curvature;
             hp.directionToleranceDeg = fp.directionToleranceDeg;
+            hp.directionToleranceFloorDeg = fp.directionToleranceFloorDeg;
             const std::vector<float> h = sampleOf(sweepHorizon(t_, hp).angleDeg);
             const std::string method = "quality " + std::string(qualityName(q));
             const std::string params = fmt("sun %.1f km", frame.maxDistanceM / 1000);

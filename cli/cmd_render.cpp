@@ -69,7 +69,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
                   (field.centreElevationDeg < 0 ? "; sun below the horizon: twilight sky fill only" : ""));
     note(ctx, "wrote " + o.outPath + " (" + std::to_string(image.width) + " x " +
                   std::to_string(image.height) + "); quality " + std::string(qualityName(plan.quality)) +
-                  ": sun max distance " + formatNumber(std::round(frame.maxDistanceM)) + " m, " +
+                  ": sun max distance " + formatDistance(frame.maxDistanceM) + ", " +
                   std::to_string(skyDirections) + " sky directions to " +
                   formatDistance(skyParams.maxDistanceM) + "; " + formatSeconds(seconds));
 }

@@ -42,6 +42,7 @@ struct SunBands {
     double maxDistanceM = 0;
     std::string sweeps;          ///< what the closing note says about the sweeps
     std::size_t sunRegions = 0;  ///< horizon model: regions of the sun sweep (0 = sun down everywhere)
+    std::string strategy;        ///< horizon model: the sun sweep's strategy (computeSunFrame)
 };
 
 SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& field,
@@ -50,7 +51,9 @@ SunBands horizonSun(const Terrain& t, const Normals& normals, const SunField& fi
     const SunFrameParams params = sunFrameParams(o.search, o.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(t, normals, field, params, &counter);
     return {std::move(frame.light.visibility), std::move(frame.light.irradiance), frame.maxDistanceM,
-            std::to_string(frame.sweepRegions) + " sweep region(s)", frame.sweepRegions};
+            std::to_string(frame.sweepRegions) + " sweep region(s), " + sunSweepStrategyName(frame.strategy) +
+                " strategy",
+            frame.sweepRegions, sunSweepStrategyName(frame.strategy)};
 }
 
 SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& field,
@@ -67,7 +70,7 @@ SunBands apertureSun(const Terrain& t, const Normals& normals, const SunField& f
     ApertureSunMaps m = applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp,
                                          o.search.threads);
     return {std::move(m.visibility), std::move(m.irradiance), hp.maxDistanceM,
-            std::to_string(d) + " aperture directions", 0};
+            std::to_string(d) + " aperture directions", 0, std::string()};
 }
 
 void runSun(const SunOptions& o, const CliContext& ctx) {
@@ -112,6 +115,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
         {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
         {"DEMLIGHT_SUN_ELEVATION_RANGE_DEG", formatNumber(lowestSun) + "," + formatNumber(highestSun)},
         {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(out.sunRegions)},
+        {"DEMLIGHT_SUN_SWEEP_STRATEGY", out.strategy},
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
         {"DEMLIGHT_MODEL", std::string(lightingModelName(model))},
         {"DEMLIGHT_METHOD", "sweep"},
@@ -134,7 +138,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
                   (sunUp ? "" : "; the sun is below the horizon: everything is in shadow"));
     note(ctx, "wrote " + o.out.path + " (band 1 sun_visibility, band 2 sun_irradiance); model " +
                   std::string(lightingModelName(model)) + ", " + out.sweeps + ", max distance " +
-                  formatNumber(std::round(out.maxDistanceM)) + " m, " + formatSeconds(seconds) +
+                  formatDistance(out.maxDistanceM) + ", " + formatSeconds(seconds) +
                   " compute");
 }
 

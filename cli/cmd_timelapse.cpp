@@ -172,6 +172,19 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
         t0 = std::chrono::ceil<std::chrono::seconds>(ev.sunrise.value_or(day.startUtc));
         t1 = std::chrono::floor<std::chrono::seconds>(ev.sunset.value_or(day.endUtc));
         f.description = ev.kind == DayKind::PolarDay ? "local day (polar day)" : "sunrise to sunset";
+        if (ev.sunrise && ev.sunset && *ev.sunset < *ev.sunrise) {
+            // --tz is far from the DEM's own zone (e.g. UTC for a DEM at 122 W): the day's sunset
+            // falls after the zone's midnight, and the one in this day is the previous evening's.
+            // Film the daylight that starts at this sunrise, to its sunset in the next window.
+            const SunEvents next = sunEvents(site, day.startUtc + std::chrono::hours(24));
+            if (next.sunset && *next.sunset > *ev.sunrise) {
+                t1 = std::chrono::floor<std::chrono::seconds>(*next.sunset);
+            } else {
+                t1 = std::chrono::floor<std::chrono::seconds>(day.endUtc);
+            }
+            f.description = "sunrise to sunset (the sun sets after midnight in " + f.zone.describe() +
+                            "; --tz for the DEM's own zone gives its local day)";
+        }
     } else {
         if (o.start.empty() || o.end.empty())
             throw Error("timelapse: give --start T and --end T (with --step), or --date D");
@@ -183,6 +196,7 @@ Frames chooseFrames(const TimelapseOptions& o, const Dem& dem) {
         t1 = b.utc;
         f.description = "start to end";
     }
+    if (t1 < t0) throw Error("timelapse: the sequence ends before it starts");
     const auto count = static_cast<std::size_t>((t1 - t0) / step) + 1;
     if (count > o.maxFrames)
         throw Error("timelapse: " + std::to_string(count) + " frames at --step " + o.step + ", more than --max-frames " +
@@ -357,6 +371,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                 {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
                 {"DEMLIGHT_METHOD", stackDirections > 0 ? "sweep, interpolated:" + std::to_string(stackDirections) : "sweep"},
                 {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, frame.maxDistanceM)},
+                {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(frame.sweepRegions)},
+                {"DEMLIGHT_SUN_SWEEP_STRATEGY", stackDirections > 0 ? "interpolated stack" : sunSweepStrategyName(frame.strategy)},
                 {"DEMLIGHT_REFRACTION", formatNumber(sp.refraction)},
                 {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
                 {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, skyParams.maxDistanceM)},

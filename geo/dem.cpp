@@ -72,6 +72,11 @@ CrsInfo describeCrs(const std::string& wkt, const std::string& path) {
         if (copy.AutoIdentifyEPSG() == OGRERR_NONE && copy.GetAuthorityCode(nullptr))
             info.epsg = std::atoi(copy.GetAuthorityCode(nullptr));
     }
+    // Some drivers (USGS DEM) give a CRS without a name: take the identified code's.
+    if (info.epsg && (!srs.GetName() || std::string(srs.GetName()).empty() || std::string(srs.GetName()) == "unnamed")) {
+        OGRSpatialReference byCode;
+        if (byCode.importFromEPSG(*info.epsg) == OGRERR_NONE && byCode.GetName()) info.name = byCode.GetName();
+    }
     return info;
 }
 

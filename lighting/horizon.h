@@ -63,6 +63,11 @@ struct HorizonParams {
     /// swept with its own straight direction, until every cell's error is below this (see
     /// sweepRegions). Must be >= 0.
     double directionToleranceDeg = 0.0;
+    /// Sweep only, with directionToleranceDeg = 0: the automatic tolerance is at least this
+    /// (degrees). A scan direction off by theta sees the horizon of azimuth A + theta, an error
+    /// of about theta |dh/dA| whatever the distance, so an angle budget allows theta up to about
+    /// that budget however long the search (the scene plan sets it from --tolerance). Must be >= 0.
+    double directionToleranceFloorDeg = 0.0;
     /// Sweep only: serve each cell from the one scan line nearest to it instead of interpolating
     /// the tangents of the two lines bracketing it. Off the grid axes that halves the hull
     /// queries (about a third less time per sweep) at a larger per-cell error (the README's
@@ -107,7 +112,8 @@ inline constexpr double kDefaultLowestElevationDeg = 2.0;
 /// The direction tolerance used by the sweep (degrees): params.directionToleranceDeg if > 0, else
 /// atan(1 cell / reach), reach = min(maxDistanceM, DEM diagonal), clamped to [0.01°, 0.5°]: the
 /// swept line then stays within a cell of the true line over the whole search distance (0.05°
-/// for 30 m cells and 34 km). Each extra region costs a sweep of its own (see sweepRegions).
+/// for 30 m cells and 34 km); and at least params.directionToleranceFloorDeg. Each extra region
+/// costs a sweep of its own (see sweepRegions).
 double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params);
 
 /// A region of the output swept with one straight grid direction.

@@ -684,6 +684,9 @@ void validateHorizonParams(const Terrain& terrain, const HorizonParams& p) {
         throw Error("horizon: max distance must be > 0 metres, got " + std::to_string(p.maxDistanceM));
     if (!(p.refraction >= 0.0 && p.refraction < 1.0))
         throw Error("horizon: refraction coefficient must be in [0, 1), got " + std::to_string(p.refraction));
+    if (!(p.directionToleranceFloorDeg >= 0.0))
+        throw Error("horizon: direction tolerance floor must be >= 0 degrees, got " +
+                    std::to_string(p.directionToleranceFloorDeg));
     if (!(p.directionToleranceDeg >= 0.0))
         throw Error("horizon: direction tolerance must be >= 0 degrees (0 = automatic), got " +
                     std::to_string(p.directionToleranceDeg));
@@ -724,7 +727,7 @@ double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParam
     }
     const double reachM = std::min(params.maxDistanceM, std::hypot(widthM, heightM));
     const double deg = std::atan(kLateralBudgetCells * minCellM / reachM) * kRadToDeg;
-    return std::clamp(deg, kMinAutoToleranceDeg, kMaxAutoToleranceDeg);
+    return std::max(std::clamp(deg, kMinAutoToleranceDeg, kMaxAutoToleranceDeg), params.directionToleranceFloorDeg);
 }
 
 std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params) {

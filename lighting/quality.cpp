@@ -51,6 +51,13 @@ constexpr double kAnisotropicP99ErrorDeg = 10.2;
 constexpr const char* kAnisotropicErrorSource =
     "sweep vs reference on 4.8:1 lat/lon cells at 78 N, docs/stability.md";
 
+std::string describeNumber(double value) {
+    std::ostringstream s;
+    s.precision(6);
+    s << value;
+    return s.str();
+}
+
 std::string describe(const std::string& name, double value, const std::string& why) {
     std::ostringstream s;
     s.precision(6);
@@ -177,7 +184,8 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     plan.maxDistanceM = budget.maxDistanceM > 0 ? budget.maxDistanceM : std::max(minCell, wholeDem ? diagonal : byRelief);
     const double curvatureDeg = plan.maxDistanceM / (2 * rEff) * kRadToDeg;
     plan.curvature = curvatureDeg >= kCurvatureShareOfTolerance * budget.toleranceDeg;
-    plan.directionToleranceDeg = 0;  // the sweep's automatic rule
+    plan.directionToleranceDeg = 0;  // the sweep's automatic rule ...
+    plan.directionToleranceFloorDeg = std::min(budget.toleranceDeg, kMaxDirectionFloorDeg);  // ... or the budget
     plan.skyDirections = kAutoSkyDirections;
     plan.integralNearestLine = true;
     plan.sunLatticeStepCells = kAutoSunLatticeCells;
@@ -194,7 +202,9 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
             << " km here), bilinear between; the sun's direction changes smoothly, by ~"
             << kSunDirectionDegPerKm * latticeKm << " deg over that span";
     plan.reasons = {describe("max_distance_m", plan.maxDistanceM, why.str()), curv.str(),
-                    "direction_tolerance_deg=auto (one cell of sideways drift at the search distance; "
+                    "direction_tolerance_deg=auto (one cell of sideways drift at the search distance, but at "
+                    "least " + describeNumber(plan.directionToleranceFloorDeg) + " deg, the tolerance: a scan "
+                    "direction off by theta changes a horizon by about theta |dh/dA| at any distance; "
                     "sky and aperture integrals: at least 1/16 of their sector width, over the whole DEM "
                     "unless a range limit saves sweep work)",
                     describe("sky_directions", plan.skyDirections, "measured sky error budget"),
@@ -222,6 +232,7 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
     p.curvature = plan.curvature;
     p.refraction = refraction;
     p.directionToleranceDeg = plan.directionToleranceDeg;
+    p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.threads = threads;
     return p;
 }
@@ -234,6 +245,7 @@ SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, 
     p.threads = threads;
     p.curvature = plan.curvature;
     p.directionToleranceDeg = plan.directionToleranceDeg;
+    p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : 0.0;
     return p;
 }

@@ -139,6 +139,15 @@ double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double
     return std::max(t.cellHeightM.front(), byRelief >= kWholeDemShareOfDiagonal * diagonal ? diagonal : byRelief);
 }
 
+const char* sunSweepStrategyName(SunSweepStrategy s) {
+    switch (s) {
+        case SunSweepStrategy::Following: return "following";
+        case SunSweepStrategy::Interpolating: return "interpolating";
+        case SunSweepStrategy::Cheapest: break;
+    }
+    return "cheapest";
+}
+
 SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
                          const SunFrameParams& params, ProgressCounter* progress) {
     SunFrame frame;
@@ -169,6 +178,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.maxDistanceM = frame.maxDistanceM;
     hp.azimuthDeg = field.centreAzimuthDeg;
     hp.azimuthAtDeg = [&field](double col, double row) { return field.at(col + 0.5, row + 0.5).first; };
+    hp.directionToleranceFloorDeg = params.directionToleranceFloorDeg;
     // Automatic tolerance: one cell of sideways drift at the sun's own search distance, the
     // farthest a shadow can be cast from; with or without the range limit below.
     hp.directionToleranceDeg = params.directionToleranceDeg > 0 ? params.directionToleranceDeg
@@ -208,6 +218,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         if (params.strategy == SunSweepStrategy::Cheapest && interpolatingSteps >= estimateSweepSteps(t, hp))
             fixedSweeps.clear();
     }
+    frame.strategy = fixedSweeps.empty() ? SunSweepStrategy::Following : SunSweepStrategy::Interpolating;
     std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
     SweepBuffers buffers;
     if (fixedSweeps.empty()) {

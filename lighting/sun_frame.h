@@ -21,6 +21,9 @@ namespace demlight {
 /// How computeSunFrame sweeps a sun whose azimuth varies over the DEM (see there).
 enum class SunSweepStrategy { Cheapest, Following, Interpolating };
 
+/// "following" or "interpolating" ("cheapest" for Cheapest).
+const char* sunSweepStrategyName(SunSweepStrategy s);
+
 struct SunFrameParams {
     double sunDiameterDeg = kSunDiameterDeg;
     /// Search distance (metres); <= 0 means sunSearchDistanceM() for the field's lowest sun.
@@ -29,6 +32,7 @@ struct SunFrameParams {
     /// As HorizonParams::curvature and HorizonParams::directionToleranceDeg (the scene plan's).
     bool curvature = true;
     double directionToleranceDeg = 0;
+    double directionToleranceFloorDeg = 0;  ///< as HorizonParams::directionToleranceFloorDeg
     /// HorizonParams::nearestLine for the sun's sweeps (one scan line per cell). No scene plan
     /// sets it: the bench measures it (docs/bench/auto_vs_full.csv, sun rows' notes), 20-25 %
     /// faster than two lines but with up to 14x the visibility error on ridges.
@@ -41,6 +45,8 @@ struct SunFrameParams {
 struct SunFrame {
     SunLight light;                       ///< visibility and irradiance; NaN at nodata
     std::size_t sweepRegions = 0;         ///< regions of the frame's sweeps (0 when the sun is down everywhere)
+    /// The strategy that ran: Following or Interpolating (Cheapest never; the sun down: Following).
+    SunSweepStrategy strategy = SunSweepStrategy::Following;
     double maxDistanceM = 0;              ///< the search distance used
 };
 

@@ -165,6 +165,20 @@ TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
     EXPECT_EQ(mask.descriptions[1], "truncated_azimuth=123.5");
 }
 
+// --date in a zone far from the DEM's (UTC at 122 W): the day's sunset falls after that zone's
+// midnight; the frames still run from sunrise to the sunset after it (the bug: SPA's events of
+// the UTC day put the previous evening's sunset first and the frame count wrapped around).
+TEST(CliOutputs, TimelapseDateInAFarZoneRunsSunriseToSunset) {
+    const fs::path dir = fs::temp_directory_path() / "demlight_cli_tlutc";
+    fs::remove_all(dir);
+    const auto r = runDemlight("timelapse " + kHelens + " -o " + dir.string() +
+                               " --date 2024-06-21 --step 2h --formats tif --threads 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("frames: 8 (sunrise to sunset"), std::string::npos) << r.err;  // 12:17Z .. 04:04Z
+    EXPECT_NE(r.err.find("2024-06-21T12:17"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "frame_007.tif"));
+}
+
 // The truncation mask is nodata (255) exactly at the DEM's voids, 0 or 1 elsewhere.
 TEST(CliOutputs, TruncationMaskIsNodataAtVoids) {
     const fs::path dir = fs::temp_directory_path() / "demlight_cli_mask";

@@ -87,6 +87,28 @@ TEST(Quality, ExpectedErrorGrowsWithALooserTolerance) {
               planScene(t, Quality::Full, {}).expectedError.medianDeg);
 }
 
+// Auto's scan tolerance is at least the angle budget (a direction error theta changes a horizon
+// by about theta |dh/dA| at any distance), so large DEMs need no more regions than the budget
+// asks; full keeps its fixed 0.01 deg.
+TEST(Quality, AutoScanToleranceIsAtLeastTheBudget) {
+    const Terrain big = cone(2000, 30, 5000);  // 85 km diagonal, searched whole: the cell rule gives 0.02 deg
+    HorizonParams rule;
+    rule.maxDistanceM = 1e9;
+    ASSERT_LT(effectiveDirectionToleranceDeg(big, rule), 0.05);
+    QualityBudget b;
+    const ScenePlan autoPlan = planScene(big, Quality::Auto, b);
+    EXPECT_EQ(autoPlan.directionToleranceFloorDeg, b.toleranceDeg);
+    EXPECT_DOUBLE_EQ(effectiveDirectionToleranceDeg(big, planHorizonParams(autoPlan, 0.13)), b.toleranceDeg);
+    b.toleranceDeg = 3;
+    EXPECT_EQ(planScene(big, Quality::Auto, b).directionToleranceFloorDeg, kMaxDirectionFloorDeg);
+    const ScenePlan full = planScene(big, Quality::Full, {});
+    EXPECT_EQ(full.directionToleranceFloorDeg, 0.0);
+    EXPECT_EQ(effectiveDirectionToleranceDeg(big, planHorizonParams(full, 0.13)), 0.01);
+    // A cell rule looser than the budget stays (small DEMs).
+    const Terrain small = cone(50, 30, 50);
+    EXPECT_GT(effectiveDirectionToleranceDeg(small, planHorizonParams(planScene(small, Quality::Auto, {}), 0.13)), 0.1);
+}
+
 TEST(Quality, ExpectedErrorIsLargerOnElongatedCells) {
     // The stability suite measured a larger sweep error on 4.8:1 cells (78 N lat/lon).
     Terrain elongated = cone(100, 30, 50);
