@@ -35,13 +35,14 @@ constexpr double kSlopeSnap = 1e-12;
 ///  - median: tests/horizon_realdem_test.cpp HorizonRealDem, mount_st_helens az 123.4: 0.0724 deg
 ///    (README "How the horizon is computed"); docs/bench/auto_vs_full.csv, horizon rows: at most
 ///    0.024 deg for auto (horizons >= 2 deg), 0.063 deg for full on every horizon (St Helens).
-///  - 99th percentile: docs/bench/auto_vs_full.csv row "everest_N27E086_srtm3,horizon (1
-///    azimuth)": auto 5.68 deg (horizons >= 2 deg), full 5.30 deg on every horizon; every other
-///    row and HorizonRealDem (up to 5.2 deg) are lower.
+///  - 99th percentile: docs/bench/whole_dem_errors.csv (bench/error_bench.cpp, whole DEMs, 1000
+///    cells x 6 azimuths), Everest's whole 1201^2 SRTM3 tile: full 6.74 deg on every horizon, auto
+///    6.36 deg (horizons >= 2 deg); its 600^2 crop in docs/bench/auto_vs_full.csv 5.68 / 5.30;
+///    every other DEM (8 more) and HorizonRealDem (up to 5.2 deg) are lower.
 constexpr double kSweepMedianErrorDeg = 0.072;
-constexpr double kSweepP99ErrorDeg = 5.7;
+constexpr double kSweepP99ErrorDeg = 6.8;
 constexpr const char* kSweepErrorSource =
-    "sweep vs whole-DEM reference on real DEMs, docs/bench/auto_vs_full.csv";
+    "sweep vs whole-DEM reference on real DEMs, docs/bench/whole_dem_errors.csv";
 /// Cells longer than wide (or wider than long) by this ratio or more have a larger sweep error:
 /// docs/stability.md row "78 N lat/lon cells (6.4 x 30.9 m) | sweep vs reference", median 0.19
 /// deg, p99 10.2 deg (the 4.8:1 cells of 1" lat/lon data at 78 deg N).
