@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <strings.h>
 #include <sstream>
 #include <unistd.h>
@@ -20,38 +21,32 @@ namespace fs = std::filesystem;
 /// Input nodata values at least this large in magnitude are carried into outputs.
 constexpr double kCarriedNodataMagnitude = 10000.0;
 
-/// A range check that also rejects NaN (CLI::Range lets NaN through). lowOpen: lo excluded.
+/// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen: lo
+/// excluded. An infinite hi is no upper bound: "NUMBER > lo" (CLI::PositiveNumber would print
+/// DBL_MAX in full as its upper end).
 CLI::Validator finiteRange(double lo, double hi, bool lowOpen) {
+    const bool bounded = std::isfinite(hi);
     const std::string description =
-        std::string(lowOpen ? "(" : "[") + CLI::detail::to_string(lo) + ", " +
-        CLI::detail::to_string(hi) + "]";
+        bounded ? std::string(lowOpen ? "(" : "[") + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]"
+                : std::string(lowOpen ? "NUMBER > " : "NUMBER >= ") + CLI::detail::to_string(lo);
     return CLI::Validator(
         [=](std::string& text) -> std::string {
             double v = 0;
             if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
                 return "expected a finite number, got '" + text + "'";
-            if (v < lo || v > hi || (lowOpen && v == lo))
-                return "value " + text + " is outside " + description;
-            return {};
+            if (!(v < lo || v > hi || (lowOpen && v == lo))) return {};
+            return bounded ? "value " + text + " is outside " + description
+                           : std::string("must be ") + (lowOpen ? "> " : ">= ") + CLI::detail::to_string(lo) +
+                                 ", got " + text;
         },
         description);
 }
 
 namespace {
 
-/// CLI::PositiveNumber and NonNegativeNumber print DBL_MAX in full as the range's upper end.
-CLI::Validator numberAtLeast(double lowest, bool inclusive, const std::string& what) {
-    return CLI::Validator(
-        [=](std::string& text) -> std::string {
-            double v = 0;
-            if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
-            if (inclusive ? v >= lowest : v > lowest) return {};
-            return "must be " + what + ", got " + text;
-        },
-        inclusive ? "NUMBER >= 0" : "NUMBER > 0");
-}
-CLI::Validator positiveNumber() { return numberAtLeast(0.0, false, "> 0"); }
-CLI::Validator nonNegativeNumber() { return numberAtLeast(0.0, true, ">= 0"); }
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+CLI::Validator positiveNumber() { return finiteRange(0, kUnbounded, /*lowOpen=*/true); }
+CLI::Validator nonNegativeNumber() { return finiteRange(0, kUnbounded); }
 
 }  // namespace
 

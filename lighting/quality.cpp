@@ -60,10 +60,7 @@ std::string describeNumber(double value) {
 }
 
 std::string describe(const std::string& name, double value, const std::string& why) {
-    std::ostringstream s;
-    s.precision(6);
-    s << name << "=" << value << " (" << why << ")";
-    return s.str();
+    return name + "=" + describeNumber(value) + " (" + why + ")";
 }
 
 /// Largest ratio of the longer to the shorter cell side over the rows.
