@@ -159,6 +159,58 @@ TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull
     EXPECT_LT(autoOne, fullOne);
 }
 
+// Whole 1201^2 tiles, where auto's scan tolerance is the budget's 0.1 deg rather than the
+// one-cell rule (0.027-0.032 deg here): auto must still state its error honestly and stay within
+// the tolerance of full. Everest is also the DEM that sets the stated p99
+// (docs/bench/whole_dem_errors.csv).
+class QualityWholeDem : public ::testing::TestWithParam<Case> {};
+
+TEST_P(QualityWholeDem, AutoWithTheBudgetsScanToleranceMeetsItsClaims) {
+    const std::optional<Terrain> dem = sharedTerrain(GetParam().file, 100000, 100000);
+    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
+    const Terrain& t = *dem;
+    const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
+    ASSERT_EQ(cells.size(), kSampleCells);
+    const QualityBudget defaults;
+    HorizonParams reference;
+    reference.refraction = defaults.refraction;
+    std::vector<double> ref;
+    for (double az : kAzimuthsDeg) {
+        reference.azimuthDeg = az;
+        for (const HorizonSample& s : referenceHorizonAt(t, reference, cells)) ref.push_back(s.angleDeg);
+    }
+    const ScenePlan plan = planScene(t, Quality::Auto, defaults);
+    const ScenePlan full = planScene(t, Quality::Full, defaults);
+    // The budget, not the cell rule, sets the scan tolerance here.
+    HorizonParams cellRule = planHorizonParams(plan, defaults.refraction);
+    cellRule.directionToleranceFloorDeg = 0;
+    ASSERT_LT(effectiveDirectionToleranceDeg(t, cellRule), defaults.toleranceDeg);
+    EXPECT_EQ(effectiveDirectionToleranceDeg(t, planHorizonParams(plan, defaults.refraction)), defaults.toleranceDeg);
+
+    const std::vector<double> autoH = planHorizons(t, plan, defaults.refraction, cells);
+    const std::vector<double> fullH = planHorizons(t, full, defaults.refraction, cells);
+    const double e = plan.expectedError.aboveElevationDeg;
+    const ErrorStats a = stats(clampedErrors(autoH, ref, e)), f = stats(clampedErrors(fullH, ref, e));
+    const ErrorStats fullAll = stats(clampedErrors(fullH, ref, -90));
+    std::printf("%s whole (%zu x %zu): auto median %.4f p99 %.3f, full median %.4f p99 %.3f (at or above %.0f deg); "
+                "full on every horizon median %.4f p99 %.3f; claims: %s / %s\n",
+                GetParam().file.c_str(), t.width(), t.height(), a.median, a.p99, f.median, f.p99, e, fullAll.median,
+                fullAll.p99, describeExpectedError(plan.expectedError).c_str(),
+                describeExpectedError(full.expectedError).c_str());
+    EXPECT_LE(a.median, plan.expectedError.medianDeg);
+    EXPECT_LE(a.p99, plan.expectedError.p99Deg);
+    EXPECT_LE(a.median, f.median + defaults.toleranceDeg);
+    EXPECT_LE(a.p99, f.p99 + defaults.toleranceDeg);
+    EXPECT_LE(fullAll.median, full.expectedError.medianDeg);
+    EXPECT_LE(fullAll.p99, full.expectedError.p99Deg);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedDems, QualityWholeDem,
+                         ::testing::Values(Case{"N44W072.hgt"}, Case{"everest_N27E086_srtm3.tif"}),
+                         [](const ::testing::TestParamInfo<Case>& param) {
+                             return param.param.file.substr(0, param.param.file.find('.'));
+                         });
+
 // The integrals' scan-direction tolerance (kIntegralToleranceShareOfSector of the sector width)
 // against the sweep's own one-cell drift rule, on a full-height strip of a 1-degree lat/lon tile:
 // there the cell aspect ratio changes with latitude enough to split the strict sweeps into
