@@ -84,7 +84,8 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
         ->check(CLI::IsMember({"auto", "full"}))
         ->capture_default_str();
     cmd->add_option("--tolerance", o.toleranceDeg,
-                    "Horizon error budget for --quality auto (degrees)")
+                    "Horizon error budget for --quality auto (degrees): decides curvature and the "
+                    "scan-direction tolerance; a looser one is added to the stated error")
         ->check(finiteRange(0.001, 10.0))
         ->capture_default_str();
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
