@@ -75,6 +75,21 @@ std::vector<double> planHorizons(const Terrain& t, const ScenePlan& plan, double
     return h;
 }
 
+/// The reference at the sample cells, azimuth by azimuth (kAzimuthsDeg order): full physics
+/// (curvature on, the given refraction, the whole DEM).
+std::vector<double> referenceHorizons(const Terrain& t, double refraction, const std::vector<CellIndex>& cells) {
+    HorizonParams reference;
+    reference.maxDistanceM = std::numeric_limits<double>::infinity();
+    reference.curvature = true;
+    reference.refraction = refraction;
+    std::vector<double> ref;
+    for (double az : kAzimuthsDeg) {
+        reference.azimuthDeg = az;
+        for (const HorizonSample& s : referenceHorizonAt(t, reference, cells)) ref.push_back(s.angleDeg);
+    }
+    return ref;
+}
+
 /// |max(h, e) - max(ref, e)| per sample where both meet terrain (kNoHorizonDeg = no terrain
 /// before the DEM edge: out of scope, see ExpectedError).
 std::vector<double> clampedErrors(const std::vector<double>& h, const std::vector<double>& ref, double e) {
@@ -97,17 +112,8 @@ TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull
     const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
     ASSERT_EQ(cells.size(), kSampleCells);
 
-    // The reference: full physics (curvature on, refraction 0.13, the whole DEM).
     const QualityBudget defaults;
-    HorizonParams reference;
-    reference.maxDistanceM = std::numeric_limits<double>::infinity();
-    reference.curvature = true;
-    reference.refraction = defaults.refraction;
-    std::vector<double> ref;
-    for (double az : kAzimuthsDeg) {
-        reference.azimuthDeg = az;
-        for (const HorizonSample& s : referenceHorizonAt(t, reference, cells)) ref.push_back(s.angleDeg);
-    }
+    const std::vector<double> ref = referenceHorizons(t, defaults.refraction, cells);
 
     const ScenePlan full = planScene(t, Quality::Full, defaults);
     const std::vector<double> fullH = planHorizons(t, full, defaults.refraction, cells);
@@ -172,13 +178,7 @@ TEST_P(QualityWholeDem, AutoWithTheBudgetsScanToleranceMeetsItsClaims) {
     const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
     ASSERT_EQ(cells.size(), kSampleCells);
     const QualityBudget defaults;
-    HorizonParams reference;
-    reference.refraction = defaults.refraction;
-    std::vector<double> ref;
-    for (double az : kAzimuthsDeg) {
-        reference.azimuthDeg = az;
-        for (const HorizonSample& s : referenceHorizonAt(t, reference, cells)) ref.push_back(s.angleDeg);
-    }
+    const std::vector<double> ref = referenceHorizons(t, defaults.refraction, cells);
     const ScenePlan plan = planScene(t, Quality::Auto, defaults);
     const ScenePlan full = planScene(t, Quality::Full, defaults);
     // The budget, not the cell rule, sets the scan tolerance here.
