@@ -209,7 +209,7 @@ std::string formatDistance(double metres) {
 }
 
 std::string metadataDistanceM(const Terrain& terrain, double metres) {
-    return formatNumber(std::round(std::isfinite(metres) ? metres : demDiagonalM(terrain)));
+    return formatNumber(std::round(std::isfinite(metres) ? metres : diagonalM(terrain)));
 }
 
 std::string formatNumber(double value) {

@@ -706,26 +706,20 @@ double defaultMaxDistanceM(const Terrain& terrain) {
         hi = std::max(hi, h);
     }
     if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
-    double widthM = 0.0, heightM = 0.0, minCellM = std::numeric_limits<double>::infinity();
-    for (std::size_t r = 0; r < terrain.height(); ++r) {
-        widthM = std::max(widthM, terrain.cellWidthM[r] * static_cast<double>(terrain.width()));
-        heightM += terrain.cellHeightM[r];
+    double minCellM = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < terrain.height(); ++r)
         minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
-    }
     const double reliefM = static_cast<double>(hi) - static_cast<double>(lo);
     const double byRelief = reliefM / std::tan(kDefaultLowestElevationDeg * kDegToRad);
-    return std::max(minCellM, std::min(byRelief, std::hypot(widthM, heightM)));
+    return std::max(minCellM, std::min(byRelief, diagonalM(terrain)));
 }
 
 double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params) {
     if (params.directionToleranceDeg > 0.0) return params.directionToleranceDeg;
-    double minCellM = std::numeric_limits<double>::infinity(), widthM = 0.0, heightM = 0.0;
-    for (std::size_t r = 0; r < terrain.height(); ++r) {
+    double minCellM = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < terrain.height(); ++r)
         minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
-        widthM = std::max(widthM, terrain.cellWidthM[r] * static_cast<double>(terrain.width()));
-        heightM += terrain.cellHeightM[r];
-    }
-    const double reachM = std::min(params.maxDistanceM, std::hypot(widthM, heightM));
+    const double reachM = std::min(params.maxDistanceM, diagonalM(terrain));
     const double deg = std::atan(kLateralBudgetCells * minCellM / reachM) * kRadToDeg;
     return std::max(std::clamp(deg, kMinAutoToleranceDeg, kMaxAutoToleranceDeg), params.directionToleranceFloorDeg);
 }

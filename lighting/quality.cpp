@@ -94,17 +94,8 @@ std::string describeExpectedError(const ExpectedError& e) {
     return s.str();
 }
 
-double demDiagonalM(const Terrain& t) {
-    double heightM = 0, widthM = 0;
-    for (std::size_t r = 0; r < t.height(); ++r) {
-        heightM += t.cellHeightM[r];
-        widthM = std::max(widthM, t.cellWidthM[r] * static_cast<double>(t.width()));
-    }
-    return std::hypot(widthM, heightM);
-}
-
 double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM) {
-    if (maxDistanceM >= demDiagonalM(terrain)) return -90;
+    if (maxDistanceM >= diagonalM(terrain)) return -90;
     const auto [lo, hi] = heightRangeM(terrain.heightsM);
     const double relief = std::isfinite(lo) ? static_cast<double>(hi - lo) : 0.0;
     return std::atan(relief / maxDistanceM) * kRadToDeg;
@@ -151,7 +142,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
         throw Error("the lowest relevant elevation must be in (0, 90) degrees");
     ScenePlan plan;
     plan.quality = quality;
-    const double diagonal = demDiagonalM(terrain);
+    const double diagonal = diagonalM(terrain);
     const double minCell = std::min(terrain.cellWidthM[terrain.height() / 2], terrain.cellHeightM[terrain.height() / 2]);
     const double rEff = kEarthRadiusM / (1.0 - budget.refraction);
 

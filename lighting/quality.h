@@ -62,10 +62,6 @@ struct ExpectedError {
 /// "median M, p99 P deg[ for horizons at or above E deg] (source)".
 std::string describeExpectedError(const ExpectedError& e);
 
-/// Length of the DEM's diagonal (metres, from its per-row cell sizes): a search distance this
-/// long or longer is the whole DEM.
-double demDiagonalM(const Terrain& terrain);
-
 /// Elevation (degrees) above which a search distance sees every occluder: atan(relief / d).
 /// Terrain farther than d cannot rise above it. -90 when d covers the DEM diagonal.
 double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM);

@@ -16,14 +16,6 @@ namespace {
 /// Floor of the elevation used to size the search distance (degrees).
 constexpr double kLowestShadowElevationDeg = 0.25;
 
-/// Diagonal of the DEM (metres), from the middle row's cell width and the summed cell heights.
-double diagonalM(const Terrain& t) {
-    double heightM = 0;
-    for (double h : t.cellHeightM) heightM += h;
-    const double widthM = t.cellWidthM[t.height() / 2] * static_cast<double>(t.width());
-    return std::hypot(widthM, heightM);
-}
-
 /// sunTerms() along one row, branch-free so the compiler vectorises it: the horizon clamped to
 /// the tangent plane in the sun's azimuth, the visible fraction of the disk (seed Eq. 5-7; a
 /// point sun when !Disk) and the Lambert term. Normals of a height field have N_up > 0

@@ -55,6 +55,15 @@ std::pair<float, float> heightRangeM(const Grid<float>& heightsM) {
     return {*std::min_element(lo.begin(), lo.end()), *std::max_element(hi.begin(), hi.end())};
 }
 
+double diagonalM(const Terrain& t) {
+    double heightM = 0, widthM = 0;
+    for (std::size_t r = 0; r < t.height(); ++r) {
+        heightM += t.cellHeightM[r];
+        widthM = std::max(widthM, t.cellWidthM[r] * static_cast<double>(t.width()));
+    }
+    return std::hypot(widthM, heightM);
+}
+
 Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
     Terrain out;
     out.heightsM = Grid<float>(w, h);

@@ -48,6 +48,10 @@ struct Terrain {
     bool valid(std::size_t col, std::size_t row) const { return !std::isnan(heightsM(col, row)); }
 };
 
+/// Length of the DEM's diagonal (metres): the widest row's width (per-row cell widths) and the
+/// summed cell heights. A search distance this long or longer is the whole DEM.
+double diagonalM(const Terrain& terrain);
+
 /// Lowest and highest valid height (metres); {+inf, -inf} when every cell is nodata.
 std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
 
