@@ -90,6 +90,23 @@ std::vector<double> referenceHorizons(const Terrain& t, double refraction, const
     return ref;
 }
 
+/// A shared DEM (its centre crop of crop x crop cells; 0 = whole), a fixed pseudo-random sample
+/// of valid cells anywhere in it (every method sees the same DEM, so cells near the edge are as
+/// fair as any), and the reference there; empty when the DEM is not present.
+struct SampledDem {
+    Terrain terrain;
+    std::vector<CellIndex> cells;
+    std::vector<double> reference;
+};
+std::optional<SampledDem> sampleDem(const std::string& file, std::size_t crop, double refraction) {
+    std::optional<Terrain> t = sharedTerrain(file, crop, crop);
+    if (!t) return std::nullopt;
+    SampledDem s{std::move(*t), {}, {}};
+    s.cells = sampleValidCells(s.terrain, kSampleCells, kSampleSeed);
+    s.reference = referenceHorizons(s.terrain, refraction, s.cells);
+    return s;
+}
+
 /// |max(h, e) - max(ref, e)| per sample where both meet terrain (kNoHorizonDeg = no terrain
 /// before the DEM edge: out of scope, see ExpectedError).
 std::vector<double> clampedErrors(const std::vector<double>& h, const std::vector<double>& ref, double e) {
@@ -103,17 +120,11 @@ std::vector<double> clampedErrors(const std::vector<double>& h, const std::vecto
 class QualityRealDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull) {
-    const std::optional<Terrain> dem = sharedTerrain(GetParam().file, kCropCells, kCropCells);
-    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
-    const Terrain& t = *dem;
-
-    // A fixed pseudo-random sample of valid cells, anywhere in the crop (all methods see the
-    // same DEM, so cells near the edge are as fair as any).
-    const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
-    ASSERT_EQ(cells.size(), kSampleCells);
-
     const QualityBudget defaults;
-    const std::vector<double> ref = referenceHorizons(t, defaults.refraction, cells);
+    const std::optional<SampledDem> sampled = sampleDem(GetParam().file, kCropCells, defaults.refraction);
+    if (!sampled) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
+    const auto& [t, cells, ref] = *sampled;
+    ASSERT_EQ(cells.size(), kSampleCells);
 
     const ScenePlan full = planScene(t, Quality::Full, defaults);
     const std::vector<double> fullH = planHorizons(t, full, defaults.refraction, cells);
@@ -172,13 +183,11 @@ TEST_P(QualityRealDem, AutoMeetsItsBudgetAgainstTheReferenceAndCostsLessThanFull
 class QualityWholeDem : public ::testing::TestWithParam<Case> {};
 
 TEST_P(QualityWholeDem, AutoWithTheBudgetsScanToleranceMeetsItsClaims) {
-    const std::optional<Terrain> dem = sharedTerrain(GetParam().file, 100000, 100000);
-    if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
-    const Terrain& t = *dem;
-    const std::vector<CellIndex> cells = sampleValidCells(t, kSampleCells, kSampleSeed);
-    ASSERT_EQ(cells.size(), kSampleCells);
     const QualityBudget defaults;
-    const std::vector<double> ref = referenceHorizons(t, defaults.refraction, cells);
+    const std::optional<SampledDem> sampled = sampleDem(GetParam().file, 0, defaults.refraction);
+    if (!sampled) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(GetParam().file);
+    const auto& [t, cells, ref] = *sampled;
+    ASSERT_EQ(cells.size(), kSampleCells);
     const ScenePlan plan = planScene(t, Quality::Auto, defaults);
     const ScenePlan full = planScene(t, Quality::Full, defaults);
     // The budget, not the cell rule, sets the scan tolerance here.
