@@ -145,10 +145,16 @@ TEST_F(CliBadInput, OutputWouldOverwriteInput) {
     EXPECT_EQ(fs::file_size(copy), before);
 }
 
-TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
-    const fs::path dir = fs::temp_directory_path() / "demlight_cli_horizon";
+/// An empty scratch folder under the system's temporary directory.
+fs::path freshDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / name;
     fs::remove_all(dir);
     fs::create_directories(dir);
+    return dir;
+}
+
+TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
+    const fs::path dir = freshDir("demlight_cli_horizon");
     const std::string out = (dir / "h.tif").string();
     const auto r = runDemlight("-q horizon " + kRocky + " -o " + out + " --azimuth 0 123.5 --threads 2");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -181,9 +187,7 @@ TEST(CliOutputs, TimelapseDateInAFarZoneRunsSunriseToSunset) {
 
 // The truncation mask is nodata (255) exactly at the DEM's voids, 0 or 1 elsewhere.
 TEST(CliOutputs, TruncationMaskIsNodataAtVoids) {
-    const fs::path dir = fs::temp_directory_path() / "demlight_cli_mask";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshDir("demlight_cli_mask");
     const std::string out = (dir / "h.tif").string();
     const auto r = runDemlight("-q horizon " + kHelens + " -o " + out + " --azimuth 200 --threads 2 --max-distance 3000");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -209,9 +213,7 @@ TEST(CliOutputs, TruncationMaskIsNodataAtVoids) {
 }
 
 TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
-    const fs::path dir = fs::temp_directory_path() / "demlight_cli_sun";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshDir("demlight_cli_sun");
     const std::string out = (dir / "sun.tif").string();
     const auto r = runDemlight("-q sun " + kHelens + " -o " + out +
                                " --time 2024-06-21T07:30 --tz America/Los_Angeles -of COG -co COMPRESS=ZSTD");
@@ -241,9 +243,7 @@ TEST(CliOutputs, SunWritesVisibilityAndIrradianceWithSunMetadata) {
 
 // Global options may follow the subcommand too, as users type them.
 TEST(CliOutputs, QuietAfterTheSubcommand) {
-    const fs::path dir = fs::temp_directory_path() / "demlight_cli_quiet";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshDir("demlight_cli_quiet");
     const std::string out = (dir / "h.tif").string();
     const auto r = runDemlight("horizon " + kRocky + " -o " + out + " --azimuth 90 --threads 2 -q");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -270,9 +270,7 @@ namespace demlight {
 namespace {
 
 TEST(CliOutputs, SequenceFitRoundTrip) {
-    const fs::path dir = fs::temp_directory_path() / "demlight_cli_sequence";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshDir("demlight_cli_sequence");
     auto r = runDemlight("timelapse " + kRocky + " -o " + dir.string() +
                          " --start 2024-06-21T08:00-06:00 --end 2024-06-21T11:00-06:00 --step 20m"
                          " --formats tif --fit-degree 3");
