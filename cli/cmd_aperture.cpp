@@ -1,67 +1,35 @@
-// demlight aperture DEM -o OUT.tif: ambient aperture per cell (Oat & Sander 2007): the visible
-// solid angle, the spherical cap of the same area and its axis, the bent normal.
+// demlight aperture DEM -o OUT.tif: ambient aperture per cell (products/aperture.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/surface.h"
+#include "products/aperture.h"
 
-#include <chrono>
 #include <optional>
 
 namespace demlight::cli {
 namespace {
 
-/// Default --directions: kDefaultSkyDirections (lighting/sky.h), as for `demlight sky`: the
-/// aperture's solid angle and bent normal converge with the direction count like sky_K does
-/// (README "Sky accuracy").
-constexpr int kDefaultApertureDirections = static_cast<int>(kDefaultSkyDirections);
-
 struct ApertureOptions {
-    std::string demPath;
+    DemOptions dem;
     OutputOptions out;
     SearchOptions search;
-    std::optional<int> directions;  ///< default: the scene plan's (kDefaultApertureDirections for auto)
+    std::optional<std::size_t> directions;
 };
 
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out.path, o.demPath);
-    const Dem dem = loadDem(o.demPath);
-    const Terrain& t = dem.terrain;
-    const ScenePlan plan = planFor(o.search, t, kDefaultLowestElevationDeg, ctx);
-    const int directions = o.directions.value_or(plan.skyDirections);
-    const HorizonParams params = integralParams(o.search, plan, t, static_cast<std::size_t>(directions));
-
-    const auto start = std::chrono::steady_clock::now();
-    const Normals normals = computeNormals(t, o.search.threads);
-    ApertureAccumulator acc(normals.east, normals.north, normals.up,
-                            static_cast<std::size_t>(directions), o.search.threads);
+    checkOutputPath(o.out.path, o.dem.path);
+    const DemSource dem = openDem(o.dem);
+    ApertureRequest request;
+    request.directions = o.directions;
+    request.search = o.search.request;
+    notePlan(o.search, dem.dem().terrain, ctx);
     ProgressBar bar(!ctx.quiet);
-    ProgressCounter counter(bar.callback(), "aperture", t.heightsM.size() * static_cast<std::size_t>(directions));
-    sweepDirections(t, params, static_cast<std::size_t>(directions),
-                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
-                    &counter);
-    const ApertureMaps maps = acc.finish();
+    const auto start = std::chrono::steady_clock::now();
+    const ApertureResult result = apertureProduct(dem, dem.whole(), request, bar.callback());
     bar.finish();
     const double seconds = secondsSince(start);
-
-    std::map<std::string, std::string> meta = planMetadata(plan);
-    meta.insert({
-        {"DEMLIGHT_PRODUCT", "aperture"},
-        {"DEMLIGHT_METHOD", "sweep"},
-        {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
-        {"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(dem.terrain, params.maxDistanceM)},
-        {"DEMLIGHT_REFRACTION", formatNumber(params.refraction)},
-    });
-    writeRaster(o.out.path,
-                {{&maps.bentEast, nullptr, "bent_normal_east", "unit vector component (ENU)"},
-                 {&maps.bentNorth, nullptr, "bent_normal_north", "unit vector component (ENU)"},
-                 {&maps.bentUp, nullptr, "bent_normal_up", "unit vector component (ENU)"},
-                 {&maps.radiusDeg, nullptr, "aperture_radius_deg", "deg"},
-                 {&maps.solidAngleSr, nullptr, "visible_solid_angle_sr", "sr"}},
-                dem.band.ref, makeWriteOptions(o.out, ctx, dem, meta), o.demPath);
+    writeResult(result, o.out, ctx, o.dem.path);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
-                  std::to_string(directions) + " directions, " + formatSeconds(seconds) + " compute");
+                  std::to_string(result.directions) + " directions, " + formatSeconds(seconds) + " compute");
 }
 
 }  // namespace
@@ -69,11 +37,11 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
 void registerAperture(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<ApertureOptions>();
     CLI::App* cmd = app.add_subcommand("aperture", "Ambient aperture: bent normal, cap radius, visible solid angle");
-    cmd->add_option("DEM", o->demPath, "Input DEM")->required()->check(CLI::ExistingFile);
+    addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
-    cmd->add_option("--directions", o->directions,
-                    "Number of horizon directions integrated (default: 16 with --quality auto, "
-                    "64 with full)")
+    cmd->add_option("--sky-directions,--directions", o->directions,
+                    "Number of horizon directions integrated (default: 16 with --quality auto, 64 with full); "
+                    "--directions is the older spelling")
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runAperture(*o, ctx); });

@@ -1,30 +1,22 @@
 #include "cli/common.h"
 
-#include "lighting/directions.h"
-#include "lighting/sky.h"
+#include "geo/time.h"
 #include "src/error.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <strings.h>
 #include <sstream>
+#include <strings.h>
 #include <unistd.h>
-#include <utility>
 
 namespace demlight::cli {
 
 namespace fs = std::filesystem;
 
-/// Input nodata values at least this large in magnitude are carried into outputs.
-constexpr double kCarriedNodataMagnitude = 10000.0;
-
-/// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen: lo
-/// excluded. An infinite hi is no upper bound: "NUMBER > lo" (CLI::PositiveNumber would print
-/// DBL_MAX in full as its upper end).
 CLI::Validator finiteRange(double lo, double hi, bool lowOpen) {
+    // An infinite hi is no upper bound: "NUMBER > lo" (CLI::PositiveNumber would print DBL_MAX).
     const bool bounded = std::isfinite(hi);
     const std::string description =
         bounded ? std::string(lowOpen ? "(" : "[") + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]"
@@ -45,8 +37,6 @@ CLI::Validator finiteRange(double lo, double hi, bool lowOpen) {
 namespace {
 
 constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-CLI::Validator positiveNumber() { return finiteRange(0, kUnbounded, /*lowOpen=*/true); }
-CLI::Validator nonNegativeNumber() { return finiteRange(0, kUnbounded); }
 
 }  // namespace
 
@@ -64,26 +54,34 @@ void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
                     "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=DEFLATE for readers without ZSTD");
 }
 
+void addDemArgument(CLI::App* cmd, DemOptions& o) {
+    cmd->add_option("DEM", o.path, "Input DEM: any raster GDAL opens, /vsizip/ and other virtual paths included")
+        ->required();
+}
+
+DemSource openDem(const DemOptions& o) { return DemSource::open(o.path); }
+
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
-    cmd->add_option("--max-distance", o.maxDistanceM,
+    SearchRequest& r = o.request;
+    cmd->add_option("--max-distance", r.maxDistanceM,
                     "Horizon search distance (metres). Default (--quality auto): relief / tan(2 deg), "
                     "or the whole DEM when that is half its diagonal or more (sky and aperture "
                     "integrals: the whole DEM unless a range limit saves sweep work); full: the whole DEM")
-        ->check(positiveNumber());
-    cmd->add_option("--refraction", o.refraction,
+        ->check(finiteRange(0, kUnbounded, /*lowOpen=*/true));
+    cmd->add_option("--refraction", r.refraction,
                     "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); "
                     "0 = pure geometry")
         ->check(finiteRange(0.0, 0.99))
         ->capture_default_str();
-    cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-        ->check(nonNegativeNumber())
+    cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores)")
+        ->check(finiteRange(0, kUnbounded))
         ->capture_default_str();
-    cmd->add_option("--quality", o.quality,
+    cmd->add_option("--quality", r.quality,
                     "auto: model only what the scene needs within --tolerance; full: every effect "
                     "at its finest setting")
-        ->check(CLI::IsMember({"auto", "full"}))
-        ->capture_default_str();
-    cmd->add_option("--tolerance", o.toleranceDeg,
+        ->transform(CLI::CheckedTransformer(std::map<std::string, Quality>{{"auto", Quality::Auto}, {"full", Quality::Full}}))
+        ->default_str("auto");
+    cmd->add_option("--tolerance", r.toleranceDeg,
                     "Horizon error budget for --quality auto (degrees): decides curvature and the "
                     "scan-direction tolerance; a looser one is added to the stated error")
         ->check(finiteRange(0.001, 10.0))
@@ -91,107 +89,123 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
 }
 
-ScenePlan planFor(const SearchOptions& o, const Terrain& terrain, double lowestElevationDeg,
-                  const CliContext& ctx) {
-    QualityBudget budget;
-    budget.toleranceDeg = o.toleranceDeg;
-    budget.lowestElevationDeg = lowestElevationDeg;
-    budget.refraction = o.refraction;
-    budget.maxDistanceM = o.maxDistanceM.value_or(0.0);
-    const ScenePlan plan = planScene(terrain, parseQuality(o.quality), budget);
-    if (plan.quality == Quality::Full && o.toleranceDeg != kDefaultToleranceDeg)
+void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& ctx) {
+    const ScenePlan plan = planFor(o.request, terrain);
+    if (plan.quality == Quality::Full && o.request.toleranceDeg != kDefaultToleranceDeg)
         note(ctx, "note: --tolerance is not used by --quality full (every effect at its finest setting)");
     if (o.verbose && !ctx.quiet) {
-        note(ctx, "scene plan (--quality " + o.quality + "):");
+        note(ctx, "scene plan (--quality " + std::string(qualityName(plan.quality)) + "):");
         for (const auto& r : plan.reasons) note(ctx, "  " + r);
         note(ctx, "  expected horizon error: " + describeExpectedError(plan.expectedError));
     }
-    return plan;
 }
 
-HorizonParams horizonParams(const SearchOptions& o, const ScenePlan& plan) {
-    return planHorizonParams(plan, o.refraction, o.threads);
-}
-
-HorizonParams integralParams(const SearchOptions& o, const ScenePlan& plan, const Terrain& terrain,
-                             std::size_t directions) {
-    return planIntegralParams(terrain, plan, directions, o.refraction, o.threads);
-}
-
-SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg) {
-    SunFrameParams p;
-    p.sunDiameterDeg = sunDiameterDeg;
-    p.refraction = o.refraction;
-    p.threads = o.threads;
-    p.maxDistanceM = o.maxDistanceM.value_or(0.0);
-    return p;
-}
-
-SunFrameParams sunFrameParams(const SearchOptions& o, double sunDiameterDeg, const ScenePlan& plan) {
-    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, o.refraction, o.threads);
-    if (o.maxDistanceM) p.maxDistanceM = *o.maxDistanceM;
-    return p;
-}
-
-Grid<float> planSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
-                         const HorizonParams& params, ProgressCounter* progress) {
-    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
-    sweepDirections(terrain, params, directions,
-                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
-    return std::move(acc).finish(0.0).skyK;
-}
-
-std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
-    std::string reasons;
-    for (const auto& r : plan.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
-    return {{"DEMLIGHT_QUALITY", std::string(qualityName(plan.quality))},
-            {"DEMLIGHT_PLAN", reasons},
-            {"DEMLIGHT_CURVATURE", plan.curvature ? "on" : "off"},
-            {"DEMLIGHT_EXPECTED_ERROR_DEG", describeExpectedError(plan.expectedError)}};
-}
-
-double outputNodata(const Dem& dem) {
-    if (dem.band.nodata) {
-        const double v = *dem.band.nodata;
-        if (std::isnan(v) ||
-            (std::abs(v) >= kCarriedNodataMagnitude && std::abs(v) <= 3.4028235e38))
-            return v;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-}
-
-WriteOptions makeWriteOptions(const OutputOptions& out, const CliContext& ctx, const Dem& dem,
-                              const std::map<std::string, std::string>& extra) {
+void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,
+                 const std::string& inputPath, const std::map<std::string, std::string>& extra) {
     WriteOptions w;
     w.format = out.format;
     w.creationOptions = out.creationOptions;
-    w.nodata = outputNodata(dem);
-    w.metadata["DEMLIGHT_VERSION"] = DEMLIGHT_VERSION;
+    w.nodata = result.flagNodata.value_or(result.nodata);
+    w.metadata = result.metadata;
     w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
-    w.metadata["DEMLIGHT_INPUT"] = dem.band.path;
     for (const auto& [k, v] : extra) w.metadata[k] = v;
-    return w;
+    std::vector<OutputBand> bands;
+    for (const ProductBand& b : result.bands)
+        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
+    writeRaster(out.path, bands, result.ref, w, inputPath);
 }
 
 void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     std::error_code ec;
     if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
         throw Error("output '" + outPath + "' would overwrite the input DEM; choose another -o");
-    if (fs::is_directory(outPath, ec))
-        throw Error("cannot write '" + outPath + "': it is a directory");
+    if (fs::is_directory(outPath, ec)) throw Error("cannot write '" + outPath + "': it is a directory");
     const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
     if (!fs::is_directory(parent, ec))
-        throw Error("cannot write '" + outPath + "': folder '" + parent.string() +
-                    "' does not exist");
+        throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' does not exist");
     // Probe that the folder accepts new files, so a long computation does not end in failure.
     const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));
     if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
         std::fclose(f);
         fs::remove(probe, ec);
     } else {
-        throw Error("cannot write '" + outPath + "': folder '" + parent.string() +
-                    "' is not writable");
+        throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' is not writable");
     }
+}
+
+std::array<double, 3> parseColor(const std::string& text, const std::string& option) {
+    const auto bad = [&] { return Error(option + " '" + text + "': expected three linear values >= 0 like 1,0.9,0.8"); };
+    std::array<double, 3> c{};
+    std::stringstream ss(text);
+    std::string part;
+    std::size_t n = 0;
+    while (std::getline(ss, part, ',')) {
+        std::size_t used = 0;
+        double v = -1;
+        try {
+            v = std::stod(part, &used);
+        } catch (const std::exception&) {
+        }
+        if (n >= 3 || used != part.size() || !(v >= 0) || !std::isfinite(v)) throw bad();
+        c[n++] = v;
+    }
+    if (n != 3) throw bad();
+    return c;
+}
+
+std::chrono::milliseconds parseStepOption(const std::string& text, std::chrono::milliseconds bareUnit) {
+    try {
+        return parseDurationOr(text, "step", bareUnit);
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));
+    }
+}
+
+void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encoding, const std::string& use) {
+    cmd->add_option("--color-raster", path,
+                    "Colour raster (R, G, B bands, or one grey band), resampled onto the DEM: " + use);
+    cmd->add_option("--color-encoding", encoding,
+                    "How --color-raster holds colour: srgb (display-encoded 0-255 or 0-1, decoded with gamma "
+                    "2.2), linear (albedo 0-1), or auto (srgb when any value exceeds 1, else linear)")
+        ->check(CLI::IsMember({"auto", "srgb", "linear"}))
+        ->capture_default_str();
+}
+
+void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
+    cmd->add_option("--time", time,
+                    "Instant: ISO 8601 with offset or Z (2024-06-21T05:30:00+02:00), or local time with --tz")
+        ->required();
+    cmd->add_option("--tz", tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
+}
+
+void addSunDiameterOption(CLI::App* cmd, double& diameterDeg) {
+    cmd->add_option("--sun-diameter", diameterDeg, "Angular diameter of the sun disk (degrees); larger = softer shadows")
+        ->check(finiteRange(0.0, 20.0))
+        ->capture_default_str();
+}
+
+void addPictureOptions(CLI::App* cmd, PictureOptions& o) {
+    addColorRasterOptions(cmd, o.colorRaster, o.colorEncoding, "the albedo of the picture");
+    cmd->add_option("--albedo", o.albedo, "Linear albedo without a colour raster")
+        ->check(finiteRange(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--exposure", o.exposure, "Multiplies linear light before gamma")
+        ->check(finiteRange(0.0, 1000.0))
+        ->capture_default_str();
+    cmd->add_option("--pixels", o.pixels,
+                    "ground: square ground pixels (lat/lon DEMs are resampled east-west); cell: one pixel per DEM cell")
+        ->check(CLI::IsMember({"ground", "cell"}))
+        ->capture_default_str();
+}
+
+PictureRequest pictureRequest(const PictureOptions& o) {
+    PictureRequest r;
+    r.colorRaster = o.colorRaster;
+    r.colorEncoding = parseColorEncoding(o.colorEncoding, "--color-encoding");
+    r.albedo = o.albedo;
+    r.exposure = o.exposure;
+    r.pixels = o.pixels == "cell" ? PixelGeometry::Cell : PixelGeometry::Ground;
+    return r;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -206,17 +220,6 @@ std::string formatSeconds(double seconds) {
 
 std::string formatDistance(double metres) {
     return std::isfinite(metres) ? formatNumber(std::round(metres)) + " m" : std::string("the whole DEM");
-}
-
-std::string metadataDistanceM(const Terrain& terrain, double metres) {
-    return formatNumber(std::round(std::isfinite(metres) ? metres : diagonalM(terrain)));
-}
-
-std::string formatNumber(double value) {
-    std::ostringstream s;
-    s.precision(10);
-    s << value;
-    return s.str();
 }
 
 void note(const CliContext& ctx, const std::string& line) {

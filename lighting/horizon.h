@@ -34,16 +34,6 @@ namespace demlight {
 /// Horizon angle given to a cell that sees no terrain in range (degrees).
 inline constexpr double kNoHorizonDeg = -90.0;
 
-/// A half-open window of cells: columns [col0, col1), rows [row0, row1).
-struct CellWindow {
-    std::size_t col0 = 0, row0 = 0, col1 = 0, row1 = 0;
-};
-
-/// One cell (column, row).
-struct CellIndex {
-    std::size_t col = 0, row = 0;
-};
-
 struct HorizonParams {
     /// True azimuth of the search (degrees clockwise from true north); any finite value, reduced
     /// to [0, 360) by wrapAzimuthDeg so 0 and 360 give identical bits.
@@ -51,7 +41,7 @@ struct HorizonParams {
     /// Occluders farther than this (metres, along the line) are ignored. Must be > 0.
     double maxDistanceM = std::numeric_limits<double>::infinity();
     /// Refraction coefficient k in [0, 1): effective earth radius kEarthRadiusM / (1 - k).
-    double refraction = 0.13;
+    double refraction = kDefaultRefraction;
     /// false = flat earth (no curvature drop, refraction unused).
     bool curvature = true;
     /// Worker threads (0 = all cores). Output bits do not depend on it.

@@ -37,21 +37,37 @@ bool cellAperture(const ApertureMaps& a, const Grid<float>& ne, const Grid<float
 
 }  // namespace
 
-LightingModel parseLightingModel(std::string_view name) {
-    if (name == "horizon") return LightingModel::Horizon;
-    if (name == "aperture") return LightingModel::Aperture;
-    if (name == "aperture-smooth") return LightingModel::ApertureSmooth;
-    if (name == "hemisphere") return LightingModel::Hemisphere;
-    throw Error("unknown lighting model '" + std::string(name) +
-                "' (expected horizon, aperture, aperture-smooth or hemisphere)");
+SunModel parseSunModel(std::string_view name) {
+    if (name == "horizon") return SunModel::Horizon;
+    if (name == "aperture") return SunModel::Aperture;
+    if (name == "aperture-smooth") return SunModel::ApertureSmooth;
+    if (name == "hemisphere")
+        throw Error("sun model 'hemisphere': Hargreaves' hemisphere is a sky-only model (no sun term); "
+                    "it is a sky model. Sun models: horizon, aperture or aperture-smooth");
+    throw Error("unknown sun model '" + std::string(name) + "' (expected horizon, aperture or aperture-smooth)");
 }
 
-std::string_view lightingModelName(LightingModel model) {
+std::string_view sunModelName(SunModel model) {
     switch (model) {
-        case LightingModel::Horizon: return "horizon";
-        case LightingModel::Aperture: return "aperture";
-        case LightingModel::ApertureSmooth: return "aperture-smooth";
-        case LightingModel::Hemisphere: return "hemisphere";
+        case SunModel::Horizon: return "horizon";
+        case SunModel::Aperture: return "aperture";
+        case SunModel::ApertureSmooth: return "aperture-smooth";
+    }
+    return "unknown";
+}
+
+SkyModel parseSkyModel(std::string_view name) {
+    if (name == "stewart-langer") return SkyModel::StewartLanger;
+    if (name == "hemisphere") return SkyModel::Hemisphere;
+    if (name == "none") return SkyModel::None;
+    throw Error("unknown sky model '" + std::string(name) + "' (expected stewart-langer, hemisphere or none)");
+}
+
+std::string_view skyModelName(SkyModel model) {
+    switch (model) {
+        case SkyModel::StewartLanger: return "stewart-langer";
+        case SkyModel::Hemisphere: return "hemisphere";
+        case SkyModel::None: return "none";
     }
     return "unknown";
 }

@@ -6,7 +6,8 @@
 //                    Mitchell Eq. 5-7) times max(0, N.s); computed by lighting/sun.h, not here
 //   aperture         Oat & Sander ambient aperture, exact cap-cap intersection
 //   aperture-smooth  the same with the smoothstep approximation of the intersection
-//   hemisphere       Hargreaves hemisphere lighting; a sky-only model, no shadows
+// and the sky models: stewart-langer (lighting/sky.h) and Hargreaves hemisphere lighting (a
+// sky-only model, no shadows).
 #pragma once
 
 #include "lighting/aperture.h"
@@ -18,17 +19,23 @@
 
 namespace demlight {
 
-enum class LightingModel { Horizon, Aperture, ApertureSmooth, Hemisphere };
+/// How the direct sun is modelled.
+enum class SunModel { Horizon, Aperture, ApertureSmooth };
+/// "horizon", "aperture" or "aperture-smooth"; throws Error naming the choices.
+SunModel parseSunModel(std::string_view name);
+std::string_view sunModelName(SunModel model);
 
-/// "horizon", "aperture", "aperture-smooth" or "hemisphere"; throws Error naming the choices.
-LightingModel parseLightingModel(std::string_view name);
-/// The option spelling of a model.
-std::string_view lightingModelName(LightingModel model);
+/// How the sky term is modelled: Stewart & Langer's horizon-based K and f_sky, Hargreaves'
+/// hemisphere (no occlusion), or no sky.
+enum class SkyModel { StewartLanger, Hemisphere, None };
+/// "stewart-langer", "hemisphere" or "none"; throws Error naming the choices.
+SkyModel parseSkyModel(std::string_view name);
+std::string_view skyModelName(SkyModel model);
 
 // ---- Ambient aperture (Oat & Sander 2007, seed 002 Sec. 3) -----------------------------------
 
-/// Sun angular radius (degrees): half the 0.53-degree mean apparent diameter.
-inline constexpr double kSunRadiusDeg = 0.265;
+/// Sun angular radius (degrees): half of kSunDiameterDeg (lighting/sun.h).
+inline constexpr double kSunRadiusDeg = 0.5 * kSunDiameterDeg;
 
 struct ApertureLightParams {
     double sunRadiusDeg = kSunRadiusDeg;  ///< light cap radius (degrees); larger = softer shadows

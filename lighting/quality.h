@@ -39,7 +39,7 @@ struct QualityBudget {
     /// Lowest sun (or sky) elevation whose shadows matter (degrees); sets the search distance.
     double lowestElevationDeg = 2.0;
     /// Effective-radius refraction coefficient k the user asked for.
-    double refraction = 0.13;
+    double refraction = kDefaultRefraction;
     /// > 0: the search distance the user gave (--max-distance), used as is; the other choices
     /// (curvature) and the expected error's scope follow from it.
     double maxDistanceM = 0;

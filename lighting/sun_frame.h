@@ -28,7 +28,7 @@ struct SunFrameParams {
     double sunDiameterDeg = kSunDiameterDeg;
     /// Search distance (metres); <= 0 means sunSearchDistanceM() for the field's lowest sun.
     double maxDistanceM = 0;
-    double refraction = 0.13;
+    double refraction = kDefaultRefraction;
     /// As HorizonParams::curvature and HorizonParams::directionToleranceDeg (the scene plan's).
     bool curvature = true;
     double directionToleranceDeg = 0;

@@ -49,4 +49,14 @@ private:
     std::vector<T> data_;
 };
 
+/// A half-open window of cells of the global grid: columns [col0, col1), rows [row0, row1).
+struct CellWindow {
+    std::size_t col0 = 0, row0 = 0, col1 = 0, row1 = 0;
+};
+
+/// One cell (column, row).
+struct CellIndex {
+    std::size_t col = 0, row = 0;
+};
+
 }  // namespace demlight

@@ -13,6 +13,8 @@ namespace demlight {
 
 /// WGS84 mean earth radius (metres); curvature uses R / (1 - k) with refraction coefficient k.
 inline constexpr double kEarthRadiusM = 6371008.8;
+/// Default refraction coefficient k of terrain sight lines (DESIGN §1), for every product.
+inline constexpr double kDefaultRefraction = 0.13;
 
 /// Meridian convergence sampled on a coarse lattice: value (i, j) is gamma at cell
 /// (min(i * stepCells, width-1), min(j * stepCells, height-1)). gamma (degrees) is the azimuth of

@@ -282,10 +282,13 @@ TEST(Caps, IntersectionVectorAndCentroid) {
 // ---- Lighting models -------------------------------------------------------------------------
 
 TEST(LightingModels, ParseNames) {
-    for (LightingModel m : {LightingModel::Horizon, LightingModel::Aperture,
-                            LightingModel::ApertureSmooth, LightingModel::Hemisphere})
-        EXPECT_EQ(parseLightingModel(lightingModelName(m)), m);
-    EXPECT_THROW(parseLightingModel("phong"), Error);
+    for (SunModel m : {SunModel::Horizon, SunModel::Aperture, SunModel::ApertureSmooth})
+        EXPECT_EQ(parseSunModel(sunModelName(m)), m);
+    for (SkyModel m : {SkyModel::StewartLanger, SkyModel::Hemisphere, SkyModel::None})
+        EXPECT_EQ(parseSkyModel(skyModelName(m)), m);
+    EXPECT_THROW(parseSunModel("phong"), Error);
+    EXPECT_THROW(parseSunModel("hemisphere"), Error);  // a sky model, not a sun model
+    EXPECT_THROW(parseSkyModel("horizon"), Error);
 }
 
 TEST(LightingModels, ApertureOnFlatGround) {

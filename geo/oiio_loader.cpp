@@ -1,5 +1,5 @@
 // Loads libdemlight_oiio.so; see oiio_loader.h.
-#include "cli/oiio_loader.h"
+#include "geo/oiio_loader.h"
 
 #include "src/error.h"
 
@@ -9,7 +9,7 @@
 #include <mutex>
 #include <string>
 
-namespace demlight::cli {
+namespace demlight {
 namespace {
 
 constexpr const char* kPluginName = "libdemlight_oiio.so";
@@ -62,4 +62,4 @@ const OiioPlugin& oiioPlugin() {
     return plugin;
 }
 
-}  // namespace demlight::cli
+}  // namespace demlight

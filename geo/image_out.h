@@ -1,23 +1,15 @@
-// Pictures: the colour raster used as albedo, and output: single images (PNG natively; JPEG, EXR, ... chosen by
-// extension, through the OpenImageIO plugin, cli/oiio_loader.h)
+// Pictures: single images (PNG natively; JPEG, EXR, ... chosen by
+// extension, through the OpenImageIO plugin, geo/oiio_loader.h)
 // and animated GIFs. Files are written under a temporary name and renamed on success.
 #pragma once
 
-#include "geo/dem.h"
 #include "lighting/preview.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace demlight::cli {
-
-/// Reads a colour raster (orthophoto, hypsometric tint) resampled onto the DEM's grid as three
-/// linear albedo grids. Bands 1-3 are R, G, B (a one-band raster is grey). Values are taken as
-/// display-encoded colour: 0-255 when any exceeds 1, else 0-1; decoded with gamma 2.2 to linear.
-/// Throws Error naming `option` and the file on failure.
-std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& dem,
-                                          const std::string& option);
+namespace demlight {
 
 /// Fails early if `path`'s extension names no format demlight can write.
 void checkImagePath(const std::string& path);
@@ -52,4 +44,4 @@ private:
 /// returned unchanged when already small enough). Transparent pixels are left out of the mean.
 Image8 downsample(const Image8& image, std::size_t maxSide);
 
-}  // namespace demlight::cli
+}  // namespace demlight

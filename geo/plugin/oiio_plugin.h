@@ -1,6 +1,6 @@
 // The C interface of libdemlight_oiio.so, the OpenImageIO side of picture output (JPEG, EXR,
 // TIFF, GIF, ... by extension; PNG does not need it). demlight loads it with dlopen on the first
-// picture that needs it (cli/oiio_loader.cpp): OpenImageIO pulls in ~150 shared libraries that
+// picture that needs it (geo/oiio_loader.cpp): OpenImageIO pulls in ~150 shared libraries that
 // cost every process ~0.2 s to map, whether it writes a picture or not.
 // Every function returns 0 on success; on failure it writes a message into err (errSize bytes,
 // NUL-terminated) and returns nonzero.

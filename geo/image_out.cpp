@@ -1,7 +1,7 @@
 // Picture output; see image_out.h.
-#include "cli/image_out.h"
+#include "geo/image_out.h"
 
-#include "cli/oiio_loader.h"
+#include "geo/oiio_loader.h"
 #include "geo/png_writer.h"
 #include "src/error.h"
 
@@ -13,13 +13,10 @@
 #include <utility>
 #include <unistd.h>
 
-namespace demlight::cli {
+namespace demlight {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Gamma of display-encoded colour rasters (decoded to linear albedo).
-constexpr double kDisplayGamma = 2.2;
 
 std::string extensionOf(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
@@ -64,29 +61,6 @@ void commit(const fs::path& tmp, const std::string& path) {
 }
 
 }  // namespace
-
-std::vector<Grid<float>> loadAlbedoRaster(const std::string& path, const Dem& dem,
-                                          const std::string& option) {
-    std::vector<Grid<float>> bands;
-    try {
-        bands = readRasterResampled(path, dem.band.ref, dem.terrain.width(), dem.terrain.height());
-    } catch (const Error& e) {
-        throw Error(option + " " + path + ": " + e.what());
-    }
-    if (bands.empty()) throw Error(option + " " + path + ": the raster has no bands");
-    if (bands.size() < 3) bands = {bands[0], bands[0], bands[0]};
-    bands.resize(3);
-    float maxValue = 0;
-    for (const auto& b : bands)
-        for (float v : b.values())
-            if (!std::isnan(v)) maxValue = std::max(maxValue, v);
-    const double scale = maxValue > 1.0f ? 1.0 / 255.0 : 1.0;
-    for (auto& b : bands)
-        for (float& v : b.values())
-            if (!std::isnan(v))
-                v = static_cast<float>(std::pow(std::clamp(v * scale, 0.0, 1.0), kDisplayGamma));
-    return bands;
-}
 
 void checkImagePath(const std::string& path) { checkFormat(path, extensionOf(path)); }
 
@@ -184,4 +158,4 @@ Image8 downsample(const Image8& image, std::size_t maxSide) {
     return out;
 }
 
-}  // namespace demlight::cli
+}  // namespace demlight

@@ -1,10 +1,10 @@
-// Loads libdemlight_oiio.so (cli/plugin/oiio_plugin.h) on first use, from the folder of the
+// Loads libdemlight_oiio.so (geo/plugin/oiio_plugin.h) on first use, from the folder of the
 // running demlight binary.
 #pragma once
 
-#include "cli/plugin/oiio_plugin.h"
+#include "geo/plugin/oiio_plugin.h"
 
-namespace demlight::cli {
+namespace demlight {
 
 struct OiioPlugin {
     decltype(&demlight_oiio_check) check;
@@ -19,4 +19,4 @@ struct OiioPlugin {
 /// file looked for, when it is missing or of another version.
 const OiioPlugin& oiioPlugin();
 
-}  // namespace demlight::cli
+}  // namespace demlight

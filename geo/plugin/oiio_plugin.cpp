@@ -1,5 +1,5 @@
 // libdemlight_oiio.so: picture output through OpenImageIO; see oiio_plugin.h.
-#include "cli/plugin/oiio_plugin.h"
+#include "geo/plugin/oiio_plugin.h"
 
 #include <OpenImageIO/imageio.h>
 

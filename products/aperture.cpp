@@ -1,0 +1,44 @@
+#include "products/aperture.h"
+
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+namespace demlight {
+
+ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
+                               const ProgressFn& progress) {
+    if (request.directions && *request.directions < 1)
+        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+    const Terrain& whole = source.dem().terrain;
+    const ScenePlan plan = planFor(request.search, whole);
+    const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const std::size_t halo = haloCellsFor(whole, integralParams(request.search, plan, whole, directions).maxDistanceM);
+    return onWindow<ApertureResult>(source, window, halo, [&](const Dem& dem) {
+        const Terrain& t = dem.terrain;
+        const HorizonParams params = integralParams(request.search, plan, t, directions);
+        const Normals normals = computeNormals(t, request.search.threads);
+        ApertureAccumulator acc(normals.east, normals.north, normals.up, directions, request.search.threads);
+        ProgressCounter counter(progress, "aperture", t.heightsM.size() * directions);
+        sweepDirections(t, params, directions,
+                        [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, &counter);
+        ApertureMaps maps = acc.finish();
+
+        std::map<std::string, std::string> meta = planMetadata(plan);
+        meta.merge(searchMetadata(t, params.maxDistanceM, params.refraction));
+        meta.insert({{"DEMLIGHT_METHOD", "sweep"}, {"DEMLIGHT_DIRECTIONS", std::to_string(directions)}});
+        ApertureResult out;
+        static_cast<ProductResult&>(out) = makeResult(dem, "aperture", meta);
+        out.directions = directions;
+        out.maxDistanceM = params.maxDistanceM;
+        out.bands = {{"bent_normal_east", "unit vector component (ENU)", std::move(maps.bentEast), {}},
+                     {"bent_normal_north", "unit vector component (ENU)", std::move(maps.bentNorth), {}},
+                     {"bent_normal_up", "unit vector component (ENU)", std::move(maps.bentUp), {}},
+                     {"aperture_radius_deg", "deg", std::move(maps.radiusDeg), {}},
+                     {"visible_solid_angle_sr", "sr", std::move(maps.solidAngleSr), {}}};
+        return out;
+    });
+}
+
+}  // namespace demlight

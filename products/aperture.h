@@ -1,0 +1,27 @@
+// Ambient aperture per cell (Oat & Sander 2007): the visible solid angle, the spherical cap of
+// the same area and its axis, the bent normal.
+#pragma once
+
+#include "products/product.h"
+
+#include <optional>
+
+namespace demlight {
+
+struct ApertureRequest {
+    /// Horizon directions integrated; none = the scene plan's.
+    std::optional<std::size_t> directions;
+    SearchRequest search;
+};
+
+struct ApertureResult : ProductResult {
+    std::size_t directions = 0;
+    double maxDistanceM = 0;
+};
+
+/// Bands: bent_normal_east, bent_normal_north, bent_normal_up (ENU unit vector),
+/// aperture_radius_deg, visible_solid_angle_sr.
+ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
+                               const ProgressFn& progress = {});
+
+}  // namespace demlight

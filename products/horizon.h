@@ -1,0 +1,49 @@
+// Horizon angle maps along true azimuths: one band per azimuth, and the truncation mask.
+#pragma once
+
+#include "products/product.h"
+
+#include <vector>
+
+namespace demlight {
+
+enum class HorizonMethod {
+    Sweep,      ///< upper-convex-hull sweeps (lighting/horizon.h sweepHorizon)
+    Reference,  ///< brute-force ray march (referenceHorizon)
+};
+/// "sweep" or "reference"; throws Error naming the choices.
+HorizonMethod parseHorizonMethod(const std::string& name);
+const char* horizonMethodName(HorizonMethod method);
+
+struct HorizonRequest {
+    /// True azimuths (degrees clockwise from north), one band each; at least one.
+    std::vector<double> azimuthsDeg;
+    HorizonMethod method = HorizonMethod::Sweep;
+    SearchRequest search;
+};
+
+/// `directions` azimuths evenly spaced from 0 (0, 360/N, ...).
+std::vector<double> evenAzimuthsDeg(std::size_t directions);
+
+struct HorizonResult {
+    /// Bands "horizon_azimuth=<deg>" (degrees); metadata DEMLIGHT_AZIMUTHS_DEG and the plan.
+    ProductResult horizons;
+    /// Byte bands "truncated_azimuth=<deg>": 1 where the search reached the DEM edge before the
+    /// search distance, 0 elsewhere, kTruncationMaskNodata at DEM voids (its nodata value).
+    ProductResult truncation;
+    double maxDistanceM = 0;  ///< the search distance used (infinite = the whole DEM)
+};
+
+/// Crops both results to `window` (onWindow).
+void cropResult(HorizonResult& result, const CellWindow& read, const CellWindow& window);
+
+/// Truncation mask value at DEM voids (declared as the mask's nodata).
+inline constexpr std::uint8_t kTruncationMaskNodata = 255;
+
+/// Cells of halo a window needs: the plan's search distance in cells.
+std::size_t horizonHaloCells(const DemSource& source, const HorizonRequest& request);
+
+HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, const HorizonRequest& request,
+                             const ProgressFn& progress = {});
+
+}  // namespace demlight

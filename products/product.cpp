@@ -1,0 +1,205 @@
+#include "products/product.h"
+
+#include "lighting/directions.h"
+#include "lighting/sky.h"
+#include "src/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+namespace demlight {
+namespace {
+
+/// Input nodata values at least this large in magnitude are carried into outputs.
+constexpr double kCarriedNodataMagnitude = 10000.0;
+/// Largest finite Float32 magnitude: a nodata value beyond it cannot be written as Float32.
+constexpr double kMaxFloat32 = 3.4028235e38;
+/// Gamma of display-encoded colour rasters (decoded to linear albedo).
+constexpr double kDisplayGamma = 2.2;
+/// Largest 8-bit display value.
+constexpr double kMaxByte = 255.0;
+
+template <class T>
+Grid<T> cropGrid(const Grid<T>& g, std::size_t col0, std::size_t row0, std::size_t cols, std::size_t rows) {
+    Grid<T> out(cols, rows);
+    for (std::size_t r = 0; r < rows; ++r)
+        std::copy_n(&g(col0, row0 + r), cols, &out(0, r));
+    return out;
+}
+
+}  // namespace
+
+const ProductBand& ProductResult::band(const std::string& name) const {
+    for (const ProductBand& b : bands)
+        if (b.name == name) return b;
+    throw Error("the result has no band '" + name + "'");
+}
+
+ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
+    if (search.maxDistanceM && !(*search.maxDistanceM > 0))
+        throw Error("maxDistanceM " + formatNumber(*search.maxDistanceM) + ": must be > 0");
+    if (!(search.refraction >= 0 && search.refraction < 1))
+        throw Error("refraction " + formatNumber(search.refraction) + ": must be in [0, 1)");
+    if (!(search.toleranceDeg > 0) || !std::isfinite(search.toleranceDeg))
+        throw Error("toleranceDeg " + formatNumber(search.toleranceDeg) + ": must be a number > 0");
+    if (search.threads < 0) throw Error("threads " + std::to_string(search.threads) + ": must be >= 0");
+    QualityBudget budget;
+    budget.toleranceDeg = search.toleranceDeg;
+    budget.lowestElevationDeg = kDefaultLowestElevationDeg;
+    budget.refraction = search.refraction;
+    budget.maxDistanceM = search.maxDistanceM.value_or(0.0);
+    return planScene(terrain, search.quality, budget);
+}
+
+HorizonParams horizonParams(const SearchRequest& search, const ScenePlan& plan) {
+    return planHorizonParams(plan, search.refraction, search.threads);
+}
+
+HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
+                             std::size_t directions) {
+    return planIntegralParams(terrain, plan, directions, search.refraction, search.threads);
+}
+
+SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan) {
+    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, search.refraction, search.threads);
+    if (search.maxDistanceM) p.maxDistanceM = *search.maxDistanceM;
+    return p;
+}
+
+Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_t directions,
+                      const HorizonParams& params, ProgressCounter* progress) {
+    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
+    sweepDirections(terrain, params, directions,
+                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
+    return std::move(acc).finish(0.0).skyK;
+}
+
+std::size_t haloCellsFor(const Terrain& terrain, double maxDistanceM) {
+    const std::size_t whole = std::max(terrain.width(), terrain.height());
+    if (!std::isfinite(maxDistanceM)) return whole;
+    double cell = std::numeric_limits<double>::infinity();
+    for (double w : terrain.cellWidthM) cell = std::min(cell, w);
+    for (double h : terrain.cellHeightM) cell = std::min(cell, h);
+    if (!(cell > 0) || !std::isfinite(cell)) return whole;
+    const double cells = std::ceil(maxDistanceM / cell) + 1;
+    return cells >= static_cast<double>(whole) ? whole : static_cast<std::size_t>(cells);
+}
+
+std::string formatNumber(double value) {
+    std::ostringstream s;
+    s.precision(10);
+    s << value;
+    return s.str();
+}
+
+std::string metadataDistanceM(const Terrain& terrain, double metres) {
+    return formatNumber(std::round(std::isfinite(metres) ? metres : diagonalM(terrain)));
+}
+
+std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
+    std::string reasons;
+    for (const auto& r : plan.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
+    return {{"DEMLIGHT_QUALITY", std::string(qualityName(plan.quality))},
+            {"DEMLIGHT_PLAN", reasons},
+            {"DEMLIGHT_CURVATURE", plan.curvature ? "on" : "off"},
+            {"DEMLIGHT_EXPECTED_ERROR_DEG", describeExpectedError(plan.expectedError)}};
+}
+
+std::map<std::string, std::string> productMetadata(const Dem& dem, const std::string& product) {
+    return {{"DEMLIGHT_VERSION", DEMLIGHT_VERSION}, {"DEMLIGHT_INPUT", dem.band.path}, {"DEMLIGHT_PRODUCT", product}};
+}
+
+std::map<std::string, std::string> searchMetadata(const Terrain& terrain, double maxDistanceM, double refraction) {
+    return {{"DEMLIGHT_MAX_DISTANCE_M", metadataDistanceM(terrain, maxDistanceM)},
+            {"DEMLIGHT_REFRACTION", formatNumber(refraction)}};
+}
+
+double outputNodata(const Dem& dem) {
+    if (dem.band.nodata) {
+        const double v = *dem.band.nodata;
+        if (std::isnan(v) || (std::abs(v) >= kCarriedNodataMagnitude && std::abs(v) <= kMaxFloat32)) return v;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+ProductResult makeResult(const Dem& dem, const std::string& product, const std::map<std::string, std::string>& extra) {
+    ProductResult r;
+    r.ref = dem.band.ref;
+    r.nodata = outputNodata(dem);
+    r.metadata = productMetadata(dem, product);
+    for (const auto& [k, v] : extra) r.metadata[k] = v;
+    return r;
+}
+
+void cropResult(ProductResult& result, const CellWindow& read, const CellWindow& window) {
+    const std::size_t col0 = window.col0 - read.col0, row0 = window.row0 - read.row0;
+    const std::size_t cols = window.col1 - window.col0, rows = window.row1 - window.row0;
+    for (ProductBand& b : result.bands) {
+        if (!b.values.empty()) b.values = cropGrid(b.values, col0, row0, cols, rows);
+        if (!b.flags.empty()) b.flags = cropGrid(b.flags, col0, row0, cols, rows);
+    }
+    auto& gt = result.ref.geoTransform;
+    gt[0] += static_cast<double>(col0) * gt[1];
+    gt[3] += static_cast<double>(row0) * gt[5];
+}
+
+ColorEncoding parseColorEncoding(const std::string& name, const std::string& field) {
+    if (name == "auto") return ColorEncoding::Auto;
+    if (name == "srgb") return ColorEncoding::Srgb;
+    if (name == "linear") return ColorEncoding::Linear;
+    throw Error(field + " '" + name + "': expected auto, srgb or linear");
+}
+
+std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem& dem, const AuxiliarySpec& spec) {
+    const std::string what = spec.field + " " + path;
+    std::vector<Grid<float>> bands;
+    try {
+        bands = readRasterResampled(path, dem.band.ref, dem.terrain.width(), dem.terrain.height());
+    } catch (const Error& e) {
+        throw Error(what + ": " + e.what());
+    }
+    if (bands.empty()) throw Error(what + ": the raster has no bands");
+    if (spec.bands == 3 && spec.greyToRgb && bands.size() == 1) bands = {bands[0], bands[0], bands[0]};
+    if (bands.size() < spec.bands)
+        throw Error(what + ": expected " + std::to_string(spec.bands) + " bands (R, G, B), found " +
+                    std::to_string(bands.size()));
+    bands.resize(spec.bands);
+
+    // Coverage: a raster that misses every valid cell of the DEM is a wrong file, not "no data".
+    bool covers = false;
+    const float* h = dem.terrain.heightsM.data();
+    for (std::size_t k = 0; k < bands[0].size() && !covers; ++k)
+        covers = !std::isnan(h[k]) && !std::isnan(bands[0].data()[k]);
+    if (!covers) throw Error(what + ": covers no cell of the DEM (check its extent and CRS against the DEM's)");
+
+    if (spec.color) {
+        float maxValue = 0;
+        for (const auto& b : bands)
+            for (float v : b.values())
+                if (!std::isnan(v)) maxValue = std::max(maxValue, v);
+        const bool srgb = spec.encoding == ColorEncoding::Srgb || (spec.encoding == ColorEncoding::Auto && maxValue > 1.0f);
+        if (srgb) {
+            if (maxValue > kMaxByte)
+                throw Error(what + ": holds " + formatNumber(maxValue) +
+                            "; display-encoded colour must be 0-255 (or 0-1); scale it to 8 bits first, "
+                            "e.g. gdal_translate -ot Byte -scale");
+            const double scale = maxValue > 1.0f ? 1.0 / kMaxByte : 1.0;
+            for (auto& b : bands)
+                for (float& v : b.values())
+                    if (!std::isnan(v)) v = static_cast<float>(std::pow(std::clamp(v * scale, 0.0, 1.0), kDisplayGamma));
+        }
+    }
+    for (std::size_t b = 0; b < bands.size(); ++b)
+        for (float v : bands[b].values())
+            if (!std::isnan(v) && !(v >= spec.minValue && v <= spec.maxValue))
+                throw Error(what + ": band " + std::to_string(b + 1) + " holds " + formatNumber(v) + "; expected " +
+                            (spec.color ? "linear albedo " : "values ") + formatNumber(spec.minValue) + "-" +
+                            formatNumber(spec.maxValue) +
+                            (spec.color ? " (an 8-bit picture is decoded with encoding srgb or auto)" : ""));
+    return bands;
+}
+
+}  // namespace demlight

@@ -1,0 +1,56 @@
+#include "products/render.h"
+
+#include "lighting/sun_frame.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+#include <cmath>
+
+namespace demlight {
+
+/// Largest exposure accepted (a multiplier of linear light).
+constexpr double kMaxExposure = 1000;
+
+void validatePicture(const PictureRequest& p) {
+    if (!(p.albedo >= 0 && p.albedo <= 1)) throw Error("albedo " + formatNumber(p.albedo) + ": must be in [0, 1]");
+    if (!(p.exposure >= 0 && p.exposure <= kMaxExposure))
+        throw Error("exposure " + formatNumber(p.exposure) + ": must be in [0, 1000]");
+}
+
+std::vector<Grid<float>> loadPictureAlbedo(const Dem& dem, const PictureRequest& p) {
+    if (p.colorRaster.empty()) return {};
+    return loadAuxiliaryRaster(p.colorRaster, dem, {"colorRaster", 3, true, 0, 1, true, p.colorEncoding});
+}
+
+RenderResult renderProduct(const DemSource& source, const RenderRequest& request, const ProgressFn& progress) {
+    validatePicture(request.picture);
+    validateSun(request.sunDiameterDeg, Atmosphere{});
+    const Dem& dem = source.dem();
+    const Terrain& t = dem.terrain;
+    const std::vector<Grid<float>> albedo = loadPictureAlbedo(dem, request.picture);
+    const ScenePlan plan = planFor(request.search, t);
+    const std::size_t skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams skyParams = integralParams(request.search, plan, t, skyDirections);
+    const SunField field = sunFieldFor(dem, request.time.utc, Atmosphere{}, plan);
+    const Normals normals = computeNormals(t, request.search.threads);
+    ProgressCounter counter(progress, "render", t.heightsM.size() * (skyDirections + 1));
+    const SunFrame frame =
+        computeSunFrame(t, normals, field, sunFrameParams(request.search, request.sunDiameterDeg, plan), &counter);
+    const Grid<float> sky = skyLightK(t, normals, skyDirections, skyParams, &counter);
+    PreviewParams pp;
+    pp.albedo = request.picture.albedo;
+    pp.exposure = request.picture.exposure;
+    RenderResult out;
+    out.image = renderPreview(normals, frame.light.visibility, sky, albedo, field.centreAzimuthDeg,
+                              field.centreElevationDeg, pp, request.search.threads);
+    if (request.picture.pixels == PixelGeometry::Ground) out.image = toGroundPixels(out.image, t);
+    out.centreAzimuthDeg = field.centreAzimuthDeg;
+    out.centreElevationDeg = field.centreElevationDeg;
+    out.sunMaxDistanceM = frame.maxDistanceM;
+    out.skyDirections = skyDirections;
+    out.skyMaxDistanceM = skyParams.maxDistanceM;
+    out.quality = plan.quality;
+    return out;
+}
+
+}  // namespace demlight

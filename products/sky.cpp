@@ -1,0 +1,93 @@
+#include "products/sky.h"
+
+#include "lighting/directions.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+namespace demlight {
+namespace {
+
+std::string albedoName(const SkyRequest& r) {
+    return r.albedoRaster.empty() ? formatNumber(r.albedo) : r.albedoRaster;
+}
+
+/// sky x (1 + N_up)/2 + albedo x (1 - N_up)/2 for a unit sky (Hargreaves).
+SkyResult hemisphere(const Dem& dem, const SkyRequest& request, const Grid<float>* albedo) {
+    const Normals normals = computeNormals(dem.terrain, request.search.threads);
+    HemisphereParams hp;
+    hp.albedo = request.albedo;
+    SkyResult out;
+    static_cast<ProductResult&>(out) =
+        makeResult(dem, "sky", {{"DEMLIGHT_MODEL", "hemisphere"}, {"DEMLIGHT_ALBEDO", albedoName(request)}});
+    out.bands.push_back({"sky_hemisphere",
+                         "normalised irradiance from a unit sky and ground of albedo C, "
+                         "(1 + N_up)/2 + C (1 - N_up)/2 (Hargreaves; no terrain occlusion)",
+                         applyHemisphereLight(normals.up, hp, albedo, request.search.threads),
+                         {}});
+    return out;
+}
+
+SkyResult stewartLanger(const Dem& dem, const ScenePlan& plan, const SkyRequest& request, const Grid<float>* albedo,
+                        const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams params = integralParams(request.search, plan, t, directions);
+    const Normals normals = computeNormals(t, request.search.threads);
+    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, request.patches, request.search.threads);
+    ProgressCounter counter(progress, "sky", t.heightsM.size() * directions);
+    sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg); },
+                    &counter);
+    SkyMaps maps = albedo ? std::move(sky).finish(*albedo) : std::move(sky).finish(request.albedo);
+
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.merge(searchMetadata(t, params.maxDistanceM, params.refraction));
+    meta.insert({{"DEMLIGHT_METHOD", "sweep"},
+                 {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
+                 {"DEMLIGHT_ALBEDO", albedoName(request)},
+                 {"DEMLIGHT_PATCHES", request.patches.spec}});
+    SkyResult out;
+    static_cast<ProductResult&>(out) = makeResult(dem, "sky", meta);
+    out.directions = directions;
+    out.maxDistanceM = params.maxDistanceM;
+    out.directionToleranceDeg = params.directionToleranceDeg;
+    out.bands = {
+        {"svf_horizontal", "fraction (cosine-weighted, horizontal plane)", std::move(maps.svfHorizontal), {}},
+        {"sky_fraction", "fraction of the upper hemisphere", std::move(maps.skyFraction), {}},
+        {"sky_K", "normalised irradiance from a unit-radiance sky", std::move(maps.skyK), {}},
+        {"sky_factor", "normalised irradiance with interreflection", std::move(maps.skyFactor), {}},
+    };
+    for (std::size_t i = 0; i < maps.patchK.size(); ++i)
+        out.bands.push_back({"sky_K_patch=" + request.patches.patches[i].name, "normalised irradiance",
+                             std::move(maps.patchK[i]), {}});
+    return out;
+}
+
+}  // namespace
+
+SkyResult skyProduct(const DemSource& source, const CellWindow& window, const SkyRequest& request,
+                     const ProgressFn& progress) {
+    if (request.model == SkyModel::None) throw Error("sky model 'none' makes no sky product");
+    if (request.model == SkyModel::Hemisphere && !request.patches.empty())
+        throw Error("patches need the stewart-langer sky model (the hemisphere model has no sky patches)");
+    if (!(request.albedo >= 0 && request.albedo <= 1))
+        throw Error("albedo " + formatNumber(request.albedo) + ": must be in [0, 1]");
+    if (request.directions && (*request.directions < 1))
+        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+    const Terrain& whole = source.dem().terrain;
+    const bool hemi = request.model == SkyModel::Hemisphere;
+    const ScenePlan plan = planFor(request.search, whole);
+    const std::size_t halo =
+        hemi ? 1
+             : haloCellsFor(whole, integralParams(request.search, plan, whole,
+                                                  request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                                       .maxDistanceM);
+    return onWindow<SkyResult>(source, window, halo, [&](const Dem& dem) {
+        std::vector<Grid<float>> albedo;
+        if (!request.albedoRaster.empty())
+            albedo = loadAuxiliaryRaster(request.albedoRaster, dem, {"albedoRaster", 1, false, 0, 1, false, {}});
+        const Grid<float>* a = albedo.empty() ? nullptr : &albedo[0];
+        return hemi ? hemisphere(dem, request, a) : stewartLanger(dem, plan, request, a, progress);
+    });
+}
+
+}  // namespace demlight

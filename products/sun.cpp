@@ -1,0 +1,133 @@
+#include "products/sun.h"
+
+#include "lighting/aperture.h"
+#include "lighting/directions.h"
+#include "lighting/sun_frame.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+namespace demlight {
+namespace {
+
+/// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1).
+constexpr double kMaxPressureHpa = 5000;
+/// Largest sun diameter accepted (degrees): soft shadows, still a disk.
+constexpr double kMaxSunDiameterDeg = 20;
+
+SunResult horizonSun(const Dem& dem, const Normals& normals, const SunField& field, const SunRequest& request,
+                     const ScenePlan& plan, ProgressCounter& counter) {
+    // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
+    const SunFrameParams params = sunFrameParams(request.search, request.sunDiameterDeg, plan);
+    SunFrame frame = computeSunFrame(dem.terrain, normals, field, params, &counter);
+    SunResult out;
+    out.bands = {{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
+                 {"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
+                  std::move(frame.light.irradiance), {}}};
+    out.maxDistanceM = frame.maxDistanceM;
+    out.sweepRegions = frame.sweepRegions;
+    out.strategy = sunSweepStrategyName(frame.strategy);
+    out.sunUp = frame.sweepRegions > 0;
+    return out;
+}
+
+SunResult apertureSun(const Dem& dem, const Normals& normals, const SunField& field, const SunRequest& request,
+                      const ScenePlan& plan, std::size_t directions, ProgressCounter& counter) {
+    // The aperture does not depend on the sun: search distance and directions are the sky's.
+    const HorizonParams hp = integralParams(request.search, plan, dem.terrain, directions);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, directions, request.search.threads);
+    sweepDirections(dem.terrain, hp, directions,
+                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, &counter);
+    ApertureLightParams lp;
+    lp.sunRadiusDeg = 0.5 * request.sunDiameterDeg;
+    lp.smoothIntersection = request.model == SunModel::ApertureSmooth;
+    ApertureSunMaps m =
+        applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp, request.search.threads);
+    SunResult out;
+    out.bands = {{"sun_visibility", "fraction of the sun cap inside the aperture cap (0-1)", std::move(m.visibility), {}},
+                 {"sun_irradiance",
+                  "normalised irradiance, Lambert integral over the sun cap inside the aperture cap (1 = "
+                  "unit-radiance zenith sun on flat ground)",
+                  std::move(m.irradiance), {}}};
+    out.maxDistanceM = hp.maxDistanceM;
+    out.directions = directions;
+    out.sunUp = field.elevationRange().second > -0.5 * request.sunDiameterDeg;
+    return out;
+}
+
+SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& request, const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const SunField field = sunFieldFor(dem, request.time.utc, request.atmosphere, plan);
+    const auto [lowestSun, highestSun] = field.elevationRange();
+    const bool horizon = request.model == SunModel::Horizon;
+    const Normals normals = computeNormals(t, request.search.threads);
+    const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
+    ProgressCounter counter(progress, "sun", t.heightsM.size() * (horizon ? 1 : directions));
+    SunResult out = horizon ? horizonSun(dem, normals, field, request, plan, counter)
+                            : apertureSun(dem, normals, field, request, plan, directions, counter);
+    std::vector<ProductBand> bands = std::move(out.bands);
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.merge(searchMetadata(t, out.maxDistanceM, request.search.refraction));
+    meta.insert({
+        {"DEMLIGHT_TIME_UTC", formatInstant(request.time.utc, std::string())},
+        {"DEMLIGHT_TIME_LOCAL", formatInstant(request.time.utc, request.time.zone)},
+        {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
+        {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
+        {"DEMLIGHT_SUN_ELEVATION_RANGE_DEG", formatNumber(lowestSun) + "," + formatNumber(highestSun)},
+        {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(out.sweepRegions)},
+        {"DEMLIGHT_SUN_SWEEP_STRATEGY", out.strategy},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(request.sunDiameterDeg)},
+        {"DEMLIGHT_MODEL", std::string(sunModelName(request.model))},
+        {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(directions)},
+    });
+    static_cast<ProductResult&>(out) = makeResult(dem, "sun", meta);
+    out.bands = std::move(bands);
+    out.centreAzimuthDeg = field.centreAzimuthDeg;
+    out.centreElevationDeg = field.centreElevationDeg;
+    return out;
+}
+
+}  // namespace
+
+void validateSun(double sunDiameterDeg, const Atmosphere& atmosphere) {
+    if (!(sunDiameterDeg >= 0 && sunDiameterDeg <= kMaxSunDiameterDeg))
+        throw Error("sunDiameterDeg " + formatNumber(sunDiameterDeg) + ": must be in [0, 20]");
+    if (!(atmosphere.pressureHpa >= 0 && atmosphere.pressureHpa <= kMaxPressureHpa))
+        throw Error("pressureHpa " + formatNumber(atmosphere.pressureHpa) + ": must be in [0, 5000]");
+    if (!(atmosphere.temperatureC >= -100 && atmosphere.temperatureC <= 100))
+        throw Error("temperatureC " + formatNumber(atmosphere.temperatureC) + ": must be in [-100, 100]");
+}
+
+SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan) {
+    SolarSite site;
+    site.pressureHpa = atmosphere.pressureHpa;
+    site.temperatureC = atmosphere.temperatureC;
+    return computeSunField(dem, time, site, SpaOptions{}, plan.sunLatticeStepCells);
+}
+
+SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
+                     const ProgressFn& progress) {
+    validateSun(request.sunDiameterDeg, request.atmosphere);
+    if (request.directions && *request.directions < 1)
+        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+    const Dem& whole = source.dem();
+    const ScenePlan plan = planFor(request.search, whole.terrain);
+    std::size_t halo = 0;
+    if (!source.isWhole(window)) {
+        // The longest search any sun of this instant needs on the whole DEM.
+        const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
+        double distance = request.search.maxDistanceM.value_or(
+            plan.quality == Quality::Full ? plan.maxDistanceM
+                                          : sunSearchDistanceM(whole.terrain, field.elevationRange().first,
+                                                               request.sunDiameterDeg));
+        if (request.model != SunModel::Horizon)
+            distance = integralParams(request.search, plan, whole.terrain,
+                                      request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                           .maxDistanceM;
+        halo = haloCellsFor(whole.terrain, distance);
+    }
+    return onWindow<SunResult>(source, window, halo,
+                               [&](const Dem& dem) { return computeSun(dem, plan, request, progress); });
+}
+
+}  // namespace demlight

@@ -1,0 +1,154 @@
+#include "products/sunhours.h"
+
+#include "geo/sun_field.h"
+#include "lighting/directions.h"
+#include "lighting/sunhours.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+#include <cmath>
+
+namespace demlight {
+namespace {
+
+/// Shortest and longest integration step accepted.
+constexpr std::chrono::seconds kMinStep{6}, kMaxStep{2 * 3600};
+
+struct Sequence {
+    std::vector<SunInstant> instants;
+    std::vector<UtcInstant> utc;
+};
+
+/// Instants every step from the start of the first local day to the end of the last one.
+Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZoneSpec& zone,
+                      std::chrono::milliseconds step) {
+    using namespace std::chrono;
+    Sequence s;
+    auto add = [&](UtcInstant t, bool isEnd) {
+        // Clock time within the local day the instant belongs to (24.0 for the final midnight).
+        const LocalDay d = localDayOf(isEnd ? t - milliseconds(1) : t, zone);
+        const auto local = t + zone.offsetAt(t);
+        const double clock = duration<double, std::ratio<3600>>(local - UtcInstant(d.date)).count();
+        const double hours = duration<double, std::ratio<3600>>(t - first.startUtc).count();
+        s.utc.push_back(t);
+        s.instants.push_back({hours, clock});
+    };
+    for (UtcInstant t = first.startUtc; t < last.endUtc; t += step) add(t, false);
+    add(last.endUtc, true);
+    return s;
+}
+
+SunhoursResult computeSunhours(const Dem& dem, const ScenePlan& plan, const SunhoursRequest& r,
+                               const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const Sequence seq = makeSequence(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.zone, r.step);
+    SunHoursParams params;
+    // auto: each instant's sun sets its own distance (sunSearchDistanceM); full: the DEM diagonal.
+    params.frame = sunFrameParams(r.search, r.sunDiameterDeg, plan);
+    const SolarSite site;  // default pressure and temperature; position from each lattice node
+    const Normals normals = computeNormals(t, r.search.threads);
+
+    // Sky term once: it does not depend on the sun's position.
+    const std::size_t skyDirections = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams hp = integralParams(r.search, plan, t, skyDirections);
+    SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
+    ProgressCounter skyCounter(progress, "sky", t.heightsM.size() * skyDirections);
+    sweepDirections(t, hp, skyDirections, [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); },
+                    &skyCounter);
+    const Grid<float> skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
+
+    ProgressCounter counter(progress, "sunhours", seq.instants.size());
+    SunHoursMaps maps = integrateSunHours(
+        t, normals, seq.instants,
+        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], site, SpaOptions{}, plan.sunLatticeStepCells); },
+        params, &counter);
+    // Daylight from the sun's geometric elevation (no refraction: pressure 0), SPA's sunrise/sunset.
+    SolarSite geometric = site;
+    geometric.pressureHpa = 0;
+    const Grid<float> daylight = integrateDaylight(
+        t, seq.instants,
+        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], geometric, SpaOptions{}, plan.sunLatticeStepCells); },
+        r.search.threads);
+    Grid<float> skyIrr = skyIrradiation(skyFactor, daylight);
+
+    // Never lit: -1, not NaN, which would be written as the DEM's nodata value (a void).
+    for (Grid<float>* clock : {&maps.firstLitClock, &maps.lastLitClock}) {
+        const float* h = t.heightsM.data();
+        float* v = clock->data();
+        for (std::size_t i = 0; i < clock->size(); ++i)
+            if (std::isnan(v[i]) && !std::isnan(h[i])) v[i] = kNeverLitClock;
+    }
+    const double stepMin = std::chrono::duration<double, std::ratio<60>>(r.step).count();
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.insert({
+        {"DEMLIGHT_NEVER_LIT", formatNumber(kNeverLitClock) + " in first_lit and last_lit"},
+        {"DEMLIGHT_FIRST_DATE", formatDate(r.firstDay)},
+        {"DEMLIGHT_LAST_DATE", formatDate(r.lastDay)},
+        {"DEMLIGHT_TIME_ZONE", r.zone.describe()},
+        {"DEMLIGHT_START_UTC", formatInstant(seq.utc.front(), std::string())},
+        {"DEMLIGHT_END_UTC", formatInstant(seq.utc.back(), std::string())},
+        {"DEMLIGHT_STEP_MIN", formatNumber(stepMin)},
+        {"DEMLIGHT_INTEGRATION", "trapezoid"},
+        {"DEMLIGHT_INSTANTS", std::to_string(seq.instants.size())},
+        {"DEMLIGHT_INSTANTS_SWEPT", std::to_string(maps.instantsSwept)},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
+        {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
+        {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
+        {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
+        {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(t, hp.maxDistanceM)},
+        {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
+        {"DEMLIGHT_DAYLIGHT", "SPA sunrise to sunset at the cell, no terrain (geometric elevation of the "
+                              "sun's centre > " + formatNumber(kSunriseGeometricElevationDeg) + " deg)"},
+    });
+    SunhoursResult out;
+    static_cast<ProductResult&>(out) = makeResult(dem, "sunhours", meta);
+    out.instants = seq.instants.size();
+    out.instantsSwept = maps.instantsSwept;
+    const std::string zone = r.zone.describe();
+    out.bands = {
+        {"sun_hours", "hours of direct sun weighted by visibility (h)", std::move(maps.sunHours), {}},
+        {"sun_irradiation", "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)",
+         std::move(maps.sunIrradiation), {}},
+        {"sky_irradiation",
+         "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
+         "(1 h of unit sky on open flat ground = 1)",
+         std::move(skyIrr), {}},
+        {"first_lit", "local clock hours (" + zone + ") when half the sun first shows; -1 = never",
+         std::move(maps.firstLitClock), {}},
+        {"last_lit", "local clock hours (" + zone + ") when half the sun last shows; -1 = never",
+         std::move(maps.lastLitClock), {}}};
+    return out;
+}
+
+}  // namespace
+
+SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
+                               const ProgressFn& progress) {
+    if (request.lastDay < request.firstDay)
+        throw Error("lastDay " + formatDate(request.lastDay) + " is before firstDay " + formatDate(request.firstDay));
+    if (request.step < kMinStep || request.step > kMaxStep)
+        throw Error("step " + formatNumber(std::chrono::duration<double>(request.step).count()) +
+                    " s: must be from 6 s to 2 h");
+    validateSun(request.sunDiameterDeg, Atmosphere{});
+    if (!(request.albedo >= 0 && request.albedo <= 1))
+        throw Error("albedo " + formatNumber(request.albedo) + ": must be in [0, 1]");
+    const Terrain& whole = source.dem().terrain;
+    const ScenePlan plan = planFor(request.search, whole);
+    std::size_t halo = 0;
+    if (!source.isWhole(window)) {
+        // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
+        const double sunDistance = request.search.maxDistanceM.value_or(
+            plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(whole, 0.0, request.sunDiameterDeg));
+        const double skyDistance =
+            integralParams(request.search, plan, whole,
+                           request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                .maxDistanceM;
+        halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
+    }
+    return onWindow<SunhoursResult>(source, window, halo,
+                                    [&](const Dem& dem) { return computeSunhours(dem, plan, request, progress); });
+}
+
+}  // namespace demlight

@@ -1,0 +1,280 @@
+// The products layer called directly, without the CLI: bands, georeference, metadata, progress
+// and cancellation, windows, the light combination, and library messages in library terms.
+#include "geo/dem_source.h"
+#include "geo/time.h"
+#include "products/aperture.h"
+#include "products/horizon.h"
+#include "products/light.h"
+#include "products/render.h"
+#include "products/sky.h"
+#include "products/sun.h"
+#include "products/sunhours.h"
+#include "products/timelapse.h"
+#include "src/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+const std::string kRocky = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
+const std::string kHelens = std::string(DEMLIGHT_SAMPLES_DIR) + "/mount_st_helens_1980_usgs.dem";
+
+const DemSource& rocky() {
+    static const DemSource source = DemSource::open(kRocky);
+    return source;
+}
+
+ZonedInstant morning() { return parseZonedInstant("2024-06-21T14:30:00Z", ""); }
+
+std::vector<std::string> names(const ProductResult& r) {
+    std::vector<std::string> out;
+    for (const auto& b : r.bands) out.push_back(b.name);
+    return out;
+}
+
+TEST(Products, EveryRasterProductKeepsTheDemGeoreferenceAndNamesItsBands) {
+    const DemSource& dem = rocky();
+    SearchRequest search;
+    search.threads = 2;
+    HorizonRequest h;
+    h.azimuthsDeg = {0, 135};
+    h.search = search;
+    const HorizonResult hr = horizonProduct(dem, dem.whole(), h);
+    EXPECT_EQ(names(hr.horizons), (std::vector<std::string>{"horizon_azimuth=0", "horizon_azimuth=135"}));
+    EXPECT_EQ(names(hr.truncation), (std::vector<std::string>{"truncated_azimuth=0", "truncated_azimuth=135"}));
+    EXPECT_EQ(hr.truncation.flagNodata, 255.0);
+
+    SkyRequest sky;
+    sky.search = search;
+    const SkyResult sr = skyProduct(dem, dem.whole(), sky);
+    EXPECT_EQ(names(sr), (std::vector<std::string>{"svf_horizontal", "sky_fraction", "sky_K", "sky_factor"}));
+
+    SunRequest sun;
+    sun.time = morning();
+    sun.search = search;
+    const SunResult su = sunProduct(dem, dem.whole(), sun);
+    EXPECT_EQ(names(su), (std::vector<std::string>{"sun_visibility", "sun_irradiance"}));
+    EXPECT_TRUE(su.sunUp);
+
+    ApertureRequest ap;
+    ap.search = search;
+    EXPECT_EQ(apertureProduct(dem, dem.whole(), ap).bands.size(), 5u);
+
+    for (const ProductResult* r : std::initializer_list<const ProductResult*>{&hr.horizons, &sr, &su}) {
+        EXPECT_EQ(r->ref.geoTransform, dem.dem().band.ref.geoTransform);
+        EXPECT_EQ(r->ref.crsWkt, dem.dem().band.ref.crsWkt);
+        EXPECT_EQ(r->metadata.at("DEMLIGHT_INPUT"), kRocky);
+        for (const auto& b : r->bands) {
+            EXPECT_EQ(b.values.width(), dem.width()) << b.name;
+            EXPECT_EQ(b.values.height(), dem.height()) << b.name;
+        }
+    }
+    EXPECT_EQ(su.metadata.at("DEMLIGHT_PRODUCT"), "sun");
+    EXPECT_EQ(su.metadata.at("DEMLIGHT_REFRACTION"), "0.13");
+}
+
+TEST(Products, ProgressIsSizedByTheProductAndReachesOne) {
+    const DemSource& dem = rocky();
+    SunhoursRequest r;
+    r.firstDay = r.lastDay = parseDate("2024-06-21");
+    r.step = std::chrono::minutes(60);
+    r.search.threads = 2;
+    std::vector<std::pair<std::string, double>> calls;
+    const ProgressFn progress = [&](double f, const std::string& stage) {
+        calls.emplace_back(stage, f);
+        return true;
+    };
+    sunhoursProduct(dem, dem.whole(), r, progress);
+    ASSERT_FALSE(calls.empty());
+    double last = -1;
+    std::string stage;
+    bool reachedOne = false;
+    for (const auto& [s, f] : calls) {
+        if (s != stage) stage = s, last = -1;
+        EXPECT_GE(f, last) << s;
+        EXPECT_LE(f, 1.0);
+        last = f;
+        reachedOne = reachedOne || (s == "sunhours" && f == 1.0);
+    }
+    EXPECT_TRUE(reachedOne);
+}
+
+TEST(Products, ACallbackThatReturnsFalseCancels) {
+    const DemSource& dem = rocky();
+    SkyRequest r;
+    r.search.threads = 2;
+    int calls = 0;
+    const ProgressFn stop = [&](double, const std::string&) { return ++calls < 3; };
+    EXPECT_THROW(skyProduct(dem, dem.whole(), r, stop), Cancelled);
+}
+
+TEST(Products, LightIsSunIrradianceTimesCloudPlusSkyFactor) {
+    // combineLight, cell by cell: reflectance x (sunColour x sun x cloud + skyColour x sky).
+    Grid<float> h(3, 1, 100.0f), sun(3, 1), cloud(3, 1), sky(3, 1), red(3, 1, 0.5f), green(3, 1, 0.25f), blue(3, 1, 1.0f);
+    h(2, 0) = std::nanf("");
+    sun(0, 0) = 0.8f, sun(1, 0) = 0.2f;
+    cloud(0, 0) = 0.5f, cloud(1, 0) = std::nanf("");  // NaN cloud leaves the sun as it is
+    sky(0, 0) = 0.9f, sky(1, 0) = 0.4f;
+    LightTerms terms;
+    terms.heightsM = &h;
+    terms.sunIrradiance = &sun;
+    terms.cloud = &cloud;
+    terms.sky = {&sky};
+    terms.reflectance = {&red, &green, &blue};
+    terms.sunColor = {1.0, 2.0, 0.5};
+    terms.skyColor = {0.1, 0.2, 0.3};
+    terms.channels = 3;
+    const auto light = combineLight(terms);
+    ASSERT_EQ(light.size(), 3u);
+    EXPECT_NEAR(light[0](0, 0), 0.5 * (1.0 * 0.8 * 0.5 + 0.1 * 0.9), 1e-6);
+    EXPECT_NEAR(light[1](0, 0), 0.25 * (2.0 * 0.8 * 0.5 + 0.2 * 0.9), 1e-6);
+    EXPECT_NEAR(light[2](1, 0), 1.0 * (0.5 * 0.2 + 0.3 * 0.4), 1e-6);
+    EXPECT_TRUE(std::isnan(light[0](2, 0)));
+
+    // The light product against the sun and sky products of the same plan: light = sun_irradiance
+    // + sky_factor on every cell (both at the plan's default directions and albedo).
+    const DemSource& dem = rocky();
+    SearchRequest search;
+    search.threads = 2;
+    LightRequest lr;
+    lr.time = morning();
+    lr.search = search;
+    const LightResult l = lightProduct(dem, dem.whole(), lr);
+    SunRequest sr;
+    sr.time = morning();
+    sr.search = search;
+    SkyRequest kr;
+    kr.search = search;
+    const SunResult s = sunProduct(dem, dem.whole(), sr);
+    const SkyResult k = skyProduct(dem, dem.whole(), kr);
+    const Grid<float>& lg = l.band("light").values;
+    const Grid<float>& sg = s.band("sun_irradiance").values;
+    const Grid<float>& kg = k.band("sky_factor").values;
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < lg.size(); ++i) {
+        if (std::isnan(lg.data()[i])) continue;
+        EXPECT_NEAR(lg.data()[i], sg.data()[i] + kg.data()[i], 1e-6);
+        ++checked;
+    }
+    EXPECT_EQ(checked, lg.size());
+}
+
+TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
+    const DemSource& dem = rocky();
+    TimelapseRequest r;
+    r.frames = instantsBetween(parseZonedInstant("2024-06-21T14:00:00Z", ""), parseZonedInstant("2024-06-21T16:00:00Z", ""),
+                               std::chrono::hours(1), 100);
+    r.search.threads = 2;
+    r.fitDegree = 1;
+    std::size_t frames = 0, skies = 0;
+    TimelapseSink sink;
+    sink.sky = [&](ProductResult&& s) {
+        ++skies;
+        EXPECT_EQ(names(s), std::vector<std::string>{"sky_k"});
+    };
+    sink.frame = [&](TimelapseFrame&& f) {
+        EXPECT_EQ(f.index, frames++);
+        ASSERT_EQ(f.lightmap.bands.size(), 2u);
+        EXPECT_EQ(f.lightmap.bands[0].name, "sun_visibility");
+        EXPECT_EQ(f.lightmap.bands[1].name, "sun_irradiance");
+        EXPECT_EQ(f.localTime, f.lightmap.metadata.at("DEMLIGHT_TIME_LOCAL"));
+        EXPECT_GT(f.preview.width, 0u);
+    };
+    const TimelapseResult res = timelapseProduct(dem, r, sink);
+    EXPECT_EQ(frames, 3u);
+    EXPECT_EQ(skies, 1u);
+    ASSERT_TRUE(res.fit);
+    EXPECT_EQ(res.fit->bands.size(), 3u);  // two coefficients and the RMS residual
+}
+
+TEST(Products, AWindowIsTheWholeDemsAnswerOnItsCells) {
+    // A window computed with its halo lies on the window's georeference and agrees with the
+    // whole DEM's answer on its cells (scan lines are anchored to the read window, so the bits
+    // may differ: tiled execution makes them identical).
+    const DemSource& dem = rocky();
+    HorizonRequest r;
+    r.azimuthsDeg = {100};
+    r.search.threads = 2;
+    const CellWindow w{40, 50, 100, 130};
+    const HorizonResult whole = horizonProduct(dem, dem.whole(), r);
+    const HorizonResult part = horizonProduct(dem, w, r);
+    const auto& gt = dem.dem().band.ref.geoTransform;
+    EXPECT_DOUBLE_EQ(part.horizons.ref.geoTransform[0], gt[0] + 40 * gt[1]);
+    EXPECT_DOUBLE_EQ(part.horizons.ref.geoTransform[3], gt[3] + 50 * gt[5]);
+    const Grid<float>& p = part.horizons.bands[0].values;
+    ASSERT_EQ(p.width(), 60u);
+    ASSERT_EQ(p.height(), 80u);
+    double sum = 0, worst = 0;
+    for (std::size_t row = 0; row < p.height(); ++row)
+        for (std::size_t col = 0; col < p.width(); ++col) {
+            const double d = std::abs(p(col, row) - whole.horizons.bands[0].values(col + 40, row + 50));
+            sum += d, worst = std::max(worst, d);
+        }
+    EXPECT_LT(sum / static_cast<double>(p.size()), 0.05);
+    EXPECT_LT(worst, 2.0);
+    EXPECT_GE(horizonHaloCells(dem, r), 1u);
+}
+
+TEST(Products, MessagesNameRequestFieldsNotFlags) {
+    const DemSource& dem = rocky();
+    const auto message = [](auto&& call) {
+        try {
+            call();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    SkyRequest sky;
+    sky.albedo = 2;
+    const std::string a = message([&] { skyProduct(dem, dem.whole(), sky); });
+    EXPECT_NE(a.find("albedo 2"), std::string::npos) << a;
+    SunRequest sun;
+    sun.time = morning();
+    sun.search.maxDistanceM = -5;
+    const std::string b = message([&] { sunProduct(dem, dem.whole(), sun); });
+    EXPECT_NE(b.find("maxDistanceM -5"), std::string::npos) << b;
+    HorizonRequest h;
+    const std::string c = message([&] { horizonProduct(dem, dem.whole(), h); });
+    EXPECT_NE(c.find("azimuthsDeg"), std::string::npos) << c;
+    const std::string d = message([&] { horizonProduct(dem, CellWindow{0, 0, 1000, 5}, HorizonRequest{{0}, {}, {}}); });
+    EXPECT_NE(d.find("window"), std::string::npos) << d;
+    for (const std::string& m : {a, b, c, d}) EXPECT_EQ(m.find("--"), std::string::npos) << m;
+}
+
+TEST(Products, AuxiliaryRastersAreCheckedForRangeAndCoverage) {
+    const DemSource& dem = rocky();
+    // The DEM itself as an "albedo": heights of thousands of metres are not an albedo.
+    SkyRequest r;
+    r.albedoRaster = kRocky;
+    r.directions = 4;
+    try {
+        skyProduct(dem, dem.whole(), r);
+        FAIL() << "heights accepted as albedo";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("albedoRaster"), std::string::npos) << e.what();
+    }
+    // A raster elsewhere on the earth covers no cell of the DEM.
+    r.albedoRaster = kHelens;
+    try {
+        skyProduct(dem, dem.whole(), r);
+        FAIL() << "a raster that misses the DEM was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("covers no cell"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Products, ColorEncodingNames) {
+    EXPECT_EQ(parseColorEncoding("auto", "f"), ColorEncoding::Auto);
+    EXPECT_EQ(parseColorEncoding("srgb", "f"), ColorEncoding::Srgb);
+    EXPECT_EQ(parseColorEncoding("linear", "f"), ColorEncoding::Linear);
+    EXPECT_THROW(parseColorEncoding("gamma", "f"), Error);
+}
+
+}  // namespace
+}  // namespace demlight
