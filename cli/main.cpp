@@ -1,9 +1,12 @@
 // demlight: light real terrain. Thin entry point: subcommands register themselves; every
 // demlight::Error is caught here once and printed as one line.
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "src/error.h"
 
 #include <malloc.h>
+#include <signal.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -12,6 +15,34 @@
 #include <vector>
 #include <exception>
 #include <iostream>
+
+namespace {
+
+/// SIGINT/SIGTERM: ask the work to stop at its next safe point (progress callbacks then return
+/// false, the library throws Cancelled, main prints "cancelled" and returns 130). Only
+/// async-signal-safe calls here. SA_RESETHAND has already restored the default action, so a
+/// second signal ends the process at once.
+void onInterrupt(int) {
+    demlight::cli::requestCancel();
+    static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+}
+
+/// Installs onInterrupt for SIGINT and SIGTERM, except where the parent made the process ignore
+/// the signal (nohup, background jobs of a non-interactive shell): that choice stands.
+void installInterruptHandlers() {
+    for (const int sig : {SIGINT, SIGTERM}) {
+        struct sigaction old {};
+        if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+        struct sigaction sa {};
+        sa.sa_handler = onInterrupt;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESETHAND | SA_RESTART;  // restart reads and writes the signal interrupts
+        sigaction(sig, &sa, nullptr);
+    }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace demlight;
@@ -71,6 +102,7 @@ int main(int argc, char** argv) {
         }
     }
 
+    installInterruptHandlers();
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {

@@ -7,6 +7,8 @@
 #include <date/tz.h>
 
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -588,6 +590,91 @@ double julianDay(UtcInstant t) {
     const double wholeDays = static_cast<double>(day.time_since_epoch().count());
     const double fraction = static_cast<double>((t - day).count()) / kMsPerDay;
     return kJulianDayOfUnixEpoch + wholeDays + fraction;
+}
+
+namespace {
+
+/// "minutes" for a bare-number unit of 1 min; how the error message names it.
+std::string bareUnitName(chr::milliseconds unit) {
+    if (unit == chr::hours(1)) return "hours";
+    if (unit == chr::minutes(1)) return "minutes";
+    if (unit == chr::seconds(1)) return "seconds";
+    if (unit == chr::milliseconds(1)) return "milliseconds";
+    return "multiples of " + std::to_string(unit.count()) + " ms";
+}
+
+/// The grammar of parseDuration; a unitless last term counts bareUnit when one is given.
+chr::milliseconds parseDurationTerms(std::string_view text, std::string_view field,
+                                     std::optional<chr::milliseconds> bareUnit) {
+    auto fail = [&](const std::string& why) {
+        return Error(std::string(field) + " '" + std::string(text) + "': " + why);
+    };
+    const std::string expected = "expected a duration like 15m, 1h, 90s or 1h30m" +
+                                 (bareUnit ? ", or a number of " + bareUnitName(*bareUnit) : std::string());
+    auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+    auto isDigit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+    const std::size_t n = text.size();
+    std::size_t i = 0;
+    auto skipSpace = [&] {
+        while (i < n && isSpace(text[i])) ++i;
+    };
+    // Summed in this order and rounded once, as the CLI's step parser did, so the same text
+    // gives the same milliseconds.
+    double totalMs = 0;
+    bool anyTerm = false;
+    skipSpace();
+    while (i < n) {
+        if (text[i] == '-') throw fail("a duration cannot be negative");
+        if (text[i] == '+') ++i;
+        // The number: digits with an optional fraction, then an exponent only if digits follow
+        // (in "1em" the 'e' is a unit, and an unknown one).
+        const std::size_t start = i;
+        std::size_t digits = 0;
+        for (; i < n && isDigit(text[i]); ++i) ++digits;
+        if (i < n && text[i] == '.')
+            for (++i; i < n && isDigit(text[i]); ++i) ++digits;
+        if (digits == 0) throw fail(expected);
+        if (i < n && (text[i] == 'e' || text[i] == 'E')) {
+            std::size_t j = i + 1;
+            if (j < n && (text[j] == '+' || text[j] == '-')) ++j;
+            if (j < n && isDigit(text[j]))
+                for (i = j; i < n && isDigit(text[i]); ++i) {
+                }
+        }
+        double value = 0;
+        const auto [end, ec] = std::from_chars(text.data() + start, text.data() + i, value);
+        if (ec == std::errc::result_out_of_range) throw fail("the number is out of range");
+        if (ec != std::errc{} || end != text.data() + i) throw fail(expected);
+        skipSpace();
+        double unitMs = 0;
+        if (i < n && (text[i] == 'h' || text[i] == 'm' || text[i] == 's')) {
+            unitMs = text[i] == 'h' ? 3.6e6 : text[i] == 'm' ? 6e4 : 1e3;
+            ++i;
+            skipSpace();
+        } else if (i == n && bareUnit) {
+            unitMs = static_cast<double>(bareUnit->count());
+        } else {
+            throw fail(expected);
+        }
+        totalMs += value * unitMs;
+        anyTerm = true;
+    }
+    if (!anyTerm) throw fail(expected);
+    constexpr double kMaxMs = 0x1p63;  // std::chrono::milliseconds is a signed 64-bit count
+    if (!(totalMs < kMaxMs)) throw fail("too long a duration");
+    return chr::milliseconds(std::llround(totalMs));
+}
+
+}  // namespace
+
+chr::milliseconds parseDuration(std::string_view text, std::string_view field) {
+    return parseDurationTerms(text, field, std::nullopt);
+}
+
+chr::milliseconds parseDurationOr(std::string_view text, std::string_view field, chr::milliseconds bareUnit) {
+    if (bareUnit <= chr::milliseconds::zero())
+        throw Error(std::string(field) + ": the unit of a bare number must be positive");
+    return parseDurationTerms(text, field, bareUnit);
 }
 
 }  // namespace demlight

@@ -20,6 +20,7 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace demlight {
 
@@ -100,5 +101,22 @@ double decimalYear(UtcInstant t);
 
 /// Julian Day (UT) of t: 2451545.0 at 2000-01-01T12:00Z.
 double julianDay(UtcInstant t);
+
+/// Parses a duration: one or more terms, each a non-negative decimal number and a unit,
+/// h (hours), m (minutes) or s (seconds), summed: "10m", "90s", "1.5h", "1h30m", "1h 30m",
+/// "2h15m30s". Whitespace may stand before, between and after terms and between a number and its
+/// unit; a number may have a leading '+', a fraction ("1.5", ".5", "5.") and an exponent ("1e3s").
+/// The total is rounded to the nearest millisecond; zero is a duration (a caller with a minimum
+/// checks it). Throws Error naming `field` and the text ("step '10x': expected a duration like
+/// 15m, 1h, 90s or 1h30m") on empty text, a number without its unit, an unknown unit ("10d",
+/// "10min"), a minus sign anywhere (even "-0m"), inf or NaN, hexadecimal numbers, or a total
+/// beyond the range of std::chrono::milliseconds.
+std::chrono::milliseconds parseDuration(std::string_view text, std::string_view field);
+
+/// As parseDuration, but the last term may be a bare number, counted in `bareUnit` (> 0): with
+/// minutes, "10" is 10 min and "1h30" is 1 h 30 min. For options whose bare numbers always meant
+/// that unit; the error message then also offers "a number of minutes".
+std::chrono::milliseconds parseDurationOr(std::string_view text, std::string_view field,
+                                          std::chrono::milliseconds bareUnit);
 
 }  // namespace demlight

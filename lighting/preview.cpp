@@ -2,9 +2,6 @@
 // key, sky and indirect lights, coloured penumbra, gamma at the end.
 #include "lighting/preview.h"
 
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/sky.h"
 #include "lighting/sun.h"
 #include "src/error.h"
 #include "src/parallel.h"
@@ -58,21 +55,6 @@ Rgb radiance(const Enu& n, const Rgb& albedo, double sunVisibility, const SunRig
 }
 
 }  // namespace
-
-Grid<float> previewSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
-                            double maxDistanceM, double refraction, int threads,
-                            ProgressCounter* progress) {
-    if (directions == 0) throw Error("previewSkyLight: need at least one direction");
-    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, threads);
-    HorizonParams hp;
-    hp.maxDistanceM = maxDistanceM > 0 ? maxDistanceM : defaultMaxDistanceM(terrain);
-    hp.refraction = refraction;
-    hp.threads = threads;
-    sweepDirections(terrain, hp, directions,
-                    [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); },
-                    progress);
-    return acc.finish(0.0).skyK;
-}
 
 double twilightSkyScale(double sunElevationDeg) {
     return kNightSkyFloor +
@@ -145,6 +127,105 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
         }
     });
     return img;
+}
+
+namespace {
+
+/// One source column's share of an output column.
+struct Tap {
+    std::size_t col;
+    double weight;
+};
+
+/// The taps of every output column (the same for every row), flattened; column j's taps are
+/// taps[first[j] .. first[j + 1]).
+struct ColumnTaps {
+    std::vector<Tap> taps;
+    std::vector<std::size_t> first;
+};
+
+ColumnTaps columnTaps(std::size_t inWidth, std::size_t outWidth) {
+    ColumnTaps ct;
+    ct.first.reserve(outWidth + 1);
+    const double scale = static_cast<double>(inWidth) / static_cast<double>(outWidth);  // input px per output px
+    auto add = [&](std::size_t col, double weight) {
+        if (weight > 0) ct.taps.push_back({col, weight});
+    };
+    for (std::size_t j = 0; j < outWidth; ++j) {
+        ct.first.push_back(ct.taps.size());
+        if (outWidth < inWidth) {
+            // Shrinking: each input pixel weighted by how much of it the output pixel covers.
+            const double a = static_cast<double>(j) * scale, b = static_cast<double>(j + 1) * scale;
+            const auto k0 = static_cast<std::size_t>(std::floor(a));
+            const auto k1 = std::min(inWidth, static_cast<std::size_t>(std::ceil(b)));
+            for (std::size_t k = k0; k < k1; ++k)
+                add(k, std::min(static_cast<double>(k + 1), b) - std::max(static_cast<double>(k), a));
+        } else {
+            // Stretching: linear between the two input pixel centres around the output centre.
+            const double x = std::clamp((static_cast<double>(j) + 0.5) * scale - 0.5, 0.0,
+                                        static_cast<double>(inWidth - 1));
+            const auto k0 = static_cast<std::size_t>(std::floor(x));
+            const std::size_t k1 = std::min(k0 + 1, inWidth - 1);
+            const double t = x - static_cast<double>(k0);
+            add(k0, 1.0 - t);
+            if (k1 != k0) add(k1, t);
+        }
+    }
+    ct.first.push_back(ct.taps.size());
+    return ct;
+}
+
+std::uint8_t toByte(double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
+
+}  // namespace
+
+Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
+    const std::size_t cols = terrain.width(), rows = terrain.height();
+    if (image.width != cols || image.height != rows || image.rgba.size() != cols * rows * 4 ||
+        terrain.cellWidthM.size() != rows || terrain.cellHeightM.size() != rows)
+        throw Error("toGroundPixels: the picture (" + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + ") is not one pixel per cell of the terrain (" +
+                    std::to_string(cols) + " x " + std::to_string(rows) + ")");
+    if (cols == 0 || rows == 0) return image;
+    const std::size_t mid = rows / 2;
+    const double aspect = terrain.cellWidthM[mid] / terrain.cellHeightM[mid];  // east-west over north-south
+    if (!(aspect > 0) || !std::isfinite(aspect))
+        throw Error("toGroundPixels: the middle row's cell size (" + std::to_string(terrain.cellWidthM[mid]) +
+                    " x " + std::to_string(terrain.cellHeightM[mid]) + " m) is not positive");
+    const auto outWidth = static_cast<std::size_t>(
+        std::max(1.0, std::round(static_cast<double>(cols) * aspect)));
+    if (outWidth == cols) return image;
+
+    const ColumnTaps ct = columnTaps(cols, outWidth);
+    Image8 out;
+    out.width = outWidth;
+    out.height = rows;
+    out.rgba.assign(outWidth * rows * 4, 0);
+    parallelFor(0, rows, 0, [&](std::size_t row) {
+        const std::uint8_t* in = image.rgba.data() + row * cols * 4;
+        std::uint8_t* q = out.rgba.data() + row * outWidth * 4;
+        for (std::size_t j = 0; j < outWidth; ++j, q += 4) {
+            double colour[3] = {0, 0, 0};
+            double opaqueWeight = 0, alpha = 0, weight = 0;
+            for (std::size_t t = ct.first[j]; t < ct.first[j + 1]; ++t) {
+                const std::uint8_t* p = in + ct.taps[t].col * 4;
+                const double w = ct.taps[t].weight;
+                weight += w;
+                if (p[3] == 0) continue;  // nodata: no colour, no coverage
+                for (int k = 0; k < 3; ++k) colour[k] += w * p[k];
+                alpha += w * p[3];
+                opaqueWeight += w;
+            }
+            if (opaqueWeight == 0) {
+                q[0] = q[1] = q[2] = kNodataGrey;
+                q[3] = 0;
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) q[k] = toByte(colour[k] / opaqueWeight);
+            q[3] = toByte(alpha / weight);
+        }
+    });
+    return out;
 }
 
 }  // namespace demlight

@@ -9,7 +9,6 @@
 
 #include "lighting/surface.h"
 #include "src/grid.h"
-#include "src/progress.h"
 #include "src/terrain.h"
 
 #include <array>
@@ -17,17 +16,6 @@
 #include <vector>
 
 namespace demlight {
-
-/// Horizon directions the preview's sky fill is integrated over by default: enough for a
-/// picture (K within a few per cent of 64 directions; tests/sky_test.cpp measures the error).
-inline constexpr std::size_t kPreviewSkyDirections = 16;
-
-/// Sky light for the fill and bounce: K(p) (Lambert-weighted visible sky in the normal
-/// hemisphere, lighting/sky.h) from `directions` exact horizon sweeps out to maxDistanceM
-/// (<= 0: defaultMaxDistanceM). NaN at nodata. Progress counts cells swept.
-Grid<float> previewSkyLight(const Terrain& terrain, const Normals& normals, std::size_t directions,
-                            double maxDistanceM, double refraction, int threads,
-                            ProgressCounter* progress = nullptr);
 
 /// Linear RGB.
 struct Rgb {
@@ -97,5 +85,23 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
                      const Grid<float>& skyLight, const std::vector<Grid<float>>& albedoRgb,
                      double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params,
                      int threads = 0);
+
+/// Pixel geometry of a picture of a DEM.
+enum class PixelGeometry {
+    Cell,    ///< one pixel per cell (a lat/lon DEM looks stretched east-west away from the equator)
+    Ground,  ///< square ground pixels (toGroundPixels)
+};
+
+/// Resamples a picture of `terrain` (one pixel per cell, as renderPreview draws it) so each pixel
+/// covers a square of ground: the height stays the number of rows and the width becomes
+/// max(1, round(cols * cellWidthM / cellHeightM)) with the cell size of the middle row (row index
+/// height / 2), so a DEM spanning many degrees of latitude is square at its middle. Only columns
+/// are resampled: by area (box) averaging where the picture shrinks, linear interpolation between
+/// pixel centres where it stretches. Transparent pixels (alpha 0, nodata) are left out of the
+/// colour average and alpha becomes the covered share of the weights, as the time-lapse GIF's
+/// downsampling does; a pixel with no opaque contribution is kNodataGrey with alpha 0. Returns
+/// the image unchanged (same bytes) when the width equals the column count (projected grids with
+/// square cells). Deterministic. Throws Error when the image and the terrain differ in size.
+Image8 toGroundPixels(const Image8& image, const Terrain& terrain);
 
 }  // namespace demlight
