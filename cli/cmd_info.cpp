@@ -1,6 +1,9 @@
-// demlight info DEM [--json]: what demlight sees in a DEM before lighting it.
+// demlight info DEM [--json] [--z-unit UNIT | --z-factor F]: what demlight sees in a DEM before
+// lighting it, heights in metres as demlight reads them.
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "geo/dem.h"
+#include "src/error.h"
 
 #include <nlohmann/json.hpp>
 
@@ -9,6 +12,7 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <utility>
 
 namespace demlight::cli {
 namespace {
@@ -21,10 +25,32 @@ constexpr int kEdgeSamples = 16;
 struct InfoOptions {
     std::string demPath;
     bool json = false;
+    HeightOptions heights;
 };
 
+/// The library names HeightOptions fields in its messages; the user typed flags.
+std::string withHeightFlags(std::string message) {
+    const std::pair<std::string, std::string> fieldToFlag[] = {{"HeightOptions::zUnit", "--z-unit"},
+                                                               {"HeightOptions::zFactor", "--z-factor"}};
+    for (const auto& [field, flag] : fieldToFlag)
+        for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + flag.size()))
+            message.replace(at, field.size(), flag);
+    return message;
+}
+
+Dem loadInfoDem(const InfoOptions& o) {
+    try {
+        return loadDem(o.demPath, o.heights);
+    } catch (const Cancelled&) {
+        throw;
+    } catch (const Error& e) {
+        throw Error(withHeightFlags(e.what()));
+    }
+}
+
 void runInfo(const InfoOptions& o) {
-    const Dem dem = loadDem(o.demPath);
+    const Dem dem = loadInfoDem(o);
+    const HeightTransform& z = dem.heights;
     const Terrain& t = dem.terrain;
     const std::size_t w = t.width(), h = t.height();
 
@@ -71,6 +97,11 @@ void runInfo(const InfoOptions& o) {
         j["relief_m"] = relief;
         j["nodata_fraction"] = nodataShare;
         j["nodata_value"] = dem.band.nodata ? nlohmann::json(*dem.band.nodata) : nlohmann::json(nullptr);
+        j["height_scale"] = z.scale;
+        j["height_offset"] = z.offset;
+        j["height_unit"] = z.unit;
+        j["height_to_metres"] = z.toMetres;
+        j["height_source"] = z.source;
         if (!dem.crs.geographic)
             j["convergence_deg"] = {{"min", gammaMin}, {"max", gammaMax}};
         else
@@ -95,6 +126,9 @@ void runInfo(const InfoOptions& o) {
     } else {
         std::printf("Cell size:      %.3f m x %.3f m\n", t.cellWidthM[0], t.cellHeightM[0]);
     }
+    std::printf("Heights:        scale %s, offset %s, unit %s -> metres x %s (%s)\n", formatNumber(z.scale).c_str(),
+                formatNumber(z.offset).c_str(), z.unit.empty() ? "none" : ("\"" + z.unit + "\"").c_str(),
+                formatNumber(z.toMetres).c_str(), z.source.c_str());
     std::printf("Elevation:      min %.2f m, max %.2f m, relief %.2f m\n", zMin, zMax, relief);
     std::printf("Nodata:         %.3f %% of cells (%zu)", 100.0 * nodataShare, dem.band.nodataCount);
     if (dem.band.nodata) std::printf(", nodata value %g", *dem.band.nodata);
@@ -114,6 +148,15 @@ void registerInfo(CLI::App& app, CliContext&) {
                                                "elevations, nodata, convergence");
     cmd->add_option("DEM", opts->demPath, "Input DEM (any raster GDAL reads)")->required();
     cmd->add_flag("--json", opts->json, "Print one JSON object instead of text");
+    CLI::Option* zUnit =
+        cmd->add_option("--z-unit", opts->heights.zUnit,
+                        "Vertical unit of the heights instead of the band's own (m, ft, US survey foot, cm, dm, "
+                        "mm, km)");
+    CLI::Option* zFactor = cmd->add_option("--z-factor", opts->heights.zFactor,
+                                           "Metres per height unit (after the band's scale and offset), "
+                                           "instead of converting a unit")
+                                ->check(finiteRange(0, std::numeric_limits<double>::infinity(), /*lowOpen=*/true));
+    zUnit->excludes(zFactor);
     cmd->callback([opts] { runInfo(*opts); });
 }
 

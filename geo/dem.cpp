@@ -8,11 +8,105 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <memory>
+#include <string_view>
 
 namespace demlight {
 namespace {
+
+/// Metres per international foot (exact by definition).
+constexpr double kFootM = 0.3048;
+/// Metres per US survey foot (exact by definition).
+constexpr double kUsSurveyFootM = 1200.0 / 3937.0;
+
+struct VerticalUnit {
+    std::string_view name;  // lower case
+    double metres;
+};
+constexpr VerticalUnit kVerticalUnits[] = {
+    {"", 1.0},       {"m", 1.0},      {"metre", 1.0},          {"meter", 1.0},
+    {"metres", 1.0}, {"meters", 1.0}, {"ft", kFootM},          {"foot", kFootM},
+    {"feet", kFootM}, {"international foot", kFootM},          {"us survey foot", kUsSurveyFootM},
+    {"us-ft", kUsSurveyFootM},        {"ftus", kUsSurveyFootM}, {"us survey feet", kUsSurveyFootM},
+    {"cm", 0.01},    {"dm", 0.1},     {"mm", 0.001},           {"km", 1000.0},
+};
+/// The short list messages offer (every spelling above is accepted).
+constexpr const char* kKnownUnitsText = "m, ft, US survey foot, cm, dm, mm, km";
+
+/// A number for a message, to 10 significant digits.
+std::string formatValue(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", v);
+    return text;
+}
+
+std::string trimmed(const std::string& s) {
+    const auto first = s.find_first_not_of(" \t");
+    if (first == std::string::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+void checkHeightOptions(const HeightOptions& o) {
+    if (o.zFactor != 0 && !(std::isfinite(o.zFactor) && o.zFactor > 0))
+        throw Error("HeightOptions::zFactor " + formatValue(o.zFactor) +
+                    " must be a finite number > 0 (metres per height unit; 0 = not set)");
+    if (o.zFactor != 0 && !o.zUnit.empty())
+        throw Error("HeightOptions::zUnit \"" + o.zUnit + "\" and HeightOptions::zFactor " +
+                    formatValue(o.zFactor) + " exclude each other: set one");
+    if (!o.zUnit.empty() && (trimmed(o.zUnit).empty() || !metresPerUnit(o.zUnit)))
+        throw Error("HeightOptions::zUnit \"" + o.zUnit + "\" is not a vertical unit demlight knows (" +
+                    kKnownUnitsText + ")");
+}
+
+/// The band's scale and offset, and metres per unit from the options or else the band's unit.
+HeightTransform heightTransform(const RasterBand& band, const HeightOptions& o) {
+    if (!std::isfinite(band.scale) || band.scale == 0 || !std::isfinite(band.offset))
+        throw Error("'" + band.path + "' declares band scale " + formatValue(band.scale) + " and offset " +
+                    formatValue(band.offset) + ": heights need a finite, non-zero scale and a finite offset");
+    HeightTransform tr;
+    tr.scale = band.scale;
+    tr.offset = band.offset;
+    tr.unit = band.unit;
+    if (o.zFactor != 0) {
+        tr.toMetres = o.zFactor;
+        tr.source = "zFactor option";
+    } else if (!o.zUnit.empty()) {
+        tr.unit = o.zUnit;
+        tr.toMetres = *metresPerUnit(o.zUnit);
+        tr.source = "zUnit option";
+    } else if (trimmed(band.unit).empty()) {
+        tr.source = "default (no unit declared: metres)";
+    } else if (const auto metres = metresPerUnit(band.unit)) {
+        tr.toMetres = *metres;
+        tr.source = "band";
+    } else {
+        throw Error("'" + band.path + "' declares its heights in unit \"" + band.unit +
+                    "\", which demlight cannot convert to metres; set HeightOptions::zUnit to the unit it "
+                    "means (" + kKnownUnitsText + ") or HeightOptions::zFactor to metres per unit");
+    }
+    return tr;
+}
+
+/// The band's raw values as metres; NaN (nodata) stays NaN.
+Grid<float> heightsInMetres(const RasterBand& band, const HeightTransform& tr) {
+    Grid<float> heights = band.values;
+    // The identity does no arithmetic at all, so metre DEMs keep their values bit for bit.
+    if (tr.scale == 1 && tr.offset == 0 && tr.toMetres == 1) return heights;
+    for (float& v : heights.values()) {
+        if (std::isnan(v)) continue;
+        const double metres = (static_cast<double>(v) * tr.scale + tr.offset) * tr.toMetres;
+        if (!(std::abs(metres) <= std::numeric_limits<float>::max()))
+            throw Error("'" + band.path + "': value " + formatValue(v) + " becomes " + formatValue(metres) +
+                        " m after scale " + formatValue(tr.scale) + ", offset " + formatValue(tr.offset) +
+                        " and x " + formatValue(tr.toMetres) + ", beyond what a height can hold");
+        v = static_cast<float>(metres);
+    }
+    return heights;
+}
 
 /// Convergence lattice spacing (cells). Gamma varies smoothly (about dLambda * sin(phi)), so
 /// bilinear interpolation between nodes 64 cells apart is accurate to far below 0.001 deg.
@@ -117,7 +211,17 @@ private:
     std::unique_ptr<CrsPair> crs_;
 };
 
-Dem loadDem(const std::string& path) {
+std::optional<double> metresPerUnit(const std::string& unit) {
+    std::string key = trimmed(unit);
+    std::transform(key.begin(), key.end(), key.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const auto& u : kVerticalUnits)
+        if (u.name == key) return u.metres;
+    return std::nullopt;
+}
+
+Dem loadDem(const std::string& path, const HeightOptions& heights) {
+    checkHeightOptions(heights);
     Dem dem;
     dem.band = readRasterBand(path);
     const std::size_t width = dem.band.values.width();
@@ -126,8 +230,10 @@ Dem loadDem(const std::string& path) {
         throw Error("'" + path + "' holds no heights: every cell is nodata");
     dem.crs = describeCrs(dem.band.ref.crsWkt, path);
 
+    dem.heights = heightTransform(dem.band, heights);
+
     Terrain& t = dem.terrain;
-    t.heightsM = dem.band.values;
+    t.heightsM = heightsInMetres(dem.band, dem.heights);
     t.cellWidthM.resize(height);
     t.cellHeightM.resize(height);
     t.rowLatitudeDeg.resize(height);

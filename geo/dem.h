@@ -26,19 +26,54 @@ struct CrsInfo {
 /// Converts grid coordinates of a projected DEM to latitude/longitude (opaque; GDAL inside).
 class LatLonTransform;
 
+/// How to turn a DEM band's values into heights in metres (the DEM's own scale/offset and unit
+/// unless overridden).
+struct HeightOptions {
+    /// Vertical unit to assume instead of the band's own (e.g. "ft"); empty = the band's.
+    std::string zUnit;
+    /// Multiply heights (after scale and offset) by this instead of converting a unit (metres per
+    /// height unit); 0 = not set. Excludes zUnit.
+    double zFactor = 0;
+};
+
+/// What loadDem applied to the band's values: heightM = (value * scale + offset) * toMetres.
+struct HeightTransform {
+    /// GDAL band scale and offset (the offset is in `unit`).
+    double scale = 1;
+    double offset = 0;
+    /// Vertical unit as the band declares it, or as HeightOptions::zUnit overrides it; empty when
+    /// neither names one.
+    std::string unit;
+    /// Metres per unit.
+    double toMetres = 1;
+    /// Where toMetres came from: "band", "zUnit option", "zFactor option", or
+    /// "default (no unit declared: metres)".
+    std::string source;
+};
+
+/// Metres per vertical unit for the units demlight knows (case-insensitive): "" and metres (1),
+/// international feet (0.3048), US survey feet (1200/3937), cm, dm, mm, km; nullopt otherwise.
+std::optional<double> metresPerUnit(const std::string& unit);
+
 struct Dem {
     RasterBand band;
     CrsInfo crs;
-    /// Heights (the band's values) plus per-row cell sizes and convergence.
+    /// Heights in metres (the band's values through `heights`) plus per-row cell sizes and
+    /// convergence.
     Terrain terrain;
+    /// How the band's values became terrain.heightsM.
+    HeightTransform heights;
     /// Set for projected DEMs; shared so Dem stays cheap to copy.
     std::shared_ptr<const LatLonTransform> toLatLon;
 };
 
-/// Opens a DEM: reads band 1, checks the georeferencing, computes per-row metric cell sizes
-/// (GeographicLib on the CRS's ellipsoid for geographic CRSs) and the meridian convergence
-/// lattice for projected CRSs. Throws Error on all bad input listed in DESIGN §6.
-Dem loadDem(const std::string& path);
+/// Opens a DEM (any path GDAL opens, /vsizip/ and other virtual paths included): reads band 1,
+/// turns its values into metres (band scale and offset, then the band's unit or `heights`),
+/// checks the georeferencing, computes per-row metric cell sizes (GeographicLib on the CRS's
+/// ellipsoid for geographic CRSs) and the meridian convergence lattice for projected CRSs.
+/// Nodata is matched on the raw values, and dem.band keeps the raw values and nodata value.
+/// Throws Error on all bad input listed in DESIGN §6 and on invalid `heights`.
+Dem loadDem(const std::string& path, const HeightOptions& heights = {});
 
 /// Latitude and longitude (degrees, on the CRS's own datum) of a cell centre.
 std::pair<double, double> cellLatLon(const Dem& dem, double col, double row);

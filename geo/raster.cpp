@@ -4,6 +4,7 @@
 #include "src/error.h"
 
 #include <cpl_string.h>
+#include <cpl_vsi.h>
 #include <gdal_priv.h>
 #include <gdalwarper.h>
 #include <ogr_spatialref.h>
@@ -30,14 +31,26 @@ std::string withGdalReason(std::string message) {
     return message;
 }
 
+/// GDAL virtual file systems (/vsizip/, /vsigzip/, /vsicurl/, ...): paths std::filesystem cannot see.
+bool isGdalVirtualPath(const std::string& path) { return path.starts_with("/vsi"); }
+
 DatasetPtr openRaster(const std::string& path) {
     detail::ensureGdal();
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error("cannot open '" + path + "': no such file");
-    if (fs::is_directory(path, ec)) throw Error("cannot open '" + path + "': it is a directory");
+    const bool onDisk = fs::exists(path, ec);
+    if (onDisk && fs::is_directory(path, ec)) throw Error("cannot open '" + path + "': it is a directory");
+    // A path std::filesystem does not see may still be one GDAL opens (a virtual file system, a
+    // driver's connection string): GDAL decides, and only its failure is reported.
+    detail::takeGdalError();
     DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-    if (!ds)
+    if (!ds) {
+        VSIStatBufL stat;
+        if (!onDisk && (!isGdalVirtualPath(path) || VSIStatL(path.c_str(), &stat) != 0)) {
+            detail::takeGdalError();
+            throw Error("cannot open '" + path + "': no such file");
+        }
         throw Error(withGdalReason("cannot open '" + path + "' as a raster: GDAL does not recognise it"));
+    }
     if (ds->GetRasterCount() < 1) throw Error("'" + path + "' has no raster bands");
     return ds;
 }
@@ -133,6 +146,10 @@ RasterBand readRasterBand(const std::string& path) {
                        out.values.data(), static_cast<int>(width), static_cast<int>(height),
                        GDT_Float32, 0, 0) != CE_None)
         throw Error(withGdalReason("cannot read the heights of '" + path + "'"));
+
+    out.scale = band->GetScale();
+    out.offset = band->GetOffset();
+    if (const char* unit = band->GetUnitType()) out.unit = unit;
 
     int hasNodata = 0;
     const double nodata = band->GetNoDataValue(&hasNodata);

@@ -21,17 +21,27 @@ struct GeoReference {
 };
 
 /// Band 1 of a raster, as float, with NaN wherever the source held its nodata value (or NaN).
+/// The values are the band's own (raw) values: GDAL's scale, offset and unit are recorded beside
+/// them, not applied, so that nodata stays comparable and loadDem is the one place heights are
+/// converted to metres.
 struct RasterBand {
     Grid<float> values;
-    /// The source's nodata value, if it declared one (kept so outputs can carry it over).
+    /// The source's nodata value, if it declared one (raw, as declared; kept so outputs can carry
+    /// it over).
     std::optional<double> nodata;
+    /// GDAL band scale and offset: a raw value v stands for v * scale + offset (in `unit`).
+    double scale = 1.0;
+    double offset = 0.0;
+    /// GDAL band unit type as declared ("m", "ft", ...); empty when the band declares none.
+    std::string unit;
     GeoReference ref;
     std::string path;
     std::size_t nodataCount = 0;
 };
 
-/// Reads band 1 of any raster GDAL opens. Throws Error for unreadable files, rasters without a
-/// CRS, and rotated or sheared geotransforms.
+/// Reads band 1 of any raster GDAL opens, including GDAL virtual paths (/vsizip/, /vsigzip/,
+/// /vsicurl/, ...). Throws Error for missing or unreadable files, rasters without a CRS, and
+/// rotated or sheared geotransforms.
 RasterBand readRasterBand(const std::string& path);
 
 struct RasterSummary;
