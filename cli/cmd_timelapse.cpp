@@ -88,6 +88,8 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
         }
         if (o.start.empty() || o.end.empty()) throw Error("give --start T and --end T (with --step), or --date D");
         return instantsBetween(parseZonedInstant(o.start, o.tz), parseZonedInstant(o.end, o.tz), step, o.maxFrames);
+    } catch (const FieldError&) {
+        throw;
     } catch (const Error& e) {
         throw Error(std::string("timelapse: ") + e.what());
     }

@@ -57,9 +57,32 @@ void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
 void addDemArgument(CLI::App* cmd, DemOptions& o) {
     cmd->add_option("DEM", o.path, "Input DEM: any raster GDAL opens, /vsizip/ and other virtual paths included")
         ->required();
+    CLI::Option* zUnit = cmd->add_option("--z-unit", o.heights.zUnit,
+                                         "Vertical unit of the heights instead of the band's own (m, ft, US survey "
+                                         "foot, cm, dm, mm, km)");
+    CLI::Option* zFactor = cmd->add_option("--z-factor", o.heights.zFactor,
+                                           "Metres per height unit (after the band's scale and offset), instead of "
+                                           "converting a unit")
+                               ->check(finiteRange(0, kUnbounded, /*lowOpen=*/true));
+    zUnit->excludes(zFactor);
 }
 
-DemSource openDem(const DemOptions& o) { return DemSource::open(o.path); }
+DemSource openDem(const DemOptions& o) {
+    try {
+        return DemSource::open(o.path, o.heights);
+    } catch (const Cancelled&) {
+        throw;
+    } catch (const Error& e) {
+        // The library names HeightOptions fields in its messages; the user typed flags.
+        std::string message = e.what();
+        const std::pair<std::string, std::string> fieldToFlag[] = {{"HeightOptions::zUnit", "--z-unit"},
+                                                                   {"HeightOptions::zFactor", "--z-factor"}};
+        for (const auto& [field, flag] : fieldToFlag)
+            for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + flag.size()))
+                message.replace(at, field.size(), flag);
+        throw Error(message);
+    }
+}
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     SearchRequest& r = o.request;
@@ -113,6 +136,22 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     for (const ProductBand& b : result.bands)
         bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
     writeRaster(out.path, bands, result.ref, w, inputPath);
+}
+
+std::string flagForField(const std::string& field) {
+    // One meaning per option name across commands, so one table for all of them.
+    static const std::map<std::string, std::string> flags = {
+        {"albedo", "--albedo"},           {"albedoRaster", "--albedo-raster"},   {"azimuthsDeg", "--azimuth"},
+        {"cloudShadow", "--cloud-shadow"}, {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"},
+        {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
+        {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
+        {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
+        {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
+        {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
+        {"time", "--time"},               {"toleranceDeg", "--tolerance"},
+    };
+    const auto it = flags.find(field);
+    return it == flags.end() ? field : it->second;
 }
 
 void checkOutputPath(const std::string& outPath, const std::string& inputPath) {

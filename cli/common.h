@@ -24,9 +24,10 @@ struct OutputOptions {
 };
 void addOutputOptions(CLI::App* cmd, OutputOptions& o);
 
-/// The DEM argument and how its heights are read.
+/// The DEM argument and how its heights are read (--z-unit, --z-factor).
 struct DemOptions {
     std::string path;
+    HeightOptions heights;  ///< --z-unit, --z-factor
 };
 void addDemArgument(CLI::App* cmd, DemOptions& o);
 DemSource openDem(const DemOptions& o);
@@ -45,6 +46,10 @@ void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& 
 /// are added to its metadata. Refuses to overwrite `inputPath`.
 void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,
                  const std::string& inputPath, const std::map<std::string, std::string>& extra = {});
+
+/// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
+/// the field itself when no flag sets it.
+std::string flagForField(const std::string& field);
 
 /// Fails early (before any work) if the output cannot be written or would replace the input.
 void checkOutputPath(const std::string& outPath, const std::string& inputPath);

@@ -1,6 +1,7 @@
 // demlight: light real terrain. Thin entry point: subcommands register themselves; every
 // demlight::Error is caught here once and printed as one line.
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "src/error.h"
 
@@ -110,6 +111,9 @@ int main(int argc, char** argv) {
     } catch (const Cancelled&) {
         std::cerr << "demlight: cancelled\n";
         return 130;
+    } catch (const FieldError& e) {
+        std::cerr << "demlight: error: " << cli::flagForField(e.field()) << e.detail() << "\n";
+        return 1;
     } catch (const Error& e) {
         std::cerr << "demlight: error: " << e.what() << "\n";
         return 1;

@@ -7,7 +7,9 @@
 
 namespace demlight {
 
-DemSource DemSource::open(const std::string& path) { return DemSource(loadDem(path)); }
+DemSource DemSource::open(const std::string& path, const HeightOptions& heights) {
+    return DemSource(loadDem(path, heights));
+}
 
 DemSource::DemSource(Dem dem) : dem_(std::make_shared<const Dem>(std::move(dem))) {}
 

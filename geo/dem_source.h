@@ -13,7 +13,7 @@ namespace demlight {
 class DemSource {
 public:
     /// Opens any path GDAL opens (band 1) and reads its heights in metres (loadDem).
-    static DemSource open(const std::string& path);
+    static DemSource open(const std::string& path, const HeightOptions& heights = {});
     /// A DEM already in memory (tests, bindings).
     explicit DemSource(Dem dem);
 

@@ -3,7 +3,7 @@
 // and animated GIFs. Files are written under a temporary name and renamed on success.
 #pragma once
 
-#include "lighting/preview.h"
+#include "src/image.h"
 
 #include <memory>
 #include <string>

@@ -9,6 +9,7 @@
 
 #include "lighting/surface.h"
 #include "src/grid.h"
+#include "src/image.h"
 #include "src/terrain.h"
 
 #include <array>
@@ -68,14 +69,6 @@ private:
     std::array<double, 255> thresholds_{};
 };
 
-/// An 8-bit RGBA picture, row-major, row 0 at the top (north), 4 bytes per pixel.
-struct Image8 {
-    std::size_t width = 0, height = 0;
-    std::vector<std::uint8_t> rgba;
-};
-
-/// Neutral grey given to nodata pixels (alpha 0 where the format has alpha).
-inline constexpr std::uint8_t kNodataGrey = 128;
 
 /// Renders every cell (one pixel per cell). sunVisibility and skyLight have the normals' shape;
 /// albedoRgb is empty (use params.albedo) or three linear grids of that shape. Nodata cells

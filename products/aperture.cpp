@@ -10,7 +10,7 @@ namespace demlight {
 ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
                                const ProgressFn& progress) {
     if (request.directions && *request.directions < 1)
-        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+        throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
     const Terrain& whole = source.dem().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));

@@ -39,8 +39,10 @@ HorizonResult computeHorizons(const Dem& dem, const ScenePlan& plan, const Horiz
     ProgressCounter counter(progress, reference ? "horizon (reference)" : "horizon (sweep)",
                             request.azimuthsDeg.size() * t.heightsM.size());
     std::string azimuthList;
-    for (std::size_t i = 0; i < request.azimuthsDeg.size(); ++i)
-        azimuthList += (i ? "," : std::string()) + formatNumber(wrapAzimuthDeg(request.azimuthsDeg[i]));
+    for (double az : request.azimuthsDeg) {
+        if (!azimuthList.empty()) azimuthList.push_back(',');
+        azimuthList.append(formatNumber(wrapAzimuthDeg(az)));
+    }
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.merge(searchMetadata(t, params.maxDistanceM, params.refraction));
@@ -66,9 +68,9 @@ HorizonResult computeHorizons(const Dem& dem, const ScenePlan& plan, const Horiz
 
 HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, const HorizonRequest& request,
                              const ProgressFn& progress) {
-    if (request.azimuthsDeg.empty()) throw Error("azimuthsDeg: give at least one azimuth");
+    if (request.azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
     for (double az : request.azimuthsDeg)
-        if (!std::isfinite(az)) throw Error("azimuthsDeg: " + formatNumber(az) + " is not a finite number");
+        if (!std::isfinite(az)) throw FieldError("azimuthsDeg", ": " + formatNumber(az) + " is not a finite number");
     const ScenePlan plan = planFor(request.search, source.dem().terrain);
     const std::size_t halo = haloCellsFor(source.dem().terrain, horizonParams(request.search, plan).maxDistanceM);
     return onWindow<HorizonResult>(source, window, halo,

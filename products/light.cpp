@@ -147,15 +147,15 @@ void validateLight(const LightRequest& o) {
                     std::string(o.albedo ? "albedo" : "albedoRaster"));
     if (o.albedo && !o.albedoRaster.empty()) throw Error("give albedo or albedoRaster, not both");
     if (o.albedo && !(*o.albedo >= 0 && *o.albedo <= 1))
-        throw Error("albedo " + formatNumber(*o.albedo) + ": must be in [0, 1]");
+        throw FieldError("albedo", " " + formatNumber(*o.albedo) + ": must be in [0, 1]");
     for (const auto* c : {&o.sunColor, &o.skyColor})
         if (*c)
             for (double v : **c)
                 if (!(v >= 0) || !std::isfinite(v))
-                    throw Error(std::string(c == &o.sunColor ? "sunColor" : "skyColor") + ": " + formatNumber(v) +
+                    throw FieldError(c == &o.sunColor ? "sunColor" : "skyColor", ": " + formatNumber(v) +
                                 " is not a linear radiance >= 0");
     if (o.skyDirections && *o.skyDirections < 1)
-        throw Error("skyDirections " + std::to_string(*o.skyDirections) + ": must be >= 1");
+        throw FieldError("skyDirections", " " + std::to_string(*o.skyDirections) + ": must be >= 1");
 }
 
 }  // namespace

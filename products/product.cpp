@@ -40,12 +40,12 @@ const ProductBand& ProductResult::band(const std::string& name) const {
 
 ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
     if (search.maxDistanceM && !(*search.maxDistanceM > 0))
-        throw Error("maxDistanceM " + formatNumber(*search.maxDistanceM) + ": must be > 0");
+        throw FieldError("maxDistanceM", " " + formatNumber(*search.maxDistanceM) + ": must be > 0");
     if (!(search.refraction >= 0 && search.refraction < 1))
-        throw Error("refraction " + formatNumber(search.refraction) + ": must be in [0, 1)");
+        throw FieldError("refraction", " " + formatNumber(search.refraction) + ": must be in [0, 1)");
     if (!(search.toleranceDeg > 0) || !std::isfinite(search.toleranceDeg))
-        throw Error("toleranceDeg " + formatNumber(search.toleranceDeg) + ": must be a number > 0");
-    if (search.threads < 0) throw Error("threads " + std::to_string(search.threads) + ": must be >= 0");
+        throw FieldError("toleranceDeg", " " + formatNumber(search.toleranceDeg) + ": must be a number > 0");
+    if (search.threads < 0) throw FieldError("threads", " " + std::to_string(search.threads) + ": must be >= 0");
     QualityBudget budget;
     budget.toleranceDeg = search.toleranceDeg;
     budget.lowestElevationDeg = kDefaultLowestElevationDeg;
@@ -150,21 +150,21 @@ ColorEncoding parseColorEncoding(const std::string& name, const std::string& fie
     if (name == "auto") return ColorEncoding::Auto;
     if (name == "srgb") return ColorEncoding::Srgb;
     if (name == "linear") return ColorEncoding::Linear;
-    throw Error(field + " '" + name + "': expected auto, srgb or linear");
+    throw FieldError(field, " '" + name + "': expected auto, srgb or linear");
 }
 
 std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem& dem, const AuxiliarySpec& spec) {
-    const std::string what = spec.field + " " + path;
+    const std::string what = " " + path;
     std::vector<Grid<float>> bands;
     try {
         bands = readRasterResampled(path, dem.band.ref, dem.terrain.width(), dem.terrain.height());
     } catch (const Error& e) {
-        throw Error(what + ": " + e.what());
+        throw FieldError(spec.field, what + ": " + e.what());
     }
-    if (bands.empty()) throw Error(what + ": the raster has no bands");
+    if (bands.empty()) throw FieldError(spec.field, what + ": the raster has no bands");
     if (spec.bands == 3 && spec.greyToRgb && bands.size() == 1) bands = {bands[0], bands[0], bands[0]};
     if (bands.size() < spec.bands)
-        throw Error(what + ": expected " + std::to_string(spec.bands) + " bands (R, G, B), found " +
+        throw FieldError(spec.field, what + ": expected " + std::to_string(spec.bands) + " bands (R, G, B) or one grey band, found " +
                     std::to_string(bands.size()));
     bands.resize(spec.bands);
 
@@ -173,7 +173,7 @@ std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem&
     const float* h = dem.terrain.heightsM.data();
     for (std::size_t k = 0; k < bands[0].size() && !covers; ++k)
         covers = !std::isnan(h[k]) && !std::isnan(bands[0].data()[k]);
-    if (!covers) throw Error(what + ": covers no cell of the DEM (check its extent and CRS against the DEM's)");
+    if (!covers) throw FieldError(spec.field, what + ": covers no cell of the DEM (check its extent and CRS against the DEM's)");
 
     if (spec.color) {
         float maxValue = 0;
@@ -183,7 +183,7 @@ std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem&
         const bool srgb = spec.encoding == ColorEncoding::Srgb || (spec.encoding == ColorEncoding::Auto && maxValue > 1.0f);
         if (srgb) {
             if (maxValue > kMaxByte)
-                throw Error(what + ": holds " + formatNumber(maxValue) +
+                throw FieldError(spec.field, what + ": holds " + formatNumber(maxValue) +
                             "; display-encoded colour must be 0-255 (or 0-1); scale it to 8 bits first, "
                             "e.g. gdal_translate -ot Byte -scale");
             const double scale = maxValue > 1.0f ? 1.0 / kMaxByte : 1.0;
@@ -195,7 +195,7 @@ std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem&
     for (std::size_t b = 0; b < bands.size(); ++b)
         for (float v : bands[b].values())
             if (!std::isnan(v) && !(v >= spec.minValue && v <= spec.maxValue))
-                throw Error(what + ": band " + std::to_string(b + 1) + " holds " + formatNumber(v) + "; expected " +
+                throw FieldError(spec.field, what + ": band " + std::to_string(b + 1) + " holds " + formatNumber(v) + "; expected " +
                             (spec.color ? "linear albedo " : "values ") + formatNumber(spec.minValue) + "-" +
                             formatNumber(spec.maxValue) +
                             (spec.color ? " (an 8-bit picture is decoded with encoding srgb or auto)" : ""));

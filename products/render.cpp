@@ -12,9 +12,9 @@ namespace demlight {
 constexpr double kMaxExposure = 1000;
 
 void validatePicture(const PictureRequest& p) {
-    if (!(p.albedo >= 0 && p.albedo <= 1)) throw Error("albedo " + formatNumber(p.albedo) + ": must be in [0, 1]");
+    if (!(p.albedo >= 0 && p.albedo <= 1)) throw FieldError("albedo", " " + formatNumber(p.albedo) + ": must be in [0, 1]");
     if (!(p.exposure >= 0 && p.exposure <= kMaxExposure))
-        throw Error("exposure " + formatNumber(p.exposure) + ": must be in [0, 1000]");
+        throw FieldError("exposure", " " + formatNumber(p.exposure) + ": must be in [0, 1000]");
 }
 
 std::vector<Grid<float>> loadPictureAlbedo(const Dem& dem, const PictureRequest& p) {

@@ -31,7 +31,7 @@ ProductResult sequenceProduct(const SequenceRequest& request) {
         throw Error("'" + request.fitPath + "' has fewer coefficient bands than its degree needs");
     const double t = unixSeconds(request.time.utc);
     if (t < fit.t0Sec || t > fit.t1Sec)
-        throw Error("time " + formatInstant(request.time.utc, request.time.zone) + " lies outside the fitted span " +
+        throw FieldError("time", " " + formatInstant(request.time.utc, request.time.zone) + " lies outside the fitted span " +
                     item("DEMLIGHT_FIT_T0_UTC") + " .. " + item("DEMLIGHT_FIT_T1_UTC"));
     bands.resize(static_cast<std::size_t>(fit.degree) + 1);
     fit.coefficients = std::move(bands);

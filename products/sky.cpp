@@ -70,9 +70,9 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
     if (request.model == SkyModel::Hemisphere && !request.patches.empty())
         throw Error("patches need the stewart-langer sky model (the hemisphere model has no sky patches)");
     if (!(request.albedo >= 0 && request.albedo <= 1))
-        throw Error("albedo " + formatNumber(request.albedo) + ": must be in [0, 1]");
+        throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
     if (request.directions && (*request.directions < 1))
-        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+        throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
     const Terrain& whole = source.dem().terrain;
     const bool hemi = request.model == SkyModel::Hemisphere;
     const ScenePlan plan = planFor(request.search, whole);

@@ -91,11 +91,11 @@ SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& re
 
 void validateSun(double sunDiameterDeg, const Atmosphere& atmosphere) {
     if (!(sunDiameterDeg >= 0 && sunDiameterDeg <= kMaxSunDiameterDeg))
-        throw Error("sunDiameterDeg " + formatNumber(sunDiameterDeg) + ": must be in [0, 20]");
+        throw FieldError("sunDiameterDeg", " " + formatNumber(sunDiameterDeg) + ": must be in [0, 20]");
     if (!(atmosphere.pressureHpa >= 0 && atmosphere.pressureHpa <= kMaxPressureHpa))
-        throw Error("pressureHpa " + formatNumber(atmosphere.pressureHpa) + ": must be in [0, 5000]");
+        throw FieldError("pressureHpa", " " + formatNumber(atmosphere.pressureHpa) + ": must be in [0, 5000]");
     if (!(atmosphere.temperatureC >= -100 && atmosphere.temperatureC <= 100))
-        throw Error("temperatureC " + formatNumber(atmosphere.temperatureC) + ": must be in [-100, 100]");
+        throw FieldError("temperatureC", " " + formatNumber(atmosphere.temperatureC) + ": must be in [-100, 100]");
 }
 
 SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan) {
@@ -109,7 +109,7 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
                      const ProgressFn& progress) {
     validateSun(request.sunDiameterDeg, request.atmosphere);
     if (request.directions && *request.directions < 1)
-        throw Error("directions " + std::to_string(*request.directions) + ": must be >= 1");
+        throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
     const Dem& whole = source.dem();
     const ScenePlan plan = planFor(request.search, whole.terrain);
     std::size_t halo = 0;

@@ -127,13 +127,13 @@ SunhoursResult computeSunhours(const Dem& dem, const ScenePlan& plan, const Sunh
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
     if (request.lastDay < request.firstDay)
-        throw Error("lastDay " + formatDate(request.lastDay) + " is before firstDay " + formatDate(request.firstDay));
+        throw FieldError("lastDay", " " + formatDate(request.lastDay) + " is before firstDay " + formatDate(request.firstDay));
     if (request.step < kMinStep || request.step > kMaxStep)
-        throw Error("step " + formatNumber(std::chrono::duration<double>(request.step).count()) +
+        throw FieldError("step", " " + formatNumber(std::chrono::duration<double>(request.step).count()) +
                     " s: must be from 6 s to 2 h");
     validateSun(request.sunDiameterDeg, Atmosphere{});
     if (!(request.albedo >= 0 && request.albedo <= 1))
-        throw Error("albedo " + formatNumber(request.albedo) + ": must be in [0, 1]");
+        throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
     const Terrain& whole = source.dem().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     std::size_t halo = 0;

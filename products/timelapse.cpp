@@ -28,12 +28,14 @@ double unixSeconds(UtcInstant t) { return std::chrono::duration<double>(t.time_s
 
 void fillInstants(TimelapseInstants& f, UtcInstant t0, UtcInstant t1, std::chrono::milliseconds step,
                   std::size_t maxFrames) {
-    if (step < std::chrono::seconds(1)) throw Error("step: must be at least 1 s");
+    if (step < std::chrono::seconds(1)) throw FieldError("step", ": must be at least 1 s");
     if (t1 < t0) throw Error("the sequence ends before it starts");
     const auto count = static_cast<std::size_t>((t1 - t0) / step) + 1;
     if (count > maxFrames)
-        throw Error(std::to_string(count) + " frames at a step of " + formatNumber(std::chrono::duration<double>(step).count()) +
-                    " s, more than maxFrames " + std::to_string(maxFrames) + "; use a longer step or raise maxFrames");
+        throw FieldError("maxFrames", " " + std::to_string(maxFrames) + ": the sequence would have " +
+                                          std::to_string(count) + " frames at a step of " +
+                                          formatNumber(std::chrono::duration<double>(step).count()) +
+                                          " s; use a longer step or allow more frames");
     for (UtcInstant t = t0; t <= t1; t += step) f.instants.push_back(t);
 }
 
@@ -155,7 +157,7 @@ std::size_t parseHorizonMode(const std::string& text, const std::string& field) 
             n <= static_cast<long>(kMaxStackDirections))
             return static_cast<std::size_t>(n);
     }
-    throw Error(field + " '" + text + "': expected exact, interpolated or interpolated:N (N in 4..720)");
+    throw FieldError(field, " '" + text + "': expected exact, interpolated or interpolated:N (N in 4..720)");
 }
 
 TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest& request, const TimelapseSink& sink,
@@ -164,7 +166,7 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
     if (instants.empty()) throw Error("frames: the sequence has no instants");
     if (request.stackDirections != 0 &&
         (request.stackDirections < kMinStackDirections || request.stackDirections > kMaxStackDirections))
-        throw Error("stackDirections " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
+        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
     validatePicture(request.picture);
     validateSun(request.sunDiameterDeg, Atmosphere{});
     const Dem& dem = source.dem();

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace demlight {
 
@@ -11,6 +12,21 @@ namespace demlight {
 class Error : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+/// An Error about one field of a request (a product's or a kernel's parameters): what() is
+/// "<field><detail>", e.g. "albedo 2: must be in [0, 1]". Callers that know the field by another
+/// name (the CLI: by its flag) say detail() after their own name for it.
+class FieldError : public Error {
+public:
+    FieldError(std::string field, std::string detail)
+        : Error(field + detail), field_(std::move(field)), detail_(std::move(detail)) {}
+    const std::string& field() const { return field_; }
+    /// The message after the field name, starting with its separator (" 2: must be ...").
+    const std::string& detail() const { return detail_; }
+
+private:
+    std::string field_, detail_;
 };
 
 /// Raised when a progress callback asks to stop.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
@@ -296,8 +297,8 @@ TEST_F(OptionsCli, LightColorRasterBadInputFailsCleanly) {
     const struct {
         std::string args, message;
     } cases[] = {
-        {" --color-raster " + path("two.tif"), "expected 3 bands (R, G, B linear albedo), found 2"},
-        {" --color-raster " + path("bytes.tif"), "expected linear albedo 0-1"},
+        {" --color-raster " + path("two.tif"), "expected 3 bands (R, G, B) or one grey band, found 2"},
+        {" --color-raster " + path("bytes.tif") + " --color-encoding linear", "expected linear albedo 0-1"},
         {" --color-raster " + path("rgb.tif") + " --albedo 0.3", "do not combine it with --albedo"},
         {" --color-raster " + path("rgb.tif") + " --albedo-raster " + path("rgb.tif"),
          "do not combine it with --albedo-raster"},
@@ -311,6 +312,62 @@ TEST_F(OptionsCli, LightColorRasterBadInputFailsCleanly) {
         const auto leftovers = std::distance(fs::directory_iterator(dir_), fs::directory_iterator{});
         EXPECT_EQ(leftovers, 3) << "only the three input rasters stay: " << c.args;
     }
+}
+
+// One --color-raster file for light and render: an 8-bit picture is display-encoded colour in
+// both (--color-encoding auto), the same as its linear decoding given as floats.
+TEST_F(OptionsCli, LightAndRenderTakeTheSameColourRaster) {
+    const std::vector<float> bytes = {200.0f, 120.0f, 60.0f};
+    std::vector<float> linear;
+    for (float b : bytes) linear.push_back(static_cast<float>(std::pow(b / 255.0, 2.2)));
+    writeConstantRaster(path("photo.tif"), kHelens, bytes);
+    writeConstantRaster(path("linear.tif"), kHelens, linear);
+    const std::string base = "-q light " + kHelens + " " + kLightArgs + " --sky-directions 4";
+    run(base + " --color-raster " + path("photo.tif") + " -o " + path("photo_light.tif"));
+    run(base + " --color-raster " + path("photo.tif") + " --color-encoding srgb -o " + path("srgb_light.tif"));
+    run(base + " --color-raster " + path("linear.tif") + " -o " + path("linear_light.tif"));
+    const auto photo = readRasterBands(path("photo_light.tif"));
+    const auto srgb = readRasterBands(path("srgb_light.tif"));
+    const auto lin = readRasterBands(path("linear_light.tif"));
+    ASSERT_EQ(photo.size(), 3u);
+    for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_EQ(cellsDiffering(photo[c], srgb[c], 0.0f), 0u) << c;
+        EXPECT_EQ(cellsDiffering(photo[c], lin[c], 1e-6f), 0u) << c;
+    }
+    run("-q render " + kHelens + " " + kLightArgs + " --sky-directions 4 --color-raster " + path("photo.tif") +
+        " -o " + path("photo.png"));
+    EXPECT_TRUE(fs::exists(path("photo.png")));
+}
+
+// --step takes durations in sunhours as in timelapse; a bare number keeps meaning minutes.
+TEST_F(OptionsCli, SunhoursStepTakesDurations) {
+    const std::string base = "-q sunhours " + kHelens + " --date 2024-06-21 --tz America/Los_Angeles --threads 2 --sky-directions 4";
+    run(base + " --step 1h -o " + path("h.tif"));
+    run(base + " --step 60 -o " + path("m.tif"));
+    const auto a = readRasterBands(path("h.tif")), b = readRasterBands(path("m.tif"));
+    ASSERT_EQ(a.size(), 5u);
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(cellsDiffering(a[i], b[i], 0.0f), 0u) << i;
+    EXPECT_EQ(inspectRaster(path("h.tif")).metadata.at("DEMLIGHT_STEP_MIN"), "60");
+    run(base + " --step 10m -o " + path("ten.tif"));
+    EXPECT_EQ(inspectRaster(path("ten.tif")).metadata.at("DEMLIGHT_INSTANTS"), "145");  // 24 h / 10 min + 1
+    const auto bad = runDemlight(base + " --step 10x -o " + path("bad.tif"));
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find("--step '10x'"), std::string::npos) << bad.err;
+}
+
+// A DEM inside a zip archive, read through GDAL's /vsizip/, lights as the file itself.
+TEST_F(OptionsCli, VirtualPathsWork) {
+    const std::string zip = path("dem.zip");
+    ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && cp '" + kHelens + "' helens.dem && python3 -m zipfile -c dem.zip helens.dem").c_str()), 0);
+    const std::string args = " --time 2024-06-21T14:30Z --threads 2 -o ";
+    run("-q sun /vsizip/" + zip + "/helens.dem" + args + path("zip.tif"));
+    run("-q sun " + kHelens + args + path("file.tif"));
+    const auto a = readRasterBands(path("zip.tif")), b = readRasterBands(path("file.tif"));
+    ASSERT_EQ(a.size(), 2u);
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(cellsDiffering(a[i], b[i], 0.0f), 0u) << i;
+    const auto missing = runDemlight("-q sun /vsizip/" + zip + "/nothing.dem" + args + path("no.tif"));
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.err.find("nothing.dem"), std::string::npos) << missing.err;
 }
 
 }  // namespace

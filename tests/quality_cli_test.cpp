@@ -71,9 +71,10 @@ TEST(QualityCli, TimelapseFramesHoldTheSunAndSkyOfTheSamePlan) {
         RasterSummary summary;
         const std::vector<Grid<float>> f = readRasterBands(frame.string(), &summary);
         const std::vector<Grid<float>> s = readRasterBands(sun), k = readRasterBands(sky);
-        ASSERT_EQ(f.size(), 2u);  // sun_irradiance, sun_visibility
-        EXPECT_TRUE(sameGrid(f[0], s[1])) << "sun_irradiance differs from `sun`";
-        EXPECT_TRUE(sameGrid(f[1], s[0])) << "sun_visibility differs from `sun`";
+        ASSERT_EQ(f.size(), 2u);  // sun_visibility, sun_irradiance: the order of `sun`
+        EXPECT_EQ(summary.descriptions, (std::vector<std::string>{"sun_visibility", "sun_irradiance"}));
+        EXPECT_TRUE(sameGrid(f[0], s[0])) << "sun_visibility differs from `sun`";
+        EXPECT_TRUE(sameGrid(f[1], s[1])) << "sun_irradiance differs from `sun`";
         const std::vector<Grid<float>> frameSky = readRasterBands((frame.parent_path() / "sky_k.tif").string());
         ASSERT_EQ(frameSky.size(), 1u);  // sky_k, once for all frames
         EXPECT_TRUE(sameGrid(frameSky[0], k[2])) << "sky_k differs from `sky`'s sky_K";

@@ -246,12 +246,14 @@ TEST(TimelapseCli, FramesMatchDemlightSun) {
     const auto frame = demlight::readRasterResampled((d / "out" / "frame_000.tif").string(), ref.ref,
                                                      kDemWidth, kDemHeight);
     const auto sun = demlight::readRasterResampled((d / "sun.tif").string(), ref.ref, kDemWidth, kDemHeight);
-    ASSERT_EQ(frame.size(), 2u);  // sun_irradiance, sun_visibility (sky_k.tif once)
+    ASSERT_EQ(frame.size(), 2u);  // sun_visibility, sun_irradiance as `sun` (sky_k.tif once)
     ASSERT_EQ(sun.size(), 2u);
+    EXPECT_EQ(demlight::inspectRaster((d / "out" / "frame_000.tif").string()).descriptions,
+              (std::vector<std::string>{"sun_visibility", "sun_irradiance"}));
     std::size_t compared = 0;
     for (std::size_t k = 0; k < frame[0].size(); ++k) {
-        const float fi = frame[0].data()[k], si = sun[1].data()[k];
-        const float fv = frame[1].data()[k], sv = sun[0].data()[k];
+        const float fi = frame[1].data()[k], si = sun[1].data()[k];
+        const float fv = frame[0].data()[k], sv = sun[0].data()[k];
         if (std::isnan(si) || std::isnan(fi)) {
             EXPECT_EQ(std::isnan(si), std::isnan(fi)) << k;
             continue;

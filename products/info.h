@@ -1,0 +1,37 @@
+// What demlight sees in a DEM before lighting it: size, CRS, extent, metric cell sizes, heights
+// as read (scale, offset, unit), nodata, convergence, and the longest shadow of a low sun.
+#pragma once
+
+#include "geo/dem.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace demlight {
+
+/// Sun elevation of DemInfo::longestShadowM (degrees).
+inline constexpr double kInfoLowSunDeg = 5.0;
+
+struct DemInfo {
+    /// One row's geometry (geographic DEMs: south, centre and north rows differ).
+    struct Row {
+        const char* name = "";  ///< "south", "centre", "north"
+        std::size_t row = 0;
+        double latitudeDeg = 0, cellWidthM = 0, cellHeightM = 0;
+    };
+    std::size_t width = 0, height = 0;
+    double latMinDeg = 90, latMaxDeg = -90, lonMinDeg = 180, lonMaxDeg = -180;  ///< along the outline
+    std::array<Row, 3> rows;
+    double elevationMinM = 0, elevationMaxM = 0, reliefM = 0;
+    double nodataFraction = 0;
+    /// Smallest and largest meridian convergence (degrees); projected DEMs only.
+    std::optional<std::pair<double, double>> convergenceDeg;
+    double longestShadowM = 0;  ///< relief / tan(kInfoLowSunDeg)
+};
+
+/// Describes a DEM (latitude/longitude extent from points along its outline: a projected grid's
+/// edges are curves in latitude/longitude).
+DemInfo describeDem(const Dem& dem);
+
+}  // namespace demlight
