@@ -26,7 +26,7 @@ struct LightOptions {
 
 LightRequest lightRequest(const LightOptions& o) {
     LightRequest r;
-    r.time = parseZonedInstant(o.time, o.tz);
+    r.time = parseTimeOptions(o.time, o.tz);
     r.model = parseSunModel(o.model);
     r.skyModel = parseSkyModel(o.skyModel);
     if (!o.sunColor.empty()) r.sunColor = parseColor(o.sunColor, "--sun-color");

@@ -22,7 +22,7 @@ struct RenderOptions {
 
 void runRender(const RenderOptions& o, const CliContext& ctx) {
     RenderRequest request;
-    request.time = parseZonedInstant(o.time, o.tz);
+    request.time = parseTimeOptions(o.time, o.tz);
     request.picture = pictureRequest(o.picture);
     request.skyDirections = o.skyDirections;
     request.sunDiameterDeg = o.sunDiameterDeg;

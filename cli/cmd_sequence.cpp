@@ -15,7 +15,7 @@ struct SequenceOptions {
 void runSequence(const SequenceOptions& o, const CliContext& ctx) {
     SequenceRequest request;
     request.fitPath = o.fitPath;
-    request.time = parseZonedInstant(o.time, o.tz);
+    request.time = parseTimeOptions(o.time, o.tz);
     checkOutputPath(o.out.path, o.fitPath);
     const ProductResult result = sequenceProduct(request);
     writeResult(result, o.out, ctx, o.fitPath);

@@ -22,7 +22,7 @@ struct SunOptions {
 
 void runSun(const SunOptions& o, const CliContext& ctx) {
     SunRequest request;
-    request.time = parseZonedInstant(o.time, o.tz);
+    request.time = parseTimeOptions(o.time, o.tz);
     request.model = parseSunModel(o.model);
     request.sunDiameterDeg = o.sunDiameterDeg;
     request.atmosphere = o.atmosphere;

@@ -87,7 +87,7 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
             return instantsOfDay(dem, parseDate(o.date), TimeZoneSpec::fromName(o.tz), step, o.maxFrames);
         }
         if (o.start.empty() || o.end.empty()) throw Error("give --start T and --end T (with --step), or --date D");
-        return instantsBetween(parseZonedInstant(o.start, o.tz), parseZonedInstant(o.end, o.tz), step, o.maxFrames);
+        return instantsBetween(parseTimeOptions(o.start, o.tz), parseTimeOptions(o.end, o.tz), step, o.maxFrames);
     } catch (const FieldError&) {
         throw;
     } catch (const Error& e) {

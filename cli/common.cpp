@@ -145,6 +145,7 @@ std::string flagForField(const std::string& field) {
         {"cloudShadow", "--cloud-shadow"}, {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"},
         {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
         {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
+        {"patches", "--patches"},         {"quality", "--quality"},
         {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
         {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
         {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
@@ -208,6 +209,18 @@ void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encodi
                     "2.2), linear (albedo 0-1), or auto (srgb when any value exceeds 1, else linear)")
         ->check(CLI::IsMember({"auto", "srgb", "linear"}))
         ->capture_default_str();
+}
+
+ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz) {
+    try {
+        return parseZonedInstant(time, tz);
+    } catch (const Error& e) {
+        std::string m = e.what();
+        for (const auto& [from, to] : {std::pair<std::string, std::string>{"or give a time zone", "or give --tz ZONE"},
+                                       {"drop the offset or the zone", "drop the offset or the --tz"}})
+            if (const auto at = m.find(from); at != std::string::npos) m.replace(at, from.size(), to);
+        throw Error(m);
+    }
 }
 
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {

@@ -4,6 +4,7 @@
 
 #include "cli/commands.h"
 #include "geo/dem_source.h"
+#include "geo/time.h"
 #include "geo/raster.h"
 #include "products/product.h"
 #include "products/render.h"
@@ -69,6 +70,8 @@ void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encodi
 /// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1); 0 = no atmospheric refraction.
 inline constexpr double kMaxPressureHpa = 5000;
 
+/// --time with --tz: parseZonedInstant, its messages naming the flags.
+ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
 /// --sun-diameter (degrees).

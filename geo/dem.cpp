@@ -237,13 +237,10 @@ Dem loadDem(const std::string& path, const HeightOptions& heights) {
     t.cellWidthM.resize(height);
     t.cellHeightM.resize(height);
     t.rowLatitudeDeg.resize(height);
-    t.colLongitudeDeg.resize(width);
     const auto& gt = dem.band.ref.geoTransform;
 
     if (dem.crs.geographic) {
         geographicCellSizes(dem.crs, dem.band.ref, height, t);
-        for (std::size_t c = 0; c < width; ++c)
-            t.colLongitudeDeg[c] = gt[0] + (static_cast<double>(c) + 0.5) * gt[1];
         return dem;
     }
 
@@ -261,11 +258,8 @@ Dem loadDem(const std::string& path, const HeightOptions& heights) {
         return std::pair(lat, lon);
     };
     const double midCol = 0.5 * static_cast<double>(width);
-    const double midRow = 0.5 * static_cast<double>(height);
     for (std::size_t r = 0; r < height; ++r)
         t.rowLatitudeDeg[r] = toLatLon(midCol, static_cast<double>(r) + 0.5).first;
-    for (std::size_t c = 0; c < width; ++c)
-        t.colLongitudeDeg[c] = toLatLon(static_cast<double>(c) + 0.5, midRow).second;
 
     // Meridian convergence on a coarse lattice: the direction of true north in grid
     // coordinates, found by stepping a little north in latitude and projecting back.

@@ -69,7 +69,7 @@ void writeImage(const std::string& path, const Image8& image) {
         // PNG through libdeflate (geo/png_writer.h): ~3x faster than libpng for time-lapse frames.
         const fs::path tmp = tempPathFor(path);
         try {
-            writePngRgba(tmp.string(), image.rgba, image.width, image.height);
+            writePngRgba(tmp.string(), image.rgba, image.width, image.height, image.text);
         } catch (const Error& e) {
             std::error_code ec;
             fs::remove(tmp, ec);

@@ -62,7 +62,12 @@ private:
 }  // namespace
 
 void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
-                  std::size_t height) {
+                  std::size_t height, const std::vector<std::pair<std::string, std::string>>& text) {
+    constexpr std::size_t kMaxKeyword = 79;  // PNG 1.2, 11.3.4.1
+    for (const auto& [key, value] : text)
+        if (key.empty() || key.size() > kMaxKeyword || key.find('\0') != std::string::npos ||
+            value.find('\0') != std::string::npos)
+            throw Error(path + ": invalid PNG text keyword '" + key + "'");
     constexpr std::size_t kMaxSide = std::numeric_limits<std::int32_t>::max();
     if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide || rgba.size() != width * height * 4)
         throw Error(path + ": invalid PNG image size " + std::to_string(width) + " x " + std::to_string(height));
@@ -96,6 +101,12 @@ void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, s
     ihdr[11] = 0;  // filter method 0
     ihdr[12] = 0;  // no interlace
     out.chunk("IHDR", ihdr, sizeof ihdr);
+    for (const auto& [key, value] : text) {
+        std::vector<std::uint8_t> t(key.begin(), key.end());
+        t.push_back(0);  // keyword separator
+        t.insert(t.end(), value.begin(), value.end());
+        out.chunk("tEXt", t.data(), t.size());
+    }
     for (std::size_t at = 0; at < zsize; at += kIdatChunkBytes)
         out.chunk("IDAT", zdata.data() + at, std::min(kIdatChunkBytes, zsize - at));
     out.chunk("IEND", nullptr, 0);

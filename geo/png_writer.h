@@ -9,12 +9,15 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace demlight {
 
 /// Writes `rgba` (width * height * 4 bytes, rows top to bottom, straight alpha) to `path` as an
-/// 8-bit RGBA PNG. Throws Error when the file cannot be written or the size is invalid.
+/// 8-bit RGBA PNG, with `text` as tEXt chunks (keyword 1-79 printable Latin-1 characters, text
+/// without NUL). Throws Error when the file cannot be written, the size or a keyword is invalid.
 void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
-                  std::size_t height);
+                  std::size_t height, const std::vector<std::pair<std::string, std::string>>& text = {});
 
 }  // namespace demlight

@@ -456,7 +456,7 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
     if (tzName.empty()) {
         if (!f.offset)
             throw Error("time '" + text +
-                        "' has no zone: add an offset like +02:00 or Z, or give --tz ZONE");
+                        "' has no zone: add an offset like +02:00 or Z, or give a time zone (an IANA name such as Europe/Zurich)");
         return {toSys(local, *f.offset), TimeZoneSpec::fixedOffset(*f.offset)};
     }
 
@@ -469,7 +469,7 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
         if (zoneOffset != *f.offset)
             throw Error("time '" + text + "' has offset " + offsetText(*f.offset) + " but " +
                         tzName + " is at " + offsetText(zoneOffset) +
-                        " then: drop the offset or the --tz, or make them agree");
+                        " then: drop the offset or the zone, or make them agree");
         return {t, spec};
     }
 

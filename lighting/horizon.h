@@ -85,7 +85,20 @@ struct HorizonMap {
     Grid<std::uint8_t> truncated;
 };
 
-/// Default search distance (metres): relief / tan(2°), capped by the DEM diagonal.
+/// The one rule for a search distance from the terrain: every occluder seen above elevationDeg
+/// lies within relief / tan(elevationDeg) (byReliefM); when that is kWholeDemShareOfDiagonal of
+/// the DEM diagonal or more the whole DEM is searched (a range limit that long saves no sweep
+/// work, and the whole DEM is exact); and at least the smallest cell side, so that flat DEMs
+/// still see their neighbours. A DEM without valid heights has relief 0.
+struct ReliefSearch {
+    double reliefM = 0;    ///< highest minus lowest valid height (metres)
+    double byReliefM = 0;  ///< relief / tan(elevation) (metres)
+    bool wholeDem = false;
+    double distanceM = 0;  ///< the search distance (metres)
+};
+ReliefSearch reliefSearch(const Terrain& terrain, double elevationDeg);
+
+/// Default search distance (metres): reliefSearch at kDefaultLowestElevationDeg (2°).
 /// Terrain farther than relief/tan(2°) can only be seen below 2° elevation (curvature lowers it
 /// further), and a sun that low contributes little and is rarely of interest; below that the
 /// horizon saturates. At least one cell size so that flat DEMs still see their neighbours.

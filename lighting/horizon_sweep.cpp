@@ -698,20 +698,24 @@ void validateHorizonParams(const Terrain& terrain, const HorizonParams& p) {
     }
 }
 
-double defaultMaxDistanceM(const Terrain& terrain) {
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (float h : terrain.heightsM.values()) {
-        if (std::isnan(h)) continue;
-        lo = std::min(lo, h);
-        hi = std::max(hi, h);
-    }
-    if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
+ReliefSearch reliefSearch(const Terrain& terrain, double elevationDeg) {
+    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    ReliefSearch s;
+    s.reliefM = lo <= hi ? static_cast<double>(hi - lo) : 0.0;  // no valid height: nothing occludes
+    s.byReliefM = s.reliefM / std::tan(elevationDeg * kDegToRad);
+    const double diagonal = diagonalM(terrain);
+    s.wholeDem = s.byReliefM >= kWholeDemShareOfDiagonal * diagonal;
     double minCellM = std::numeric_limits<double>::infinity();
     for (std::size_t r = 0; r < terrain.height(); ++r)
         minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
-    const double reliefM = static_cast<double>(hi) - static_cast<double>(lo);
-    const double byRelief = reliefM / std::tan(kDefaultLowestElevationDeg * kDegToRad);
-    return std::max(minCellM, std::min(byRelief, diagonalM(terrain)));
+    s.distanceM = std::max(minCellM, s.wholeDem ? diagonal : s.byReliefM);
+    return s;
+}
+
+double defaultMaxDistanceM(const Terrain& terrain) {
+    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
+    return reliefSearch(terrain, kDefaultLowestElevationDeg).distanceM;
 }
 
 double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params) {

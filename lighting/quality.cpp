@@ -104,7 +104,7 @@ double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM) {
 Quality parseQuality(std::string_view name) {
     if (name == "auto") return Quality::Auto;
     if (name == "full") return Quality::Full;
-    throw Error("--quality must be auto or full, got '" + std::string(name) + "'");
+    throw FieldError("quality", " must be auto or full, got '" + std::string(name) + "'");
 }
 
 std::string_view qualityName(Quality q) { return q == Quality::Auto ? "auto" : "full"; }
@@ -128,7 +128,7 @@ void applyUserDistance(const Terrain& terrain, const QualityBudget& budget, Scen
     plan.maxDistanceM = budget.maxDistanceM;
     plan.userDistance = true;
     std::ostringstream why;
-    why << "max_distance_m=" << budget.maxDistanceM << " (--max-distance)";
+    why << "max_distance_m=" << budget.maxDistanceM << " (given)";
     plan.reasons[0] = why.str();
     plan.expectedError.aboveElevationDeg =
         std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, budget.maxDistanceM));
@@ -137,7 +137,8 @@ void applyUserDistance(const Terrain& terrain, const QualityBudget& budget, Scen
 }  // namespace
 
 ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget& budget) {
-    if (!(budget.toleranceDeg > 0)) throw Error("--tolerance must be a positive number of degrees");
+    if (!(budget.toleranceDeg > 0))
+        throw FieldError("toleranceDeg", " " + describeNumber(budget.toleranceDeg) + ": must be a positive number of degrees");
     if (!(budget.lowestElevationDeg > 0 && budget.lowestElevationDeg < 90))
         throw Error("the lowest relevant elevation must be in (0, 90) degrees");
     ScenePlan plan;
@@ -164,13 +165,10 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
         return plan;
     }
 
-    const auto [lo, hi] = heightRangeM(terrain.heightsM);
-    const double relief = std::isfinite(lo) ? static_cast<double>(hi - lo) : 0.0;
-    const double byRelief = relief / std::tan(budget.lowestElevationDeg * kDegToRad);
-    // A range limit of half the DEM or more saves no sweep work (lines walk the whole DEM
-    // anyway) and costs the range-limit pass: then search the whole DEM, which is also exact.
-    const bool wholeDem = byRelief >= kWholeDemShareOfDiagonal * diagonal;
-    plan.maxDistanceM = budget.maxDistanceM > 0 ? budget.maxDistanceM : std::max(minCell, wholeDem ? diagonal : byRelief);
+    const ReliefSearch search = reliefSearch(terrain, budget.lowestElevationDeg);
+    const double relief = search.reliefM, byRelief = search.byReliefM;
+    const bool wholeDem = search.wholeDem;
+    plan.maxDistanceM = budget.maxDistanceM > 0 ? budget.maxDistanceM : search.distanceM;
     const double curvatureDeg = plan.maxDistanceM / (2 * rEff) * kRadToDeg;
     plan.curvature = curvatureDeg >= kCurvatureShareOfTolerance * budget.toleranceDeg;
     plan.directionToleranceDeg = 0;  // the sweep's automatic rule ...
@@ -197,9 +195,8 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     "sky and aperture integrals: at least 1/16 of their sector width, over the whole DEM "
                     "unless a range limit saves sweep work)",
                     describe("sky_directions", plan.skyDirections, "measured sky error budget"),
-                    "sky_scan_lines=nearest (sky and aperture integrals: one scan line per cell, "
-                    "16 % fewer instructions; sky_K MAE 0.0013 vs 0.0010 with two lines, within the "
-                    "0.003 budget, tests/sky_realdem_test.cpp)",
+                    "sky_scan_lines=nearest (sky and aperture integrals: one scan line per cell; their "
+                    "error stays within the sky error budget)",
                     describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), lattice.str())};
     plan.expectedError = sweepExpectedError(terrain, budget.lowestElevationDeg);
     if (budget.toleranceDeg > kDefaultToleranceDeg) {
@@ -208,7 +205,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
         plan.expectedError.medianDeg += budget.toleranceDeg;
         plan.expectedError.p99Deg += budget.toleranceDeg;
         std::ostringstream src;
-        src << "; plus --tolerance " << budget.toleranceDeg << ", which auto may add to full's error";
+        src << "; plus the tolerance " << budget.toleranceDeg << " deg, which auto may add to full's error";
         plan.expectedError.source += src.str();
     }
     applyUserDistance(terrain, budget, plan);

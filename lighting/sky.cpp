@@ -203,7 +203,7 @@ double parseNumber(const std::string& token, std::string_view what) {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
-        throw Error("--patches: '" + token + "' is not a number (expected " + std::string(what) +
+        throw FieldError("patches", ": '" + token + "' is not a number (expected " + std::string(what) +
                     ")");
     return value;
 }
@@ -293,41 +293,41 @@ SkyPatches parseSkyPatches(std::string_view specIn) {
             key = token.substr(0, colon);
             token = token.substr(colon + 1);
             if (key == "sectors") {
-                if (sectors != 0) throw Error("--patches: 'sectors' given twice");
+                if (sectors != 0) throw FieldError("patches", ": 'sectors' given twice");
                 const double n = parseNumber(token, "a whole number of sectors 1..360");
                 if (n != std::floor(n) || n < 1 || n > 360)
-                    throw Error("--patches: sectors:" + token +
+                    throw FieldError("patches", ": sectors:" + token +
                                 " is not a whole number of sectors in 1..360");
                 sectors = static_cast<int>(n);
                 continue;
             }
             if (key == "bands") {
-                if (!bands.empty()) throw Error("--patches: 'bands' given twice");
+                if (!bands.empty()) throw FieldError("patches", ": 'bands' given twice");
             } else {
-                throw Error("--patches: unknown key '" + key +
+                throw FieldError("patches", ": unknown key '" + key +
                             "' (expected 'sky', 'sectors:N', 'bands:E0,...,90' or both "
                             "'sectors:N,bands:E0,...,90')");
             }
         }
         if (key != "bands")
-            throw Error("--patches: '" + token +
+            throw FieldError("patches", ": '" + token +
                         "' is not part of a list (expected 'sectors:N' or 'bands:E0,...,90')");
         bands.push_back(parseNumber(token, "an elevation band edge in degrees"));
     }
     if (!any || (sectors == 0 && bands.empty()))
-        throw Error("--patches: empty spec (expected 'sky', 'sectors:N', 'bands:E0,...,90' or "
+        throw FieldError("patches", ": empty spec (expected 'sky', 'sectors:N', 'bands:E0,...,90' or "
                     "'sectors:N,bands:E0,...,90')");
     if (!bands.empty()) {
         if (bands.size() < 2)
-            throw Error("--patches: bands need at least two edges, e.g. bands:0,90");
+            throw FieldError("patches", ": bands need at least two edges, e.g. bands:0,90");
         for (std::size_t i = 1; i < bands.size(); ++i)
             if (!(bands[i] > bands[i - 1]))
-                throw Error("--patches: band edges must increase strictly (got " +
+                throw FieldError("patches", ": band edges must increase strictly (got " +
                             formatDeg(bands[i - 1]) + " then " + formatDeg(bands[i]) + ")");
         if (bands.front() < -90.0 || bands.front() >= 90.0)
-            throw Error("--patches: the first band edge must be in [-90, 90) degrees");
+            throw FieldError("patches", ": the first band edge must be in [-90, 90) degrees");
         if (bands.back() != 90.0)
-            throw Error("--patches: the last band edge must be 90 (the zenith), got " +
+            throw FieldError("patches", ": the last band edge must be 90 (the zenith), got " +
                         formatDeg(bands.back()));
     } else {
         bands = {-90.0, 90.0};

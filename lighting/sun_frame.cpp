@@ -123,12 +123,7 @@ void shadeSunRow(const float* horizonDeg, const float* east, const float* north,
 }  // namespace detail
 
 double sunSearchDistanceM(const Terrain& t, double lowestSunElevationDeg, double sunDiameterDeg) {
-    const auto [lo, hi] = heightRangeM(t.heightsM);
-    const double angle =
-        std::max(lowestSunElevationDeg - sunDiameterDeg / 2, kLowestShadowElevationDeg);
-    const double byRelief = static_cast<double>(hi - lo) / std::tan(angle * kDegToRad);
-    const double diagonal = diagonalM(t);
-    return std::max(t.cellHeightM.front(), byRelief >= kWholeDemShareOfDiagonal * diagonal ? diagonal : byRelief);
+    return reliefSearch(t, std::max(lowestSunElevationDeg - sunDiameterDeg / 2, kLowestShadowElevationDeg)).distanceM;
 }
 
 const char* sunSweepStrategyName(SunSweepStrategy s) {

@@ -238,6 +238,11 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
             out.preview = renderPreview(normals, frame.light.visibility, sky.skyK, albedo, field.centreAzimuthDeg,
                                         field.centreElevationDeg, pp, request.search.threads);
             if (request.picture.pixels == PixelGeometry::Ground) out.preview = toGroundPixels(out.preview, t);
+            out.preview.text = {{"Creation Time", out.localTime},
+                                {"Comment", "demlight time-lapse frame " + std::to_string(i) + ", " + out.localTime +
+                                                " (UTC " + formatInstant(when, std::string()) + "), sun at the DEM centre: azimuth " +
+                                                formatNumber(field.centreAzimuthDeg) + " deg, elevation " +
+                                                formatNumber(field.centreElevationDeg) + " deg"}};
         }
         if (fitter) fitter->addFrame(i, frame.light.irradiance);
         if (request.lightmaps) {

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgdal-dev gdal-bin libgeographiclib-dev libopenimageio-dev openimageio-tools libglm-dev
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
-  nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox
+  nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox python3
 )
 
 missing=()

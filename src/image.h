@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace demlight {
@@ -11,6 +13,8 @@ namespace demlight {
 struct Image8 {
     std::size_t width = 0, height = 0;
     std::vector<std::uint8_t> rgba;
+    /// Text the picture carries where its format can (PNG tEXt chunks): keyword, text.
+    std::vector<std::pair<std::string, std::string>> text;
 };
 
 /// Neutral grey given to nodata pixels (alpha 0 where the format has alpha).

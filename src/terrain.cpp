@@ -76,7 +76,6 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
     out.cellWidthM = slice(t.cellWidthM, row0, h);
     out.cellHeightM = slice(t.cellHeightM, row0, h);
     out.rowLatitudeDeg = slice(t.rowLatitudeDeg, row0, h);
-    out.colLongitudeDeg = slice(t.colLongitudeDeg, col0, w);
     if (!t.convergence.empty()) {
         constexpr std::size_t kStep = 16;
         out.convergence.stepCells = kStep;

@@ -40,8 +40,6 @@ struct Terrain {
     std::vector<double> cellHeightM;
     /// Latitude of each row's centre (degrees), used for sun-position regions. May be empty.
     std::vector<double> rowLatitudeDeg;
-    /// Longitude of each column's centre at the DEM's middle row (degrees). May be empty.
-    std::vector<double> colLongitudeDeg;
     /// Grid vs true north (projected CRSs). Empty for geographic CRSs.
     ConvergenceField convergence;
 
@@ -58,7 +56,7 @@ double diagonalM(const Terrain& terrain);
 std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
 
 /// The window [col0, col0 + w) x [row0, row0 + h) of a terrain as a terrain of its own: heights,
-/// per-row cell sizes and latitudes, column longitudes, and the convergence lattice re-sampled
+/// per-row cell sizes and latitudes, and the convergence lattice re-sampled
 /// every 16 cells of the window.
 Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h);
 

@@ -4,6 +4,9 @@
 // applied. The files are made with GDAL's own tools (tests do not link GDAL), skipped when absent.
 #include "cli_runner.h"
 #include "geo/dem.h"
+#include "geo/dem_source.h"
+#include "geo/time.h"
+#include "products/sun.h"
 #include "geo/raster.h"
 #include "src/terrain.h"
 #include "src/error.h"
@@ -173,6 +176,37 @@ TEST(DemHeights, FeetWithUnitFtGiveTheMetres) {
         if (!std::isnan(a.data()[i])) worstM = std::max(worstM, std::abs(a.data()[i] - b.data()[i]));
     }
     EXPECT_LE(worstM, kFeetRoundTripM);
+}
+
+// The lightmaps, not only the heights: decimetres with a scale and feet with a unit light the
+// same terrain as metres (decimetres bit for bit; feet within the rounding of the feet file).
+TEST(DemHeights, ScaledAndFeetDemsGiveTheLightmapsOfMetres) {
+    REQUIRE_HEIGHT_FILES();
+    SunRequest request;
+    request.time = parseZonedInstant("2024-06-21T06:30:00Z", "");  // a low morning sun: long shadows
+    request.search.threads = 2;
+    const auto lightmaps = [&](const std::string& path) {
+        const DemSource dem = DemSource::open(path);
+        return sunProduct(dem, dem.whole(), request);
+    };
+    const SunResult m = lightmaps(files().metres), dm = lightmaps(files().decimetres), ft = lightmaps(files().feet);
+    for (const char* band : {"sun_visibility", "sun_irradiance"}) {
+        EXPECT_TRUE(sameBits(dm.band(band).values, m.band(band).values)) << band;
+        const Grid<float>& a = m.band(band).values;
+        const Grid<float>& b = ft.band(band).values;
+        double sum = 0;
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            ASSERT_EQ(std::isnan(a.data()[i]), std::isnan(b.data()[i])) << band << " cell " << i;
+            if (!std::isnan(a.data()[i])) sum += std::abs(a.data()[i] - b.data()[i]), ++n;
+        }
+        EXPECT_LT(sum / static_cast<double>(n), 1e-4) << band;
+    }
+    // The raw decimetres read as metres would be a different terrain: the test can tell.
+    Dem raw = loadDem(files().decimetres, zFactorOption(10.0));
+    const DemSource tall(std::move(raw));
+    const SunResult wrong = sunProduct(tall, tall.whole(), request);
+    EXPECT_FALSE(sameBits(wrong.band("sun_visibility").values, m.band("sun_visibility").values));
 }
 
 TEST(DemHeights, ZUnitOverridesTheBandUnit) {

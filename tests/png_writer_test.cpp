@@ -71,7 +71,7 @@ TEST(PngWriter, EveryChunkCarriesItsCrc) {
     const std::string path = (dir / "crc.png").string();
     std::vector<std::uint8_t> rgba(37 * 11 * 4);
     for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = static_cast<std::uint8_t>(i * 7);
-    writePngRgba(path, rgba, 37, 11);
+    writePngRgba(path, rgba, 37, 11, {{"Creation Time", "2024-06-21T07:30:00-07:00"}, {"Comment", "frame 3"}});
     std::FILE* f = std::fopen(path.c_str(), "rb");
     ASSERT_NE(f, nullptr);
     std::vector<std::uint8_t> bytes;
@@ -83,17 +83,22 @@ TEST(PngWriter, EveryChunkCarriesItsCrc) {
     };
     std::size_t at = 8, chunks = 0;
     std::string last;
+    std::vector<std::string> texts;
     while (at + 12 <= bytes.size()) {
         const std::uint32_t n = u32(at);
         ASSERT_LE(at + 12 + n, bytes.size());
         last.assign(reinterpret_cast<const char*>(&bytes[at + 4]), 4);
+        if (last == "tEXt") texts.emplace_back(reinterpret_cast<const char*>(&bytes[at + 8]), n);
         EXPECT_EQ(u32(at + 8 + n), bitwiseCrc32(&bytes[at + 4], 4 + n)) << "chunk " << last;
         at += 12 + n;
         ++chunks;
     }
     EXPECT_EQ(at, bytes.size());
     EXPECT_EQ(last, "IEND");
-    EXPECT_GE(chunks, 3u);
+    EXPECT_GE(chunks, 5u);
+    EXPECT_EQ(texts, (std::vector<std::string>{std::string("Creation Time\0", 14) + "2024-06-21T07:30:00-07:00",
+                                               std::string("Comment\0", 8) + "frame 3"}));
+    EXPECT_THROW(writePngRgba(path, rgba, 37, 11, {{"", "no keyword"}}), Error);
     fs::remove_all(dir);
 }
 

@@ -4,6 +4,7 @@
 #include "geo/time.h"
 #include "products/aperture.h"
 #include "products/horizon.h"
+#include "products/info.h"
 #include "products/light.h"
 #include "products/render.h"
 #include "products/sky.h"
@@ -184,6 +185,8 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
         EXPECT_EQ(f.lightmap.bands[1].name, "sun_irradiance");
         EXPECT_EQ(f.localTime, f.lightmap.metadata.at("DEMLIGHT_TIME_LOCAL"));
         EXPECT_GT(f.preview.width, 0u);
+        ASSERT_FALSE(f.preview.text.empty());  // the picture carries its time (PNG tEXt)
+        EXPECT_EQ(f.preview.text[0], (std::pair<std::string, std::string>{"Creation Time", f.localTime}));
     };
     const TimelapseResult res = timelapseProduct(dem, r, sink);
     EXPECT_EQ(frames, 3u);
@@ -267,6 +270,37 @@ TEST(Products, AuxiliaryRastersAreCheckedForRangeAndCoverage) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("covers no cell"), std::string::npos) << e.what();
     }
+}
+
+TEST(Products, RenderDrawsSquareGroundPixels) {
+    // Luxembourg's 30" lat/lon grid at 49.8 N: a cell is 0.65 as wide as it is tall on the ground.
+    const DemSource dem = DemSource::open(std::string(DEMLIGHT_SAMPLES_DIR) + "/luxembourg_elev_terra.tif");
+    RenderRequest r;
+    r.time = morning();
+    r.search.threads = 2;
+    r.skyDirections = 4;
+    const RenderResult ground = renderProduct(dem, r);
+    r.picture.pixels = PixelGeometry::Cell;
+    const RenderResult cell = renderProduct(dem, r);
+    EXPECT_EQ(cell.image.width, dem.width());
+    EXPECT_EQ(cell.image.height, dem.height());
+    const std::size_t mid = dem.height() / 2;
+    const double aspect = dem.dem().terrain.cellWidthM[mid] / dem.dem().terrain.cellHeightM[mid];
+    EXPECT_EQ(ground.image.height, dem.height());
+    EXPECT_EQ(ground.image.width, static_cast<std::size_t>(std::lround(static_cast<double>(dem.width()) * aspect)));
+    EXPECT_LT(ground.image.width, dem.width());
+    EXPECT_GT(ground.skyDirections, 0u);
+}
+
+TEST(Products, DescribeDemReportsTheGrid) {
+    const DemInfo d = describeDem(rocky().dem());
+    EXPECT_EQ(d.width, 152u);
+    EXPECT_EQ(d.height, 187u);
+    EXPECT_NEAR(d.elevationMinM, 2281, 1);  // the sample's provenance table: 2281 / 4261 m
+    EXPECT_NEAR(d.elevationMaxM, 4261, 1);
+    EXPECT_LT(d.latMinDeg, d.latMaxDeg);
+    EXPECT_FALSE(d.convergenceDeg);  // geographic
+    EXPECT_NEAR(d.longestShadowM, d.reliefM / std::tan(5.0 * M_PI / 180.0), 1e-6);
 }
 
 TEST(Products, ColorEncodingNames) {

@@ -79,7 +79,7 @@ TEST(Quality, ExpectedErrorGrowsWithALooserTolerance) {
     const ExpectedError e = planScene(t, Quality::Auto, loose).expectedError;
     EXPECT_DOUBLE_EQ(e.medianDeg, measured.medianDeg + 2.0);
     EXPECT_DOUBLE_EQ(e.p99Deg, measured.p99Deg + 2.0);
-    EXPECT_NE(e.source.find("--tolerance 2"), std::string::npos) << e.source;
+    EXPECT_NE(e.source.find("tolerance 2 deg"), std::string::npos) << e.source;
     QualityBudget tight;
     tight.toleranceDeg = 0.01;
     EXPECT_EQ(planScene(t, Quality::Auto, tight).expectedError.medianDeg, measured.medianDeg);
