@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
     using namespace demlight;
     // Grids of tens of MB are allocated and freed per frame (time-lapses, sun hours). glibc maps
     // each one afresh from the kernel (zeroed, one fault per 4 KiB page); keep freed memory in
-    // the heap for reuse instead. A 10-frame time-lapse of the 3601² tile: 3.0 -> 1.0 s of
-    // kernel time, 1.26 -> 1.09 s per frame (README "Speed").
+    // the heap for reuse instead, which cuts the kernel time of frame loops
+    // (docs/measurements.md#climaincpp-main-mallopt).
     mallopt(M_MMAP_MAX, 0);
     mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
     cli::CliContext ctx;

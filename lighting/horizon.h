@@ -106,7 +106,8 @@ double defaultMaxDistanceM(const Terrain& terrain);
 
 /// A search distance of at least this share of the DEM diagonal is replaced by the whole DEM:
 /// lines walk the whole DEM anyway, so the range limit saves no sweep work and only adds its
-/// range pass (measured in lighting/quality.cpp). Used by the scene plan and sun frames.
+/// range pass (docs/measurements.md#lightingqualitycpp-kwholedemshareofdiagonal). Used by the
+/// scene plan and sun frames.
 inline constexpr double kWholeDemShareOfDiagonal = 0.5;
 
 /// Elevation of the lowest sun that defaultMaxDistanceM() resolves (degrees).

@@ -22,7 +22,8 @@ namespace {
 constexpr std::size_t kLinesPerBlock = 16;
 
 /// How many line steps ahead a block prefetches its heights and output cells (sweepBlock): a
-/// step of a block costs ~100-200 ns, about one memory latency.
+/// step of a block costs about one memory latency
+/// (docs/measurements.md#lightinghorizon_sweepcpp-kprefetchsteps).
 constexpr long kPrefetchSteps = 4;
 constexpr long kFloatsPerCacheLine = 16;
 
@@ -377,7 +378,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         const double frac = geo.frac[static_cast<std::size_t>(m)];
         // Fetch the heights and output cells of a step kPrefetchSteps ahead. Along rows (Y-major)
         // each step lands on a new row, a page or more away, which the hardware prefetchers do
-        // not follow: without this the sweep waits on that load for ~40 % of its time.
+        // not follow: without this the sweep spends much of its time waiting on that load
+        // (docs/measurements.md#lightinghorizon_sweepcpp-kprefetchsteps).
         if (const long ahead = m + mStep * kPrefetchSteps; ahead >= 0 && ahead < M) {
             const long aheadBase = geo.base[static_cast<std::size_t>(ahead)];
             const long j0 = std::max(0L, kBegin + aheadBase - 1);

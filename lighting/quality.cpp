@@ -21,24 +21,17 @@ constexpr double kSunDirectionDegPerKm = 1.0 / 111.2;
 /// Curvature is dropped only when its largest effect is below this share of the tolerance.
 constexpr double kCurvatureShareOfTolerance = 0.1;
 /// When relief / tan(lowest elevation) reaches this share of the DEM diagonal, auto searches the
-/// whole DEM. Measured (shared machine, 1 thread, best of 3, az 37 and 123.4): on the 1201^2
-/// N44W072 tile (16 regions) a limit of 0.5, 0.7 or 1.0 diagonals takes 204, 208, 206 ms against
-/// 204 ms unlimited; on the one-region St Helens sample 5.2-5.9, 4.9-5.5, 4.7-5.3 ms against
-/// 4.7-5.4 ms. Shorter limits save time only on DEMs swept in many regions (N44W072: 128-148 ms
-/// at 0.05 diagonals) and cost up to 1.8x on one-region DEMs (St Helens: 8.4-8.9 ms at 0.05).
+/// whole DEM: limits of half a diagonal or more take the same time as none, and shorter limits
+/// save time only on DEMs swept in many regions and take up to kRangeLimitStepCost times as long
+/// on one-region DEMs (docs/measurements.md#lightingqualitycpp-kwholedemshareofdiagonal).
 // (kWholeDemShareOfDiagonal = 0.5, lighting/horizon.h.)
 /// Line slopes below this are grid-aligned directions off by rounding (the sweep snaps them too).
 constexpr double kSlopeSnap = 1e-12;
 
 /// The sweep's horizon error against the full-physics reference (the statistic of ExpectedError),
-/// the largest measured over real DEMs, azimuths and both plans:
-///  - median: tests/horizon_realdem_test.cpp HorizonRealDem, mount_st_helens az 123.4: 0.0724 deg
-///    (README "How the horizon is computed"); docs/bench/auto_vs_full.csv, horizon rows: at most
-///    0.024 deg for auto (horizons >= 2 deg), 0.063 deg for full on every horizon (St Helens).
-///  - 99th percentile: docs/bench/whole_dem_errors.csv (bench/error_bench.cpp, whole DEMs, 1000
-///    cells x 6 azimuths), Everest's whole 1201^2 SRTM3 tile: full 6.74 deg on every horizon, auto
-///    6.36 deg (horizons >= 2 deg); its 600^2 crop in docs/bench/auto_vs_full.csv 5.68 / 5.30;
-///    every other DEM (8 more) and HorizonRealDem (up to 5.2 deg) are lower.
+/// the largest measured over real DEMs, azimuths and both plans (median and 99th percentile;
+/// the measured figures and their sources:
+/// docs/measurements.md#lightingqualitycpp-ksweepmedianerrordeg-ksweepp99errordeg).
 constexpr double kSweepMedianErrorDeg = 0.072;
 constexpr double kSweepP99ErrorDeg = 6.8;
 constexpr const char* kSweepErrorSource =

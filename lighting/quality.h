@@ -97,7 +97,8 @@ struct ScenePlan {
 ///    distance), but at least the budget's tolerance (at most kMaxDirectionFloorDeg): a scan
 ///    direction off by theta sees the horizon of azimuth A + theta, an error of about
 ///    theta |dh/dA| at any distance, so on large DEMs the cell rule asks for far more regions
-///    than the angle budget needs (N44W072's 1201^2 tile: 9.3 -> 2.7 regions per azimuth);
+///    than the angle budget needs
+///    (docs/measurements.md#lightingqualityh-planscene-direction-tolerance);
 ///  - sky directions: kAutoSkyDirections; sun lattice: 64 cells (the sun moves 0.004 deg per km).
 /// `full`: the DEM diagonal as distance, curvature on, 0.01 deg direction tolerance,
 /// kFullSkyDirections, a 16-cell sun lattice.
@@ -120,9 +121,9 @@ SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, 
 /// Under auto, the scan direction of a sky or aperture integral may deviate from its sector's
 /// centre azimuth by this share of the sector width (360 / directions degrees): 0.70 deg at 32
 /// directions, 1.4 deg at 16. The D-sector quadrature samples each sector's horizon once, at its
-/// centre; moving that sample by 1/16 of the sector is far inside the quadrature's own error.
-/// Measured on the whole N48W125 tile (32 directions, against the sweep's own one-cell drift
-/// rule): sky_K MAE 0.00011, svf_horizontal MAE 0.00025, against the 0.003 budget; the test
+/// centre; moving that sample by 1/16 of the sector is far inside the quadrature's own error,
+/// and changes the sky by a small fraction of kSkyBudgetMae (the measured figures:
+/// docs/measurements.md#lightingqualityh-kintegraltoleranceshareofsector); the test
 /// Quality.IntegralToleranceKeepsTheSkyOnARealTile checks it.
 inline constexpr double kIntegralToleranceShareOfSector = 1.0 / 16.0;
 
@@ -141,14 +142,15 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
 /// sweepRegions(), lines one cell apart along the minor axis, each walked from the cells it
 /// serves in its region to maxDistanceM beyond them (clipped to the grid). Used to compare the
 /// cost of plans without timing. It leaves out the range-limit pass, which makes a step up to
-/// ~1.8x dearer when maxDistanceM is a small fraction of the line length (see
+/// kRangeLimitStepCost times as dear when maxDistanceM is a small fraction of the line length (see
 /// kWholeDemShareOfDiagonal in quality.cpp); `demlight_tradeoff_bench --auto-vs-full` prints it
 /// beside measured times.
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params);
 
 /// Cost of one line step of a range-limited sweep relative to an unlimited one (the chunked
-/// hulls and the exact range pass): up to 1.8x, measured on one-region DEMs (quality.cpp). A
-/// range limit pays only where it cuts the steps by more than this.
+/// hulls and the exact range pass): the worst measured, on one-region DEMs
+/// (docs/measurements.md#lightingqualitycpp-kwholedemshareofdiagonal). A range limit pays only
+/// where it cuts the steps by more than this.
 inline constexpr double kRangeLimitStepCost = 1.8;
 
 /// True when sweeping with `params` as given is expected to cost less than sweeping the whole

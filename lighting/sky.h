@@ -45,13 +45,9 @@ inline constexpr double kSkyFactorBudgetMae = 0.005;
 /// Rule: the smallest D of 4, 8, 16, 32, 64 whose MAE against the dense reference
 /// (tests/sky_realdem_test.cpp: 300 non-truncated cells, 360 reference azimuths) meets
 /// kSkyBudgetMae for svf_horizontal and sky_K and kSkyFactorBudgetMae for sky_factor (C = 0.2)
-/// on all three test DEMs. Measured (svf_horizontal / sky_K / sky_factor):
-///   D    N44W072 400^2         big_tujunga 600x500       svalbard 600x500
-///   8    .0009/.0008/.0006     .0033/.0031/.0026 (fail)  .0023/.0030/.0024
-///   16   .0006/.0003/.0002     .0023/.0010/.0009         .0013/.0009/.0007
-///   32   .0006/.0001/.0001     .0021/.0005/.0004         .0011/.0003/.0002
-/// At D >= 16 the svf_horizontal error is mostly the sweep's horizon error (with reference
-/// horizons at the sector centres it is .0005 at D = 16), so more directions barely help it.
+/// on all three test DEMs (the measured table:
+/// docs/measurements.md#lightingskyh-kdefaultskydirections). At D >= 16 the svf_horizontal
+/// error is mostly the sweep's horizon error, so more directions barely help it.
 inline constexpr std::size_t kDefaultSkyDirections = 16;
 
 // ---- Per-cell kernels (D = horizonDeg.size() >= 1) ------------------------------------------
@@ -165,7 +161,8 @@ public:
     /// Final grids with a per-cell albedo raster (NaN albedo gives NaN f_sky only).
     SkyMaps finish(const Grid<float>& albedo) const&;
     /// The same from an accumulator that is done with: its sums become the output grids in
-    /// place, so only f_sky needs new memory (fresh pages cost ~2 ms per MB to fault in).
+    /// place, so only f_sky needs new memory (fresh pages are slow to fault in;
+    /// docs/measurements.md#lightingskyh-skyaccumulatorfinish).
     SkyMaps finish(double albedo) &&;
     SkyMaps finish(const Grid<float>& albedo) &&;
 

@@ -34,8 +34,9 @@ struct SunFrameParams {
     double directionToleranceDeg = 0;
     double directionToleranceFloorDeg = 0;  ///< as HorizonParams::directionToleranceFloorDeg
     /// HorizonParams::nearestLine for the sun's sweeps (one scan line per cell). No scene plan
-    /// sets it: the bench measures it (docs/bench/auto_vs_full.csv, sun rows' notes), 20-25 %
-    /// faster than two lines but with up to 14x the visibility error on ridges.
+    /// sets it: it is cheaper than two lines but far less accurate on ridges (the bench's
+    /// docs/bench/auto_vs_full.csv, sun rows' notes;
+    /// docs/measurements.md#lightingsun_frameh-sunframeparamsnearestline).
     bool nearestLine = false;
     int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.

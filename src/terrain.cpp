@@ -33,7 +33,7 @@ std::pair<double, double> ConvergenceField::range() const {
 std::pair<float, float> heightRangeM(const Grid<float>& heightsM) {
     // Comparisons with NaN are false, so `z < lo ? z : lo` skips nodata without a branch; kLanes
     // independent running extremes let the compiler keep them in one vector register (sun frames
-    // call this once per frame: 12.4 -> 3.7 ms on the 3601² tile).
+    // call this once per frame; docs/measurements.md#srcterraincpp-heightrangem).
     constexpr std::size_t kLanes = 16;
     constexpr float kInf = std::numeric_limits<float>::infinity();
     std::array<float, kLanes> lo, hi;

@@ -355,9 +355,7 @@ TEST(LightingModels, Hemisphere) {
 // aperture() takes the closed form too where the plane rises. Every cell of random grids, from
 // flat (with negative horizons) to nearly vertical normals, horizons anywhere and near the
 // tangent plane's own elevation, D = 3..64, against the dense reference (a midpoint rule over
-// azimuths aligned with the sectors, so the horizon's steps fall between samples). (Before the
-// closed form, the kernel's cut angles with eight Gauss-Legendre nodes per 22.5 deg missed the
-// steep rise of a nearly vertical plane by up to 0.01.)
+// azimuths aligned with the sectors, so the horizon's steps fall between samples).
 TEST(ApertureGrid, ClosedFormSectorsMatchTheDenseReference) {
     const std::size_t w = 24, h = 16;
     std::mt19937_64 rng(20261122);

@@ -1,7 +1,8 @@
 // The C interface of libdemlight_oiio.so, the OpenImageIO side of picture output (JPEG, EXR,
 // TIFF, GIF, ... by extension; PNG does not need it). demlight loads it with dlopen on the first
-// picture that needs it (geo/oiio_loader.cpp): OpenImageIO pulls in ~150 shared libraries that
-// cost every process ~0.2 s to map, whether it writes a picture or not.
+// picture that needs it (geo/oiio_loader.cpp): OpenImageIO pulls in many shared libraries that
+// every process would map at start-up, whether it writes a picture or not
+// (docs/measurements.md#clicmakeliststxt-and-geopluginoiio_pluginh-demlight_oiio).
 // Every function returns 0 on success; on failure it writes a message into err (errSize bytes,
 // NUL-terminated) and returns nonzero.
 #pragma once
