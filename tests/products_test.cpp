@@ -1,12 +1,14 @@
 // The products layer called directly, without the CLI: bands, georeference, metadata, progress
 // and cancellation, windows, the light combination, and library messages in library terms.
 #include "geo/dem_source.h"
+#include "geo/raster.h"
 #include "geo/time.h"
 #include "products/aperture.h"
 #include "products/horizon.h"
 #include "products/info.h"
 #include "products/light.h"
 #include "products/render.h"
+#include "products/sequence.h"
 #include "products/sky.h"
 #include "products/sun.h"
 #include "products/sunhours.h"
@@ -16,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -188,11 +192,38 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
         ASSERT_FALSE(f.preview.text.empty());  // the picture carries its time (PNG tEXt)
         EXPECT_EQ(f.preview.text[0], (std::pair<std::string, std::string>{"Creation Time", f.localTime}));
     };
+    Grid<float> middle;  // frame 1's sun_irradiance
+    sink.frame = [&, check = sink.frame](TimelapseFrame&& f) {
+        if (f.index == 1) middle = f.lightmap.bands[1].values;
+        check(std::move(f));
+    };
     const TimelapseResult res = timelapseProduct(dem, r, sink);
     EXPECT_EQ(frames, 3u);
     EXPECT_EQ(skies, 1u);
     ASSERT_TRUE(res.fit);
     EXPECT_EQ(res.fit->bands.size(), 3u);  // two coefficients and the RMS residual
+
+    // The sequence product reads the fit back: at a frame's instant it gives that frame within
+    // the fit's own residual.
+    const std::string fitPath = (std::filesystem::temp_directory_path() /
+                                 ("demlight_products_fit_" + std::to_string(::getpid()) + ".tif")).string();
+    std::vector<OutputBand> bands;
+    for (const auto& b : res.fit->bands) bands.push_back({&b.values, nullptr, b.name, b.unit});
+    WriteOptions w;
+    w.metadata = res.fit->metadata;
+    writeRaster(fitPath, bands, res.fit->ref, w);
+    const ProductResult back = sequenceProduct({fitPath, parseZonedInstant("2024-06-21T15:00:00Z", "")});
+    std::filesystem::remove(fitPath);
+    const Grid<float>& rec = back.band("sun_irradiance").values;
+    const Grid<float>& rms = res.fit->band("rms_error").values;
+    ASSERT_TRUE(rec.sameShape(middle));
+    std::size_t within = 0, valid = 0;
+    for (std::size_t k = 0; k < rec.size(); ++k) {
+        if (std::isnan(middle.data()[k])) continue;
+        ++valid;
+        within += std::abs(rec.data()[k] - middle.data()[k]) <= 3 * rms.data()[k] + 1e-6f ? 1 : 0;
+    }
+    EXPECT_GT(within, valid * 9 / 10);
 }
 
 TEST(Products, AWindowIsTheWholeDemsAnswerOnItsCells) {
