@@ -99,10 +99,10 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores)")
         ->check(finiteRange(0, kUnbounded))
         ->capture_default_str();
-    cmd->add_option("--quality", r.quality,
-                    "auto: model only what the scene needs within --tolerance; full: every effect "
-                    "at its finest setting")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, Quality>{{"auto", Quality::Auto}, {"full", Quality::Full}}))
+    cmd->add_option_function<std::string>(
+           "--quality", [&r](const std::string& name) { r.quality = parseQuality(name); },
+           "auto: model only what the scene needs within --tolerance; full: every effect at its finest setting")
+        ->check(CLI::IsMember({"auto", "full"}))
         ->default_str("auto");
     cmd->add_option("--tolerance", r.toleranceDeg,
                     "Horizon error budget for --quality auto (degrees): decides curvature and the "
