@@ -4,6 +4,8 @@
 # raster (DEMLIGHT_COMMAND and DEMLIGHT_INPUT excepted, band order ignored), the other files
 # byte for byte. For refactors that must keep outputs identical.
 #   scripts/compare_outputs.sh OLD_BIN NEW_BIN [WORK_DIR]
+# IGNORE_KEYS="DEMLIGHT_PLAN ..." leaves out metadata items a change means to alter. Copy a
+# binary elsewhere first if you rebuild while this runs.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 old=$1; new=$2; work=${3:-$(mktemp -d)}
@@ -50,12 +52,13 @@ runAll() {  # BIN ROOT
 }
 runAll "$old" "$work/old"; runAll "$new" "$work/new"
 canon() {  # one line per band (sorted) and per DEMLIGHT_* item, without run-specific items
-  gdalinfo -checksum "$1" | python3 -c '
-import re, sys
+  gdalinfo -checksum "$1" | IGNORE_KEYS="${IGNORE_KEYS:-}" python3 -c '
+import os, re, sys
+ignored = tuple(k + "=" for k in os.environ["IGNORE_KEYS"].split())
 meta, bands, cur = [], [], None
 for line in sys.stdin:
     s = line.strip()
-    if re.match(r"DEMLIGHT_(COMMAND|INPUT|TRUNCATION_MASK)=", s): continue
+    if re.match(r"DEMLIGHT_(COMMAND|INPUT|TRUNCATION_MASK)=", s) or (ignored and s.startswith(ignored)): continue
     if line.startswith("Band "): cur = []; bands.append(cur); continue
     if cur is not None and line.startswith("  ") and not s.startswith("Block="): cur.append(s); continue
     if s.startswith(("DEMLIGHT_", "Size is", "Origin", "Pixel Size")): meta.append(s)
