@@ -46,7 +46,7 @@ Dem DemSource::read(const CellWindow& w) const {
     out.band.values = Grid<float>(cols, rows);
     for (std::size_t r = 0; r < rows; ++r)
         for (std::size_t c = 0; c < cols; ++c) out.band.values(c, r) = dem_->band.values(w.col0 + c, w.row0 + r);
-    out.terrain = cropTerrain(dem_->terrain, w.col0, w.row0, cols, rows);
+    out.terrain = tileOf(dem_->terrain, w);
     out.band.nodataCount = 0;
     for (float v : out.terrain.heightsM.values()) out.band.nodataCount += std::isnan(v) ? 1 : 0;
     return out;

@@ -47,6 +47,7 @@ struct HorizonParams {
     /// Worker threads (0 = all cores). Output bits do not depend on it.
     int threads = 0;
     /// Compute only these output cells (others are left NaN / 0); occluders come from anywhere.
+    /// In the terrain's own coordinates.
     std::optional<CellWindow> window;
     /// Sweep only: largest allowed error (degrees) of the scan direction against the local true
     /// azimuth; 0 = automatic (see effectiveDirectionToleranceDeg()). The grid is split into regions, each
@@ -70,7 +71,8 @@ struct HorizonParams {
     /// within the direction tolerance of this azimuth at its samples (sweepRegions), so one sweep
     /// serves every cell at its own azimuth. The field must be smooth over a region (the split
     /// samples corners, edge midpoints and centre). The reference marches each cell's ray along
-    /// the field's azimuth at that cell.
+    /// the field's azimuth at that cell. (col, row) are on the terrain's full grid
+    /// (Terrain::frame; the terrain's own coordinates when it has no frame).
     std::function<double(double col, double row)> azimuthAtDeg;
     /// Sweep only: false leaves HorizonMap::truncated empty (integrals that never read it skip
     /// its grid and the per-cell edge test).
@@ -138,6 +140,14 @@ struct SweepRegion {
 /// sample instead of `azimuthDeg`. Regions are not split below 8 cells a side. Each
 /// region's lines start up to maxDistanceM beyond it, so many small regions cost extra time.
 std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params);
+
+/// The regions of a terrain's full grid (Terrain::frame, or the terrain itself): the full grid
+/// split as a whole (so that every tile cut from it gives each cell the same direction) and
+/// clipped to `window`, all in full-grid coordinates. sweepRegions() is this for the output
+/// window, moved to the terrain's coordinates; the sweep runs on these. Plans that must not
+/// depend on the tile (estimateSweepSteps) use it directly.
+std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const HorizonParams& params,
+                                                const CellWindow& window);
 
 /// The fast method: upper-convex-hull sweeps along lines parallel to the azimuth (Dozier 1981;
 /// Timonen & Westerholm 2010), O(cells) per region.

@@ -57,7 +57,9 @@ public:
         const double maxX = static_cast<double>(t_.width()) - 0.5;
         const double maxY = static_cast<double>(t_.height()) - 0.5;
         double x = static_cast<double>(col), y = static_cast<double>(row), d = 0.0;
-        const double azimuthDeg = azimuthAtDeg_ ? azimuthAtDeg_(x, y) : azimuthDeg_;
+        const double azimuthDeg = azimuthAtDeg_ ? azimuthAtDeg_(x + static_cast<double>(t_.frameCol0),
+                                                               y + static_cast<double>(t_.frameRow0))
+                                                : azimuthDeg_;
         double best = -std::numeric_limits<double>::infinity();
         long directionRow = -1;
         double dirCol = 0.0, dirRow = 0.0;

@@ -43,23 +43,26 @@ std::size_t clampRow(double row, std::size_t height) {
     return std::min(r, height - 1);
 }
 
+// Regions, scan lines, distances and edges are laid on the full grid a terrain was cut from
+// (FullGridRef, in its coordinates), so a tile with its halo gets the full grid's bits.
+
 /// Grid direction (cells per metre; +col east, +row south) of true azimuth `azimuthDeg` at a
-/// point, from the convergence and the cell sizes of the nearest row.
-void localGridDirection(const Terrain& t, double azimuthDeg, double col, double row,
+/// point of the full grid, from the convergence and the cell sizes of the nearest row.
+void localGridDirection(const FullGridRef& g, double azimuthDeg, double col, double row,
                         double& dirCol, double& dirRow) {
-    const std::size_t r = clampRow(row, t.height());
-    const double gridAzRad = (azimuthDeg - t.convergence.at(col, row)) * kDegToRad;
-    dirCol = std::sin(gridAzRad) / t.cellWidthM[r];
-    dirRow = -std::cos(gridAzRad) / t.cellHeightM[r];
+    const std::size_t r = clampRow(row, g.height);
+    const double gridAzRad = (azimuthDeg - g.convergence.at(col, row)) * kDegToRad;
+    dirCol = std::sin(gridAzRad) / g.cellWidthM[r];
+    dirRow = -std::cos(gridAzRad) / g.cellHeightM[r];
 }
 
-/// The true azimuth (degrees) that a grid direction represents at a point.
-double trueAzimuthOfDirection(const Terrain& t, double dirCol, double dirRow, double col,
+/// The true azimuth (degrees) that a grid direction represents at a point of the full grid.
+double trueAzimuthOfDirection(const FullGridRef& g, double dirCol, double dirRow, double col,
                               double row) {
-    const std::size_t r = clampRow(row, t.height());
-    const double east = dirCol * t.cellWidthM[r];
-    const double north = -dirRow * t.cellHeightM[r];
-    return std::atan2(east, north) * kRadToDeg + t.convergence.at(col, row);
+    const std::size_t r = clampRow(row, g.height);
+    const double east = dirCol * g.cellWidthM[r];
+    const double north = -dirRow * g.cellHeightM[r];
+    return std::atan2(east, north) * kRadToDeg + g.convergence.at(col, row);
 }
 
 /// a - b wrapped to (-180, 180] degrees.
@@ -77,7 +80,7 @@ struct AzimuthTarget {
     double operator()(double col, double row) const { return field ? field(col, row) : azimuthDeg; }
 };
 
-void splitRegion(const Terrain& t, const AzimuthTarget& target, double toleranceDeg, const CellWindow& w,
+void splitRegion(const FullGridRef& t, const AzimuthTarget& target, double toleranceDeg, const CellWindow& w,
                  std::vector<SweepRegion>& out) {
     const double c0 = static_cast<double>(w.col0), c1 = static_cast<double>(w.col1 - 1);
     const double r0 = static_cast<double>(w.row0), r1 = static_cast<double>(w.row1 - 1);
@@ -126,9 +129,42 @@ void splitRegion(const Terrain& t, const AzimuthTarget& target, double tolerance
     splitRegion(t, target, toleranceDeg, b, out);
 }
 
+/// The output window on the full grid.
 CellWindow outputWindow(const Terrain& t, const HorizonParams& p) {
-    return p.window ? *p.window : CellWindow{0, 0, t.width(), t.height()};
+    const CellWindow w = p.window ? *p.window : CellWindow{0, 0, t.width(), t.height()};
+    const FullGridRef g = fullGrid(t);
+    return {w.col0 + g.col0, w.row0 + g.row0, w.col1 + g.col0, w.row1 + g.row0};
 }
+
+/// The terrain's own cells on the full grid.
+CellWindow terrainWindow(const Terrain& t) {
+    const FullGridRef g = fullGrid(t);
+    return {g.col0, g.row0, g.col0 + t.width(), g.row0 + t.height()};
+}
+
+std::vector<SweepRegion> fullGridRegions(const Terrain& terrain, const HorizonParams& params) {
+    validateHorizonParams(terrain, params);
+    return sweepRegionsOnFullGrid(terrain, params, outputWindow(terrain, params));
+}
+
+}  // namespace
+
+std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const HorizonParams& params,
+                                                const CellWindow& out) {
+    const FullGridRef g = fullGrid(terrain);
+    std::vector<SweepRegion> all;
+    splitRegion(g, AzimuthTarget{wrapAzimuthDeg(params.azimuthDeg), params.azimuthAtDeg},
+                effectiveDirectionToleranceDeg(terrain, params), CellWindow{0, 0, g.width, g.height}, all);
+    std::vector<SweepRegion> clipped;
+    for (SweepRegion r : all) {
+        r.window = {std::max(r.window.col0, out.col0), std::max(r.window.row0, out.row0),
+                    std::min(r.window.col1, out.col1), std::min(r.window.row1, out.row1)};
+        if (r.window.col0 < r.window.col1 && r.window.row0 < r.window.row1) clipped.push_back(r);
+    }
+    return clipped;
+}
+
+namespace {
 
 /// One upper-hull vertex: distance from the line's far end (metres) and g = h - σ²/(2 R_eff).
 struct HullPoint {
@@ -172,9 +208,6 @@ struct LineState {
     double sigmaM;
     long chunk;
     double nextChunkM;  // σ at which the chunk changes
-    /// Range-limited sweeps: the previous chunk's final hull is kept at buf[prevLo, prevHi) (the
-    /// current one starts after it), and the vertex its last tangent touched.
-    std::size_t prevLo, prevHi, prevHint;
     RangeLog* log;      // range-limited sweeps only
 };
 
@@ -263,9 +296,10 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
     }
 }
 
-/// How a region's lines map onto the grid. Major index m steps one cell per line sample; a line
-/// k sits at minor coordinate k + slope*m. farSign = +1 when the far end (toward the azimuth)
-/// has the larger major index.
+/// How a region's lines map onto the full grid. Major index m steps one cell per line sample; a
+/// line k sits at minor coordinate k + slope*m. farSign = +1 when the far end (toward the
+/// azimuth) has the larger major index. Indices are the full grid's; the terrain's heights and
+/// outputs cover [majorLo, majorHi) x [minorLo, minorHi) of it.
 struct LineGeometry {
     bool xMajor;
     bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
@@ -276,7 +310,14 @@ struct LineGeometry {
     long extensionSteps;  // steps walked beyond the farthest served cell (covers maxDistanceM)
     long kFirst, kLast;
     std::size_t majorWin0, majorWin1, minorWin0, minorWin1;
+    long majorLo, majorHi, minorLo, minorHi;
+    long mEdge;  // the full grid's far edge: every line's distances count from there
     std::vector<double> stepLengthM;  // metric length of one line step, per grid row
+    /// Distance of a line sample from the far edge (metres) per major index, when it is the same
+    /// for every line (Y-major lines, or equal steps in every row); empty otherwise, and each
+    /// line sums its own steps from the edge. Either way a sample's distance has the same bits
+    /// wherever a walk starts, so tiles and the full grid build the same hulls.
+    std::vector<double> sigmaAt;
     std::vector<long> base;           // lineOffset() per major index
     std::vector<double> frac;
     /// Steps toward the far end before the line leaves the DEM (cell edges at -0.5 and
@@ -336,20 +377,16 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     const std::size_t nLines = static_cast<std::size_t>(kEnd - kBegin);
     if (scratch.size() < nLines * lineCapacity) scratch.resize(nLines * lineCapacity);
     constexpr bool limited = Limited;
-    LineState lines[kLinesPerBlock];
-    for (std::size_t b = 0; b < nLines; ++b) {
-        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, 0.0, 0, maxDistanceM, 0, 0, 0,
-                    limited ? &logs[b] : nullptr};
-        if (limited) logs[b].reset(lineCapacity);
-    }
 
     const long N = static_cast<long>(geo.minorSize);
     const long mStep = -geo.farSign;
     const long minorWin0 = static_cast<long>(geo.minorWin0), minorWin1 = static_cast<long>(geo.minorWin1);
+    const long mLo = geo.majorLo, nLo = geo.minorLo, nHi = geo.minorHi;
+    const bool sigmaTable = !geo.sigmaAt.empty();
     const double halfInvR = 0.5 * invR;
-    auto index = [W](long m, long j) {
-        return XMajor ? static_cast<std::size_t>(j) * W + static_cast<std::size_t>(m)
-                      : static_cast<std::size_t>(m) * W + static_cast<std::size_t>(j);
+    auto index = [W, mLo, nLo](long m, long j) {
+        return XMajor ? static_cast<std::size_t>(j - nLo) * W + static_cast<std::size_t>(m - mLo)
+                      : static_cast<std::size_t>(m - mLo) * W + static_cast<std::size_t>(j - nLo);
     };
     // The grid row whose cell sizes give the length of line n0's step at major index m.
     auto stepRowOf = [N](long n0, long m, double frac) {
@@ -372,7 +409,19 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     if (mServeFar < 0) return;
     const long mStart = std::clamp(mServeFar + geo.farSign * geo.extensionSteps, std::min(geo.mFar, geo.mNear),
                                    std::max(geo.mFar, geo.mNear));
-    const long M = static_cast<long>(geo.majorSize);
+    LineState lines[kLinesPerBlock];
+    for (std::size_t b = 0; b < nLines; ++b) {
+        // Without a distance table, the line's distance at mStart: its steps summed from the
+        // far edge in walking order, as every walk that starts farther sums them.
+        double sigma0 = 0.0;
+        if (!sigmaTable) {
+            for (long m = geo.mEdge; m != mStart; m += mStep)
+                sigma0 += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + geo.base[static_cast<std::size_t>(m)],
+                                                    m, geo.frac[static_cast<std::size_t>(m)])];
+        }
+        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, sigma0, 0, maxDistanceM, limited ? &logs[b] : nullptr};
+        if (limited) logs[b].reset(lineCapacity);
+    }
     for (long m = mStart;; m += mStep) {
         const long base = geo.base[static_cast<std::size_t>(m)];
         const double frac = geo.frac[static_cast<std::size_t>(m)];
@@ -380,10 +429,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // each step lands on a new row, a page or more away, which the hardware prefetchers do
         // not follow: without this the sweep spends much of its time waiting on that load
         // (docs/measurements.md#lightinghorizon_sweepcpp-kprefetchsteps).
-        if (const long ahead = m + mStep * kPrefetchSteps; ahead >= 0 && ahead < M) {
+        if (const long ahead = m + mStep * kPrefetchSteps; ahead >= mLo && ahead < geo.majorHi) {
             const long aheadBase = geo.base[static_cast<std::size_t>(ahead)];
-            const long j0 = std::max(0L, kBegin + aheadBase - 1);
-            const long j1 = std::min(N - 1, kEnd + aheadBase + 1);
+            const long j0 = std::max(nLo, kBegin + aheadBase - 1);
+            const long j1 = std::min(nHi - 1, kEnd + aheadBase + 1);
             if (j0 <= j1) {
                 if constexpr (XMajor) {
                     for (long j = j0; j <= j1; ++j) {
@@ -402,7 +451,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         }
         // Skip steps where every line of the block lies outside the grid.
         const long n0First = kBegin + base, n0Last = kEnd - 1 + base;
-        const bool anyInside = n0Last >= -1 && n0First <= N - 1;
+        const bool anyInside = n0Last >= nLo - 1 && n0First <= nHi - 1;
         const bool inWindow = m >= static_cast<long>(geo.majorWin0) &&
                               m < static_cast<long>(geo.majorWin1);
         // Where every cell the block's lines sample or serve at this step is nodata (sea, voids),
@@ -410,24 +459,34 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // range limit's chunk bookkeeping catches up at the next valid sample, which is the same:
         // a chunk boundary crossed over nodata leaves an empty hull behind either way.
         bool allNodata = anyInside;
-        for (long j = std::max(0L, n0First); allNodata && j <= std::min(N - 1, n0Last + 1); ++j)
+        for (long j = std::max(nLo, n0First); allNodata && j <= std::min(nHi - 1, n0Last + 1); ++j)
             allNodata = std::isnan(H[index(m, j)]);
-        if (allNodata) {
-            for (std::size_t b = 0; b < nLines; ++b)
-                lines[b].sigmaM += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + base, m, frac)];
-        } else if (anyInside) {
+        if (allNodata || !anyInside) {
+            // Nothing to sample or serve (all nodata, or every line off the terrain's cells):
+            // the lines only advance their distances.
+            if (!sigmaTable) {
+                for (std::size_t b = 0; b < nLines; ++b)
+                    lines[b].sigmaM += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + base, m, frac)];
+            }
+        } else {
             for (std::size_t b = 0; b < nLines; ++b) {
                 LineState& line = lines[b];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 const long n1 = n0 + 1;
-                const std::size_t stepRow = stepRowOf(n0, m, frac);
-                const double sigma = line.sigmaM;
-                line.sigmaM += geo.stepLengthM[stepRow];
+                double sigma;
+                if (sigmaTable) {
+                    sigma = geo.sigmaAt[static_cast<std::size_t>(m)];
+                } else {
+                    sigma = line.sigmaM;
+                    line.sigmaM += geo.stepLengthM[stepRowOf(n0, m, frac)];
+                }
                 if (n0 < -1 || n0 > N - 1) continue;
 
                 // Line sample: linear across the line between the two bracketing cells; heights
-                // are known inside the hull of the cell centres only.
-                const bool inside = n0 >= 0 && (frac == 0.0 || n1 < N);
+                // are known inside the hull of the cell centres only. Cells of the full grid
+                // outside the terrain count as nodata: they lie beyond the search distance of
+                // every cell served (the halo), so no chunk that serves a cell holds them.
+                const bool inside = n0 >= nLo && (frac == 0.0 ? n0 < nHi : n1 < nHi);
                 const float h0 = inside ? H[index(m, n0)] : std::numeric_limits<float>::quiet_NaN();
                 float sample = h0;
                 if (frac > 0.0 && inside) {
@@ -440,16 +499,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
 
                 // Range limit: a fresh hull per chunk of length maxDistanceM (see limitRangePass).
+                // Chunks start at multiples of maxDistanceM from the far edge, so a chunk that
+                // serves a cell starts within the halo and every walk builds the same hull.
                 if (limited && sigma >= line.nextChunkM) {
                     const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
-                    if (chunk == line.chunk + 1) {
-                        line.prevLo = line.lo;
-                        line.prevHi = line.hi;
-                        line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
-                        line.lo = line.hi;
-                    } else {
-                        line.prevLo = line.prevHi = line.lo = line.hi = 0;
-                    }
+                    line.lo = line.hi = 0;
                     line.chunk = chunk;
                     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
                 }
@@ -497,27 +551,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                             value = static_cast<float>(tangentSlope(line, start, sigma, gCell) - sigma * invR);
                         }
                         float* cell = servedPlane[s] + idx;
-                        // The previous chunk: the tangent to its whole hull bounds what its points
-                        // within range can add, and is that answer when its vertex is in range;
-                        // otherwise the cell is left to the second pass.
-                        bool needsSecondPass = false;
-                        if (Limited && line.prevLo < line.prevHi) {
-                            const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
-                                                                sigma, gCell);
-                            line.prevHint = v;
-                            const HullPoint& pv = line.buf[v];
-                            const float bound =
-                                static_cast<float>((pv.g - gCell) / (sigma - pv.sigmaM) - sigma * invR);
-                            if (bound > value) {
-                                if (pv.sigmaM >= sigma - maxDistanceM) {
-                                    value = bound;
-                                } else {
-                                    needsSecondPass = true;
-                                }
-                            }
-                        }
                         *cell = value;
-                        if (Limited && needsSecondPass)
+                        // The previous chunk's points within range: the second pass, from those
+                        // points alone (the walk may have started inside that chunk).
+                        if (Limited && line.chunk > 0)
                             line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints, cell};
                     }
                 }
@@ -536,8 +573,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     }
 }
 
-LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double maxDistanceM,
-                          bool nearestLine) {
+LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, const SweepRegion& region,
+                          double maxDistanceM, bool nearestLine) {
     LineGeometry geo;
     geo.nearestLine = nearestLine;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
@@ -545,24 +582,31 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
     geo.farSign = major >= 0 ? 1 : -1;
     geo.slope = snapSlope(minor / major);
-    geo.majorSize = geo.xMajor ? t.width() : t.height();
-    geo.minorSize = geo.xMajor ? t.height() : t.width();
+    geo.majorSize = geo.xMajor ? g.width : g.height;
+    geo.minorSize = geo.xMajor ? g.height : g.width;
     const CellWindow& w = region.window;
     geo.majorWin0 = geo.xMajor ? w.col0 : w.row0;
     geo.majorWin1 = geo.xMajor ? w.col1 : w.row1;
     geo.minorWin0 = geo.xMajor ? w.row0 : w.col0;
     geo.minorWin1 = geo.xMajor ? w.row1 : w.col1;
+    const CellWindow& tc = terrainCells;
+    geo.majorLo = static_cast<long>(geo.xMajor ? tc.col0 : tc.row0);
+    geo.majorHi = static_cast<long>(geo.xMajor ? tc.col1 : tc.row1);
+    geo.minorLo = static_cast<long>(geo.xMajor ? tc.row0 : tc.col0);
+    geo.minorHi = static_cast<long>(geo.xMajor ? tc.row1 : tc.col1);
 
-    geo.stepLengthM.resize(t.height());
+    geo.stepLengthM.resize(g.height);
     double minStep = std::numeric_limits<double>::infinity();
-    for (std::size_t r = 0; r < t.height(); ++r) {
+    bool equalSteps = true;
+    for (std::size_t r = 0; r < g.height; ++r) {
         const double dc = geo.xMajor ? 1.0 : geo.slope;
         const double dr = geo.xMajor ? geo.slope : 1.0;
-        geo.stepLengthM[r] = std::hypot(dc * t.cellWidthM[r], dr * t.cellHeightM[r]);
+        geo.stepLengthM[r] = std::hypot(dc * g.cellWidthM[r], dr * g.cellHeightM[r]);
         minStep = std::min(minStep, geo.stepLengthM[r]);
+        equalSteps = equalSteps && geo.stepLengthM[r] == geo.stepLengthM[0];
     }
 
-    // Far end: the grid edge, or far enough beyond the window to cover maxDistanceM.
+    // Far end: the terrain's edge, or far enough beyond the window to cover maxDistanceM.
     const long M = static_cast<long>(geo.majorSize);
     long extension = M;
     if (std::isfinite(maxDistanceM)) {
@@ -572,15 +616,29 @@ LineGeometry makeGeometry(const Terrain& t, const SweepRegion& region, double ma
     geo.extensionSteps = extension;
     if (geo.farSign > 0) {
         geo.mNear = static_cast<long>(geo.majorWin0);
-        geo.mFar = std::min(M - 1, static_cast<long>(geo.majorWin1) - 1 + extension);
+        geo.mFar = std::min(geo.majorHi - 1, static_cast<long>(geo.majorWin1) - 1 + extension);
+        geo.mEdge = M - 1;
     } else {
         geo.mNear = static_cast<long>(geo.majorWin1) - 1;
-        geo.mFar = std::max(0L, static_cast<long>(geo.majorWin0) - extension);
+        geo.mFar = std::max(geo.majorLo, static_cast<long>(geo.majorWin0) - extension);
+        geo.mEdge = 0;
     }
 
     geo.base.resize(geo.majorSize);
     geo.frac.resize(geo.majorSize);
     for (std::size_t m = 0; m < geo.majorSize; ++m) lineOffset(geo.slope, static_cast<long>(m), geo.base[m], geo.frac[m]);
+
+    // Distances from the far edge, summed in walking order (each sample's σ is the sum of the
+    // steps walked before it).
+    if (!geo.xMajor || equalSteps) {
+        geo.sigmaAt.assign(geo.majorSize, 0.0);
+        const long near = -geo.farSign;
+        for (long m = geo.mEdge + near; m >= 0 && m < M; m += near) {
+            const auto prev = static_cast<std::size_t>(m - near);
+            geo.sigmaAt[static_cast<std::size_t>(m)] =
+                geo.sigmaAt[prev] + geo.stepLengthM[geo.xMajor ? 0 : prev];
+        }
+    }
 
     const double majorD = static_cast<double>(geo.majorSize), minorD = static_cast<double>(geo.minorSize);
     const double minorPerFarStep = geo.slope * geo.farSign;
@@ -631,9 +689,11 @@ void combineTwoLines(float* __restrict planeA, const float* __restrict planeB, c
 /// Turns the two planes of tangents into angles for the region's window, and sets the
 /// truncation flag from the distance to the DEM edge along the region's direction. Plane A is
 /// NaN at nodata cells (never served), so their angle stays NaN. Both loops are branch-free.
+/// `row` and `w` are on the full grid; the planes and flags cover the terrain's cells.
 void combineRow(const LineGeometry& geo, double maxDistanceM, std::size_t W, std::size_t row,
-                const CellWindow& w, float* planeA, const float* planeB, std::uint8_t* truncated) {
-    const std::size_t offset = row * W + w.col0, cols = w.col1 - w.col0;
+                const CellWindow& w, const CellWindow& terrainCells, float* planeA, const float* planeB,
+                std::uint8_t* truncated) {
+    const std::size_t offset = (row - terrainCells.row0) * W + (w.col0 - terrainCells.col0), cols = w.col1 - w.col0;
     if (truncated) {
         // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
         const double stepM = geo.stepLengthM[row];
@@ -701,40 +761,38 @@ void validateHorizonParams(const Terrain& terrain, const HorizonParams& p) {
 }
 
 ReliefSearch reliefSearch(const Terrain& terrain, double elevationDeg) {
-    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    const FullGridRef g = fullGrid(terrain);  // a tile's search is its DEM's
+    const auto [lo, hi] = g.heightRangeM();
     ReliefSearch s;
     s.reliefM = lo <= hi ? static_cast<double>(hi - lo) : 0.0;  // no valid height: nothing occludes
     s.byReliefM = s.reliefM / std::tan(elevationDeg * kDegToRad);
-    const double diagonal = diagonalM(terrain);
+    const double diagonal = diagonalM(g);
     s.wholeDem = s.byReliefM >= kWholeDemShareOfDiagonal * diagonal;
-    double minCellM = std::numeric_limits<double>::infinity();
-    for (std::size_t r = 0; r < terrain.height(); ++r)
-        minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
-    s.distanceM = std::max(minCellM, s.wholeDem ? diagonal : s.byReliefM);
+    s.distanceM = std::max(g.minCellM(), s.wholeDem ? diagonal : s.byReliefM);
     return s;
 }
 
 double defaultMaxDistanceM(const Terrain& terrain) {
-    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    const auto [lo, hi] = fullGrid(terrain).heightRangeM();
     if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
     return reliefSearch(terrain, kDefaultLowestElevationDeg).distanceM;
 }
 
 double effectiveDirectionToleranceDeg(const Terrain& terrain, const HorizonParams& params) {
     if (params.directionToleranceDeg > 0.0) return params.directionToleranceDeg;
+    const FullGridRef g = fullGrid(terrain);
     double minCellM = std::numeric_limits<double>::infinity();
-    for (std::size_t r = 0; r < terrain.height(); ++r)
-        minCellM = std::min({minCellM, terrain.cellWidthM[r], terrain.cellHeightM[r]});
-    const double reachM = std::min(params.maxDistanceM, diagonalM(terrain));
+    for (std::size_t r = 0; r < g.height; ++r) minCellM = std::min({minCellM, g.cellWidthM[r], g.cellHeightM[r]});
+    const double reachM = std::min(params.maxDistanceM, diagonalM(g));
     const double deg = std::atan(kLateralBudgetCells * minCellM / reachM) * kRadToDeg;
     return std::max(std::clamp(deg, kMinAutoToleranceDeg, kMaxAutoToleranceDeg), params.directionToleranceFloorDeg);
 }
 
 std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParams& params) {
-    validateHorizonParams(terrain, params);
-    std::vector<SweepRegion> regions;
-    splitRegion(terrain, AzimuthTarget{wrapAzimuthDeg(params.azimuthDeg), params.azimuthAtDeg},
-                effectiveDirectionToleranceDeg(terrain, params), outputWindow(terrain, params), regions);
+    std::vector<SweepRegion> regions = fullGridRegions(terrain, params);
+    const FullGridRef g = fullGrid(terrain);
+    for (SweepRegion& r : regions)
+        r.window = {r.window.col0 - g.col0, r.window.row0 - g.row0, r.window.col1 - g.col0, r.window.row1 - g.row0};
     return regions;
 }
 
@@ -747,7 +805,9 @@ HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params, Pro
 
 std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params, HorizonMap& out,
                              SweepBuffers& buffers, ProgressCounter* progress) {
-    const std::vector<SweepRegion> regions = sweepRegions(terrain, params);
+    const std::vector<SweepRegion> regions = fullGridRegions(terrain, params);
+    const FullGridRef full = fullGrid(terrain);
+    const CellWindow cells = terrainWindow(terrain);
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
 
@@ -773,7 +833,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
     if (!params.nearestLine) reset(planeB, std::numeric_limits<float>::quiet_NaN());
 
     for (const SweepRegion& region : regions) {
-        const LineGeometry geo = makeGeometry(terrain, region, params.maxDistanceM, params.nearestLine);
+        const LineGeometry geo = makeGeometry(full, cells, region, params.maxDistanceM, params.nearestLine);
         const long nLines = geo.kLast - geo.kFirst + 1;
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
@@ -798,7 +858,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         });
         if (progress) progress->throwIfCancelled();
         parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
-            combineRow(geo, params.maxDistanceM, terrain.width(), row, w, out.angleDeg.data(), planeB.data(),
+            combineRow(geo, params.maxDistanceM, terrain.width(), row, w, cells, out.angleDeg.data(), planeB.data(),
                        params.truncationFlags ? out.truncated.data() : nullptr);
         }, 16);
         if (progress) {

@@ -249,8 +249,11 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
 }
 
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
+    // On the full grid, so that every tile of a DEM makes the same choices from it.
+    const FullGridRef g = fullGrid(terrain);
+    const CellWindow window = params.window ? *params.window : CellWindow{0, 0, g.width, g.height};
     double steps = 0;
-    for (const SweepRegion& region : sweepRegions(terrain, params)) {
+    for (const SweepRegion& region : sweepRegionsOnFullGrid(terrain, params, window)) {
         const CellWindow& w = region.window;
         steps += static_cast<double>((w.col1 - w.col0) * (w.row1 - w.row0));  // combine pass
         // Line geometry: one step per cell along the major axis; a line k lies at minor
@@ -260,16 +263,16 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
         double slope = (xMajor ? region.dirRow : region.dirCol) / major;
         if (std::abs(slope) < kSlopeSnap) slope = 0;  // on-axis, as the sweep snaps it
         const int farSign = major >= 0 ? 1 : -1;
-        const double majorSize = static_cast<double>(xMajor ? terrain.width() : terrain.height());
-        const double minorSize = static_cast<double>(xMajor ? terrain.height() : terrain.width());
+        const double majorSize = static_cast<double>(xMajor ? g.width : g.height);
+        const double minorSize = static_cast<double>(xMajor ? g.height : g.width);
         const double a0 = static_cast<double>(xMajor ? w.col0 : w.row0);
         const double a1 = static_cast<double>(xMajor ? w.col1 : w.row1) - 1;
         const double b0 = static_cast<double>(xMajor ? w.row0 : w.col0);
         const double b1 = static_cast<double>(xMajor ? w.row1 : w.col1) - 1;
         double minStepM = std::numeric_limits<double>::infinity();
-        for (std::size_t r = 0; r < terrain.height(); ++r)
-            minStepM = std::min(minStepM, std::hypot((xMajor ? 1.0 : slope) * terrain.cellWidthM[r],
-                                                     (xMajor ? slope : 1.0) * terrain.cellHeightM[r]));
+        for (std::size_t r = 0; r < g.height; ++r)
+            minStepM = std::min(minStepM, std::hypot((xMajor ? 1.0 : slope) * g.cellWidthM[r],
+                                                     (xMajor ? slope : 1.0) * g.cellHeightM[r]));
         const double extension = std::isfinite(params.maxDistanceM)
                                      ? std::min(majorSize, std::ceil(params.maxDistanceM / minStepM) + 1)
                                      : majorSize;

@@ -144,7 +144,8 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
 /// cost of plans without timing. It leaves out the range-limit pass, which makes a step up to
 /// kRangeLimitStepCost times as dear when maxDistanceM is a small fraction of the line length (see
 /// kWholeDemShareOfDiagonal in quality.cpp); `demlight_tradeoff_bench --auto-vs-full` prints it
-/// beside measured times.
+/// beside measured times. Estimated on the terrain's full grid (params.window, when set, in
+/// full-grid coordinates), so every tile of a DEM gets the same estimate and plan.
 double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params);
 
 /// Cost of one line step of a range-limited sweep relative to an unlimited one (the chunked

@@ -164,7 +164,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.nearestLine = params.nearestLine;
     hp.maxDistanceM = frame.maxDistanceM;
     hp.azimuthDeg = field.centreAzimuthDeg;
-    hp.azimuthAtDeg = [&field](double col, double row) { return field.at(col + 0.5, row + 0.5).first; };
+    hp.azimuthAtDeg = [&field](double col, double row) { return field.atFull(col + 0.5, row + 0.5).first; };
     hp.directionToleranceFloorDeg = params.directionToleranceFloorDeg;
     // Automatic tolerance: one cell of sideways drift at the sun's own search distance, the
     // farthest a shadow can be cast from; with or without the range limit below.
@@ -175,7 +175,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         // so the whole DEM gives the same visibility, and costs less unless the limit cuts the
         // line walks (regions) by more than its own overhead.
         hp.maxDistanceM = std::numeric_limits<double>::infinity();
-        frame.maxDistanceM = diagonalM(t);
+        frame.maxDistanceM = diagonalM(fullGrid(t));
     }
     // Two exact strategies; the one with fewer estimated line steps runs.
     //  - Following: one sweep whose regions follow the sun's azimuth. Cheapest while the
@@ -184,8 +184,10 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     //  - Interpolating: sweeps at azimuths kSunAzimuthSpacingDeg apart spanning the field, each
     //    over the cells whose own azimuth it brackets (its regions split for the convergence
     //    only), and each cell's horizon linear in azimuth between the two bracketing sweeps.
-    const std::vector<double> azimuths = sunSweepAzimuthsDeg(field, t.width(), t.height());
-    const std::vector<CellWindow> windows = sweepWindows(field, azimuths, t.width(), t.height());
+    // Chosen on the DEM's full grid (windows in its coordinates), so every tile chooses alike.
+    const FullGridRef full = fullGrid(t);
+    const std::vector<double> azimuths = sunSweepAzimuthsDeg(field, full.width, full.height);
+    const std::vector<CellWindow> windows = sweepWindows(field, azimuths, full.width, full.height);
     struct FixedSweep {
         std::size_t azimuthIndex;
         HorizonParams params;
@@ -200,6 +202,15 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
             p.azimuthDeg = wrapAzimuthDeg(azimuths[i]);
             p.window = windows[i];
             interpolatingSteps += estimateSweepSteps(t, p);
+            // The sweep covers the window's cells of this terrain, in its coordinates.
+            const CellWindow& w = windows[i];
+            const CellWindow local{std::max(w.col0, full.col0) - full.col0, std::max(w.row0, full.row0) - full.row0,
+                                   std::min(w.col1, full.col0 + t.width()), std::min(w.row1, full.row0 + t.height())};
+            if (local.col1 <= full.col0 + local.col0 || local.row1 <= full.row0 + local.row0) {
+                p.window.reset();  // no cell of this terrain: skipped below
+            } else {
+                p.window = CellWindow{local.col0, local.row0, local.col1 - full.col0, local.row1 - full.row0};
+            }
             fixedSweeps.push_back({i, p});
         }
         if (params.strategy == SunSweepStrategy::Cheapest && interpolatingSteps >= estimateSweepSteps(t, hp))
@@ -208,13 +219,15 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     frame.strategy = fixedSweeps.empty() ? SunSweepStrategy::Following : SunSweepStrategy::Interpolating;
     std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
     SweepBuffers buffers;
-    if (fixedSweeps.empty()) {
+    std::erase_if(fixedSweeps, [](const FixedSweep& sweep) { return !sweep.params.window; });
+    if (frame.strategy == SunSweepStrategy::Following) {
         frame.sweepRegions = sweepHorizonInto(t, hp, horizons[0], buffers, progress);
     } else {
         // Progress: the frame counts as one pass over the cells, shared by window areas.
         const auto area = [](const CellWindow& w) { return (w.col1 - w.col0) * (w.row1 - w.row0); };
         std::size_t totalArea = 0, areaDone = 0, reported = 0;
         for (const FixedSweep& sweep : fixedSweeps) totalArea += area(*sweep.params.window);
+        totalArea = std::max<std::size_t>(totalArea, 1);
         for (const FixedSweep& sweep : fixedSweeps) {
             frame.sweepRegions += sweepHorizonInto(t, sweep.params, horizons[sweep.azimuthIndex], buffers);
             if (progress) {

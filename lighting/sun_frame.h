@@ -75,23 +75,27 @@ void shadeSunRow(const float* horizonDeg, const float* east, const float* north,
 /// (SunField::at; the azimuth unwrapped like the field). Along a row the field is linear within each lattice interval, so each
 /// interval's cells take azimuth and elevation linearly between its end cells, and their sines
 /// and cosines by one angle-addition step per cell from the first cell's <cmath> values: no
-/// trigonometry per cell, within ~1e-14 of <cmath> (tests/sun_frame_test.cpp).
+/// trigonometry per cell, within ~1e-14 of <cmath> (tests/sun_frame_test.cpp). Intervals are the
+/// DEM's (SunField::onTile): a tile starting inside one steps from the interval's first cell.
 template <class Fn>
 void forEachSunInRow(const SunField& field, std::size_t row, std::size_t width, Fn&& fn) {
-    const double y = static_cast<double>(row) + 0.5;
+    const double y = static_cast<double>(row) + 0.5 + field.rowOffset;
     const std::size_t step = std::max<std::size_t>(field.stepCells, 1);
-    for (std::size_t c0 = 0; c0 < width;) {
-        const std::size_t c1 = std::min(width, (c0 / step + 1) * step);  // one lattice interval
-        const auto [az0, el0] = field.at(static_cast<double>(c0) + 0.5, y);
-        const auto [az1, el1] = field.at(static_cast<double>(c1) - 0.5, y);
+    const auto offset = static_cast<std::size_t>(field.colOffset);  // cells of the DEM left of the tile
+    const std::size_t fullWidth = field.fullWidth ? field.fullWidth : width;
+    const std::size_t end = offset + width;  // in the DEM's columns from here on
+    for (std::size_t c0 = offset / step * step; c0 < end;) {
+        const std::size_t c1 = std::min(fullWidth, (c0 / step + 1) * step);  // one lattice interval
+        const auto [az0, el0] = field.atFull(static_cast<double>(c0) + 0.5, y);
+        const auto [az1, el1] = field.atFull(static_cast<double>(c1) - 0.5, y);
         const double last = static_cast<double>(c1 - c0 - 1);
         const double dAz = last > 0 ? (az1 - az0) / last : 0.0, dEl = last > 0 ? (el1 - el0) / last : 0.0;
         const double sinDAz = std::sin(dAz * kDegToRad), cosDAz = std::cos(dAz * kDegToRad);
         const double sinDEl = std::sin(dEl * kDegToRad), cosDEl = std::cos(dEl * kDegToRad);
         SunAngles sun{az0, el0, std::sin(az0 * kDegToRad), std::cos(az0 * kDegToRad), std::sin(el0 * kDegToRad),
                       std::cos(el0 * kDegToRad)};
-        for (std::size_t col = c0; col < c1; ++col) {
-            fn(col, static_cast<const SunAngles&>(sun));
+        for (std::size_t col = c0; col < std::min(c1, end); ++col) {
+            if (col >= offset) fn(col - offset, static_cast<const SunAngles&>(sun));
             sun.azimuthDeg = az0 + dAz * static_cast<double>(col + 1 - c0);
             sun.elevationDeg = el0 + dEl * static_cast<double>(col + 1 - c0);
             const double sa = sun.sinAzimuth * cosDAz + sun.cosAzimuth * sinDAz;

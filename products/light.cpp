@@ -31,15 +31,25 @@ LightRasters loadRasters(const Dem& dem, const LightRequest& r) {
     return out;
 }
 
-LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const ProgressFn& progress) {
+/// The whole DEM's rasters on a window of it (the cells `dem` covers).
+LightRasters rastersOnTile(const LightRasters& whole, const Dem& dem) {
+    const Terrain& t = dem.terrain;
+    const CellWindow w{t.frameCol0, t.frameRow0, t.frameCol0 + t.width(), t.frameRow0 + t.height()};
+    LightRasters out;
+    out.albedo = cropGrid(whole.albedo, w);
+    out.cloud = cropGrid(whole.cloud, w);
+    for (const Grid<float>& g : whole.color) out.color.push_back(cropGrid(g, w));
+    return out;
+}
+
+LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const SunField& field,
+                         const LightRasters& rasters, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const bool aperture = o.model != SunModel::Horizon;
     const bool colorRaster = !o.colorRaster.empty();
     const bool colour = colorRaster || o.sunColor || o.skyColor;
     const double albedo = o.albedo.value_or(kDefaultAlbedo);
-    const LightRasters rasters = loadRasters(dem, o);
 
-    const SunField field = sunFieldFor(dem, o.time.utc, o.atmosphere, plan);
     const Normals normals = computeNormals(t, o.search.threads);
     const bool skySweeps = o.skyModel == SkyModel::StewartLanger;
     const std::size_t directions = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
@@ -183,9 +193,12 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
     validateLight(request);
     const Dem& whole = source.dem();
     const ScenePlan plan = planFor(request.search, whole.terrain);
+    // The sun and the rasters of the whole DEM, read by each window: the same bits on its cells
+    // (resampling onto a window's own georeference would round its coordinates differently).
+    const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
+    const LightRasters rasters = loadRasters(whole, request);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
-        const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
         const double sunDistance = request.search.maxDistanceM.value_or(
             plan.quality == Quality::Full
                 ? plan.maxDistanceM
@@ -196,8 +209,11 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
                 .maxDistanceM;
         halo = haloCellsFor(whole.terrain, std::max(sunDistance, skyDistance));
     }
-    return onWindow<LightResult>(source, window, halo,
-                                 [&](const Dem& dem) { return computeLight(dem, plan, request, progress); });
+    return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
+        if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, progress);  // the whole DEM
+        return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),
+                            progress);
+    });
 }
 
 }  // namespace demlight

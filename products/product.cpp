@@ -22,14 +22,6 @@ constexpr double kDisplayGamma = 2.2;
 /// Largest 8-bit display value.
 constexpr double kMaxByte = 255.0;
 
-template <class T>
-Grid<T> cropGrid(const Grid<T>& g, std::size_t col0, std::size_t row0, std::size_t cols, std::size_t rows) {
-    Grid<T> out(cols, rows);
-    for (std::size_t r = 0; r < rows; ++r)
-        std::copy_n(&g(col0, row0 + r), cols, &out(0, r));
-    return out;
-}
-
 }  // namespace
 
 const ProductBand& ProductResult::band(const std::string& name) const {
@@ -138,8 +130,8 @@ void cropResult(ProductResult& result, const CellWindow& read, const CellWindow&
     const std::size_t col0 = window.col0 - read.col0, row0 = window.row0 - read.row0;
     const std::size_t cols = window.col1 - window.col0, rows = window.row1 - window.row0;
     for (ProductBand& b : result.bands) {
-        if (!b.values.empty()) b.values = cropGrid(b.values, col0, row0, cols, rows);
-        if (!b.flags.empty()) b.flags = cropGrid(b.flags, col0, row0, cols, rows);
+        if (!b.values.empty()) b.values = cropGrid(b.values, {col0, row0, col0 + cols, row0 + rows});
+        if (!b.flags.empty()) b.flags = cropGrid(b.flags, {col0, row0, col0 + cols, row0 + rows});
     }
     auto& gt = result.ref.geoTransform;
     gt[0] += static_cast<double>(col0) * gt[1];

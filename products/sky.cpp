@@ -81,11 +81,17 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
              : haloCellsFor(whole, integralParams(request.search, plan, whole,
                                                   request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
                                        .maxDistanceM);
+    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+    Grid<float> albedo;
+    if (!request.albedoRaster.empty())
+        albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source.dem(),
+                                               {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
     return onWindow<SkyResult>(source, window, halo, [&](const Dem& dem) {
-        std::vector<Grid<float>> albedo;
-        if (!request.albedoRaster.empty())
-            albedo = loadAuxiliaryRaster(request.albedoRaster, dem, {"albedoRaster", 1, false, 0, 1, false, {}});
-        const Grid<float>* a = albedo.empty() ? nullptr : &albedo[0];
+        const Terrain& t = dem.terrain;
+        const Grid<float> cut =
+            t.frame ? cropGrid(albedo, {t.frameCol0, t.frameRow0, t.frameCol0 + t.width(), t.frameRow0 + t.height()})
+                    : Grid<float>();
+        const Grid<float>* a = albedo.empty() ? nullptr : t.frame ? &cut : &albedo;
         return hemi ? hemisphere(dem, request, a) : stewartLanger(dem, plan, request, a, progress);
     });
 }

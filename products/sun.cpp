@@ -54,9 +54,9 @@ SunResult apertureSun(const Dem& dem, const Normals& normals, const SunField& fi
     return out;
 }
 
-SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& request, const ProgressFn& progress) {
+SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& request, const SunField& field,
+                     const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
-    const SunField field = sunFieldFor(dem, request.time.utc, request.atmosphere, plan);
     const auto [lowestSun, highestSun] = field.elevationRange();
     const bool horizon = request.model == SunModel::Horizon;
     const Normals normals = computeNormals(t, request.search.threads);
@@ -98,6 +98,10 @@ void validateSun(double sunDiameterDeg, const Atmosphere& atmosphere) {
         throw FieldError("temperatureC", " " + formatNumber(atmosphere.temperatureC) + ": must be in [-100, 100]");
 }
 
+SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source) {
+    return whole.onTile(tile.terrain.frameCol0, tile.terrain.frameRow0, source.width());
+}
+
 SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan) {
     SolarSite site;
     site.pressureHpa = atmosphere.pressureHpa;
@@ -112,10 +116,11 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
         throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
     const Dem& whole = source.dem();
     const ScenePlan plan = planFor(request.search, whole.terrain);
+    // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
+    const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // The longest search any sun of this instant needs on the whole DEM.
-        const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
         double distance = request.search.maxDistanceM.value_or(
             plan.quality == Quality::Full ? plan.maxDistanceM
                                           : sunSearchDistanceM(whole.terrain, field.elevationRange().first,
@@ -126,8 +131,9 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
                            .maxDistanceM;
         halo = haloCellsFor(whole.terrain, distance);
     }
-    return onWindow<SunResult>(source, window, halo,
-                               [&](const Dem& dem) { return computeSun(dem, plan, request, progress); });
+    return onWindow<SunResult>(source, window, halo, [&](const Dem& dem) {
+        return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), progress);
+    });
 }
 
 }  // namespace demlight

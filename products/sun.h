@@ -43,6 +43,9 @@ struct SunResult : ProductResult {
 
 /// The sun of `time` on the DEM's lattice (every plan.sunLatticeStepCells cells).
 SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan);
+/// The whole DEM's field as a window of it (read from `source`) sees it: SunField::onTile at the
+/// window's corner, so the window's cells get the whole DEM's sun bit for bit.
+SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source);
 
 /// Bands: sun_visibility (fraction of the disk, 0-1), sun_irradiance (normalised).
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,

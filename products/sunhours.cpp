@@ -38,9 +38,14 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
     return s;
 }
 
-SunhoursResult computeSunhours(const Dem& dem, const ScenePlan& plan, const SunhoursRequest& r,
-                               const ProgressFn& progress) {
+SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const ScenePlan& plan,
+                               const SunhoursRequest& r, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
+    // Each instant's sun on the whole DEM, read by this window (the same bits on its cells).
+    const auto fieldAt = [&](UtcInstant when, const SolarSite& site) {
+        const SunField field = computeSunField(source.dem(), when, site, SpaOptions{}, plan.sunLatticeStepCells);
+        return t.frame ? sunFieldOnTile(field, dem, source) : field;
+    };
     const Sequence seq = makeSequence(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.zone, r.step);
     SunHoursParams params;
     // auto: each instant's sun sets its own distance (sunSearchDistanceM); full: the DEM diagonal.
@@ -60,14 +65,14 @@ SunhoursResult computeSunhours(const Dem& dem, const ScenePlan& plan, const Sunh
     ProgressCounter counter(progress, "sunhours", seq.instants.size());
     SunHoursMaps maps = integrateSunHours(
         t, normals, seq.instants,
-        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], site, SpaOptions{}, plan.sunLatticeStepCells); },
+        [&](std::size_t i) { return fieldAt(seq.utc[i], site); },
         params, &counter);
     // Daylight from the sun's geometric elevation (no refraction: pressure 0), SPA's sunrise/sunset.
     SolarSite geometric = site;
     geometric.pressureHpa = 0;
     const Grid<float> daylight = integrateDaylight(
         t, seq.instants,
-        [&](std::size_t i) { return computeSunField(dem, seq.utc[i], geometric, SpaOptions{}, plan.sunLatticeStepCells); },
+        [&](std::size_t i) { return fieldAt(seq.utc[i], geometric); },
         r.search.threads);
     Grid<float> skyIrr = skyIrradiation(skyFactor, daylight);
 
@@ -148,7 +153,7 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
     }
     return onWindow<SunhoursResult>(source, window, halo,
-                                    [&](const Dem& dem) { return computeSunhours(dem, plan, request, progress); });
+                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, progress); });
 }
 
 }  // namespace demlight

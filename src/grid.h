@@ -5,6 +5,7 @@
 // whose centre is at pixel coordinates (col + 0.5, row + 0.5) of the geotransform.
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <vector>
@@ -58,5 +59,15 @@ struct CellWindow {
 struct CellIndex {
     std::size_t col = 0, row = 0;
 };
+
+/// The window's cells of a grid as a grid of their own; an empty grid stays empty.
+template <class T>
+Grid<T> cropGrid(const Grid<T>& g, const CellWindow& w) {
+    if (g.empty()) return {};
+    Grid<T> out(w.col1 - w.col0, w.row1 - w.row0);
+    for (std::size_t r = 0; r < out.height(); ++r)
+        std::copy_n(&g(w.col0, w.row0 + r), out.width(), &out(0, r));
+    return out;
+}
 
 }  // namespace demlight

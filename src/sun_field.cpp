@@ -27,7 +27,19 @@ SunField SunField::uniform(double azimuthDeg, double elevationDeg) {
     return f;
 }
 
+SunField SunField::onTile(std::size_t col0, std::size_t row0, std::size_t width) const {
+    SunField f = *this;
+    f.colOffset += static_cast<double>(col0);
+    f.rowOffset += static_cast<double>(row0);
+    if (f.fullWidth == 0) f.fullWidth = width;
+    return f;
+}
+
 std::pair<double, double> SunField::at(double col, double row) const {
+    return atFull(col + colOffset, row + rowOffset);
+}
+
+std::pair<double, double> SunField::atFull(double col, double row) const {
     return {bilinear(azimuthDeg, stepCells, col, row), bilinear(elevationDeg, stepCells, col, row)};
 }
 
@@ -38,7 +50,7 @@ std::pair<double, double> SunField::azimuthRange(std::size_t col0, std::size_t r
     double lo = 1e9, hi = -1e9;
     const auto take = [&](double v) { lo = std::min(lo, v), hi = std::max(hi, v); };
     for (double c : {static_cast<double>(col0), static_cast<double>(col1)})
-        for (double r : {static_cast<double>(row0), static_cast<double>(row1)}) take(at(c, r).first);
+        for (double r : {static_cast<double>(row0), static_cast<double>(row1)}) take(atFull(c, r).first);
     for (std::size_t j = row0 / stepCells; j < azimuthDeg.height() && j * stepCells <= row1; ++j)
         for (std::size_t i = col0 / stepCells; i < azimuthDeg.width() && i * stepCells <= col1; ++i)
             if (i * stepCells >= col0 && j * stepCells >= row0) take(azimuthDeg(i, j));

@@ -11,8 +11,8 @@ double ConvergenceField::at(double col, double row) const {
     const double step = static_cast<double>(stepCells);
     const double maxI = static_cast<double>(gammaDeg.width() - 1);
     const double maxJ = static_cast<double>(gammaDeg.height() - 1);
-    const double fi = std::clamp(col / step, 0.0, maxI);
-    const double fj = std::clamp(row / step, 0.0, maxJ);
+    const double fi = std::clamp((col + colOffset) / step, 0.0, maxI);
+    const double fj = std::clamp((row + rowOffset) / step, 0.0, maxJ);
     const auto i0 = static_cast<std::size_t>(fi);
     const auto j0 = static_cast<std::size_t>(fj);
     const std::size_t i1 = std::min(i0 + 1, gammaDeg.width() - 1);
@@ -56,10 +56,14 @@ std::pair<float, float> heightRangeM(const Grid<float>& heightsM) {
 }
 
 double diagonalM(const Terrain& t) {
+    return diagonalM(FullGridRef{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, 0, 0, t});
+}
+
+double diagonalM(const FullGridRef& g) {
     double heightM = 0, widthM = 0;
-    for (std::size_t r = 0; r < t.height(); ++r) {
-        heightM += t.cellHeightM[r];
-        widthM = std::max(widthM, t.cellWidthM[r] * static_cast<double>(t.width()));
+    for (std::size_t r = 0; r < g.height; ++r) {
+        heightM += g.cellHeightM[r];
+        widthM = std::max(widthM, g.cellWidthM[r] * static_cast<double>(g.width));
     }
     return std::hypot(widthM, heightM);
 }
@@ -87,6 +91,42 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
                                      static_cast<double>(row0 + std::min(j * kStep, h - 1))));
     }
     return out;
+}
+
+Terrain tileOf(const Terrain& t, const CellWindow& w) {
+    Terrain out = cropTerrain(t, w.col0, w.row0, w.col1 - w.col0, w.row1 - w.row0);
+    out.convergence = t.convergence;
+    out.convergence.colOffset += static_cast<double>(w.col0);
+    out.convergence.rowOffset += static_cast<double>(w.row0);
+    if (t.frame) {
+        out.frame = t.frame;
+    } else {
+        const auto [lo, hi] = heightRangeM(t.heightsM);
+        out.frame = std::make_shared<const GridFrame>(
+            GridFrame{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, lo, hi});
+    }
+    out.frameCol0 = t.frameCol0 + w.col0;
+    out.frameRow0 = t.frameRow0 + w.row0;
+    return out;
+}
+
+FullGridRef fullGrid(const Terrain& t) {
+    if (t.frame) {
+        const GridFrame& f = *t.frame;
+        return {f.width, f.height, f.cellWidthM, f.cellHeightM, f.convergence, t.frameCol0, t.frameRow0, t};
+    }
+    return {t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, 0, 0, t};
+}
+
+std::pair<float, float> FullGridRef::heightRangeM() const {
+    if (terrain.frame) return {terrain.frame->lowM, terrain.frame->highM};
+    return demlight::heightRangeM(terrain.heightsM);
+}
+
+double FullGridRef::minCellM() const {
+    double m = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < height; ++r) m = std::min({m, cellWidthM[r], cellHeightM[r]});
+    return m;
 }
 
 Terrain cropTerrainCentre(const Terrain& t, std::size_t w, std::size_t h) {

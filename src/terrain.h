@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace demlight {
@@ -23,12 +24,28 @@ inline constexpr double kDefaultRefraction = 0.13;
 struct ConvergenceField {
     Grid<float> gammaDeg;
     std::size_t stepCells = 1;
+    /// Where cell (0, 0) of the terrain lies on the lattice's grid: a terrain cut from a larger
+    /// one keeps that one's lattice, so gamma at a cell has the same bits in both.
+    double colOffset = 0, rowOffset = 0;
 
     bool empty() const { return gammaDeg.empty(); }
     /// Gamma at a cell, bilinear between lattice nodes (degrees).
     double at(double col, double row) const;
     /// Smallest and largest sampled gamma (degrees); {0, 0} when empty.
     std::pair<double, double> range() const;
+};
+
+/// The full grid a terrain was cut from (a tile of a larger DEM): its size, per-row cell sizes
+/// and convergence. Horizon sweeps lay their regions, scan lines and distances on this grid, so a
+/// cut terrain's horizons are the same bits as the full one's on the cells they share
+/// (DESIGN's "a tile computed with its halo gives the same bits as the whole DEM").
+struct GridFrame {
+    std::size_t width = 0, height = 0;
+    std::vector<double> cellWidthM, cellHeightM;  ///< one entry per row of the full grid
+    ConvergenceField convergence;                 ///< of the full grid (offsets 0)
+    /// Lowest and highest valid height of the full grid (heightRangeM): the relief that search
+    /// distances are sized from, the same for every tile.
+    float lowM = 0, highM = 0;
 };
 
 struct Terrain {
@@ -42,6 +59,10 @@ struct Terrain {
     std::vector<double> rowLatitudeDeg;
     /// Grid vs true north (projected CRSs). Empty for geographic CRSs.
     ConvergenceField convergence;
+    /// The full grid this terrain was cut from and the cut's corner on it; null when the
+    /// terrain is a grid of its own.
+    std::shared_ptr<const GridFrame> frame;
+    std::size_t frameCol0 = 0, frameRow0 = 0;
 
     std::size_t width() const { return heightsM.width(); }
     std::size_t height() const { return heightsM.height(); }
@@ -55,10 +76,35 @@ double diagonalM(const Terrain& terrain);
 /// Lowest and highest valid height (metres); {+inf, -inf} when every cell is nodata.
 std::pair<float, float> heightRangeM(const Grid<float>& heightsM);
 
+/// The full grid of a terrain, by reference: its frame's, or the terrain's own; col0/row0 is
+/// the terrain's cell (0, 0) on it.
+struct FullGridRef {
+    std::size_t width, height;
+    const std::vector<double>& cellWidthM;
+    const std::vector<double>& cellHeightM;
+    const ConvergenceField& convergence;
+    std::size_t col0, row0;
+    const Terrain& terrain;  ///< the terrain it was taken from
+    /// Lowest and highest valid height of the full grid; {+inf, -inf} when none.
+    std::pair<float, float> heightRangeM() const;
+    /// Smallest cell side of any row (metres).
+    double minCellM() const;
+};
+FullGridRef fullGrid(const Terrain& terrain);
+
+/// diagonalM of the full grid.
+double diagonalM(const FullGridRef& grid);
+
 /// The window [col0, col0 + w) x [row0, row0 + h) of a terrain as a terrain of its own: heights,
 /// per-row cell sizes and latitudes, and the convergence lattice re-sampled
 /// every 16 cells of the window.
 Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h);
+
+/// The window [col0, col0 + w) x [row0, row0 + h) of a terrain as a tile of it: heights, per-row
+/// cell sizes and latitudes, the convergence lattice (the same nodes, offset), and the frame of
+/// the full grid, so that kernels which anchor to the full grid give the tile the full terrain's
+/// bits on the cells they share (truncation, too, is at the full grid's edges).
+Terrain tileOf(const Terrain& t, const CellWindow& window);
 
 /// The centred window of at most w x h cells (sizes clamped to the terrain), as cropTerrain.
 Terrain cropTerrainCentre(const Terrain& t, std::size_t w, std::size_t h);

@@ -1,0 +1,270 @@
+// Tiles with halos give the same bits as the whole DEM: horizon sweeps laid on the full grid
+// (regions, scan lines, distances, chunks and edges), on real DEMs of each kind of CRS.
+#include "geo/dem_source.h"
+#include "geo/time.h"
+#include "lighting/horizon.h"
+#include "products/aperture.h"
+#include "products/horizon.h"
+#include "products/light.h"
+#include "products/sky.h"
+#include "products/sun.h"
+#include "products/sunhours.h"
+#include "shared_dem.h"
+#include "src/terrain.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+/// Cells of search distance (as products' haloCellsFor): distance over the smallest cell side,
+/// plus one.
+std::size_t haloCells(const Terrain& t, double distanceM) {
+    double minCell = 1e300;
+    for (std::size_t r = 0; r < t.height(); ++r) minCell = std::min({minCell, t.cellWidthM[r], t.cellHeightM[r]});
+    if (!std::isfinite(distanceM)) return std::max(t.width(), t.height());
+    return static_cast<std::size_t>(std::ceil(distanceM / minCell)) + 1;
+}
+
+/// Bitwise equal, NaN equal to NaN (memcmp of the float's bits).
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Sweeps every tile of `tileSize` cells with its halo and counts cells whose angle or
+/// truncation flag differs from the whole DEM's in any bit.
+std::size_t tiledMismatches(const Terrain& whole, const HorizonParams& params, std::size_t tileSize) {
+    const HorizonMap reference = sweepHorizon(whole, params);
+    const std::size_t halo = haloCells(whole, params.maxDistanceM);
+    std::size_t bad = 0;
+    for (std::size_t r0 = 0; r0 < whole.height(); r0 += tileSize) {
+        for (std::size_t c0 = 0; c0 < whole.width(); c0 += tileSize) {
+            const CellWindow tile{c0, r0, std::min(whole.width(), c0 + tileSize), std::min(whole.height(), r0 + tileSize)};
+            const CellWindow read{tile.col0 - std::min(tile.col0, halo), tile.row0 - std::min(tile.row0, halo),
+                                  std::min(whole.width(), tile.col1 + halo), std::min(whole.height(), tile.row1 + halo)};
+            const Terrain part = tileOf(whole, read);
+            HorizonParams p = params;
+            p.window = CellWindow{tile.col0 - read.col0, tile.row0 - read.row0, tile.col1 - read.col0,
+                                  tile.row1 - read.row0};
+            const HorizonMap h = sweepHorizon(part, p);
+            for (std::size_t row = tile.row0; row < tile.row1; ++row) {
+                for (std::size_t col = tile.col0; col < tile.col1; ++col) {
+                    const std::size_t lc = col - read.col0, lr = row - read.row0;
+                    if (!sameBits(h.angleDeg(lc, lr), reference.angleDeg(col, row)) ||
+                        h.truncated(lc, lr) != reference.truncated(col, row))
+                        ++bad;
+                }
+            }
+        }
+    }
+    return bad;
+}
+
+struct Case {
+    const char* dem;
+    std::size_t cropW, cropH;
+};
+
+// One geographic DEM (per-row cell widths), one UTM (convergence), one at 78° N (UTM 33N:
+// strong convergence, regions split in both axes).
+const Case kCases[] = {
+    {"N48W125_srtm1.tif", 700, 600},
+    {"big_tujunga_srtm30m_utm11.tif", 0, 0},
+    {"svalbard_longyearbyen_npi_dtm20.tif", 800, 700},
+};
+
+class TiledSweep : public ::testing::TestWithParam<Case> {};
+
+TEST_P(TiledSweep, TilesWithHalosAreTheWholeDemsBits) {
+    const Case c = GetParam();
+    const auto t = sharedTerrain(c.dem, c.cropW, c.cropH);
+    if (!t) GTEST_SKIP() << c.dem << " absent";
+    for (const double azimuth : {0.0, 37.0, 90.0, 143.5, 225.0, 301.0}) {
+        for (const double distance : {3000.0, std::numeric_limits<double>::infinity()}) {
+            HorizonParams p;
+            p.azimuthDeg = azimuth;
+            p.maxDistanceM = distance;
+            p.threads = 2;
+            // Tiles smaller than the halo, an odd size, and one larger than the DEM's side.
+            for (const std::size_t tile : {std::size_t{61}, std::size_t{256}, std::size_t{777}}) {
+                EXPECT_EQ(tiledMismatches(*t, p, tile), 0u)
+                    << c.dem << " azimuth " << azimuth << " distance " << distance << " tile " << tile;
+            }
+        }
+    }
+}
+
+TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
+    const Case c = GetParam();
+    const auto t = sharedTerrain(c.dem, c.cropW, c.cropH);
+    if (!t) GTEST_SKIP() << c.dem << " absent";
+    for (const double azimuth : {11.25, 191.25}) {
+        HorizonParams p;
+        p.azimuthDeg = azimuth;
+        p.maxDistanceM = 2500;
+        p.nearestLine = true;
+        p.threads = 2;
+        EXPECT_EQ(tiledMismatches(*t, p, 200), 0u) << c.dem << " azimuth " << azimuth;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(RealDems, TiledSweep, ::testing::ValuesIn(kCases),
+                         [](const auto& testInfo) {
+                             std::string name = testInfo.param.dem;
+                             name = name.substr(0, name.find('.'));
+                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+                             return name;
+                         });
+
+// ---- Products: every raster product, window by window -----------------------------------------
+
+/// The centre window of a shared DEM as a DEM of its own (no frame: it is the whole DEM here).
+std::optional<DemSource> sharedSource(const std::string& name, std::size_t cols, std::size_t rows) {
+    const std::string path = sharedDemPath(name);
+    if (!std::filesystem::exists(path)) return std::nullopt;
+    const DemSource full = DemSource::open(path);
+    cols = std::min(cols, full.width()), rows = std::min(rows, full.height());
+    const std::size_t c0 = (full.width() - cols) / 2, r0 = (full.height() - rows) / 2;
+    Dem cut = full.read({c0, r0, c0 + cols, r0 + rows});
+    cut.terrain.frame.reset();
+    cut.terrain.frameCol0 = cut.terrain.frameRow0 = 0;
+    return DemSource(std::move(cut));
+}
+
+using Product = std::function<ProductResult(const DemSource&, const CellWindow&)>;
+
+/// Cells of any band whose bits differ between the whole DEM's result and the result assembled
+/// from windows of `tile` cells (each computed by itself, with its halo).
+std::size_t windowMismatches(const DemSource& source, const Product& product, std::size_t tile) {
+    const ProductResult whole = product(source, source.whole());
+    std::size_t bad = 0;
+    for (std::size_t r0 = 0; r0 < source.height(); r0 += tile) {
+        for (std::size_t c0 = 0; c0 < source.width(); c0 += tile) {
+            const CellWindow w{c0, r0, std::min(source.width(), c0 + tile), std::min(source.height(), r0 + tile)};
+            const ProductResult part = product(source, w);
+            EXPECT_EQ(part.bands.size(), whole.bands.size());
+            for (std::size_t b = 0; b < std::min(part.bands.size(), whole.bands.size()); ++b) {
+                const ProductBand& pb = part.bands[b];
+                const ProductBand& wb = whole.bands[b];
+                for (std::size_t row = w.row0; row < w.row1; ++row)
+                    for (std::size_t col = w.col0; col < w.col1; ++col) {
+                        const std::size_t lc = col - w.col0, lr = row - w.row0;
+                        const bool same = pb.flags.empty() ? sameBits(pb.values(lc, lr), wb.values(col, row))
+                                                           : pb.flags(lc, lr) == wb.flags(col, row);
+                        if (!same) ++bad;
+                    }
+            }
+        }
+    }
+    return bad;
+}
+
+struct ProductCase {
+    const char* name;
+    Product run;
+};
+
+std::vector<ProductCase> productCases() {
+    SearchRequest search;
+    search.threads = 2;
+    const ZonedInstant morning = parseZonedInstant("2024-06-21T15:30:00Z", "");
+    const ZonedInstant evening = parseZonedInstant("2024-06-22T02:40:00Z", "");  // low sun in the west (Americas)
+    return {
+        {"horizon",
+         [=](const DemSource& s, const CellWindow& w) {
+             HorizonRequest r;
+             r.azimuthsDeg = {20, 200};
+             r.search = search;
+             const HorizonResult h = horizonProduct(s, w, r);
+             ProductResult out = h.horizons;
+             for (const ProductBand& b : h.truncation.bands) out.bands.push_back(b);
+             return out;
+         }},
+        {"sun",
+         [=](const DemSource& s, const CellWindow& w) {
+             SunRequest r;
+             r.time = morning;
+             r.search = search;
+             return static_cast<ProductResult>(sunProduct(s, w, r));
+         }},
+        {"sun_low",
+         [=](const DemSource& s, const CellWindow& w) {
+             SunRequest r;
+             r.time = evening;
+             r.search = search;
+             return static_cast<ProductResult>(sunProduct(s, w, r));
+         }},
+        {"sky",
+         [=](const DemSource& s, const CellWindow& w) {
+             SkyRequest r;
+             r.search = search;
+             return static_cast<ProductResult>(skyProduct(s, w, r));
+         }},
+        {"aperture",
+         [=](const DemSource& s, const CellWindow& w) {
+             ApertureRequest r;
+             r.search = search;
+             return static_cast<ProductResult>(apertureProduct(s, w, r));
+         }},
+        {"light",
+         [=](const DemSource& s, const CellWindow& w) {
+             LightRequest r;
+             r.time = morning;
+             r.search = search;
+             return static_cast<ProductResult>(lightProduct(s, w, r));
+         }},
+        {"sunhours",
+         [=](const DemSource& s, const CellWindow& w) {
+             SunhoursRequest r;
+             r.firstDay = r.lastDay = parseDate("2024-06-21");
+             r.step = std::chrono::minutes(90);
+             r.search = search;
+             return static_cast<ProductResult>(sunhoursProduct(s, w, r));
+         }},
+    };
+}
+
+class TiledProducts : public ::testing::TestWithParam<Case> {};
+
+TEST_P(TiledProducts, WindowsGiveTheWholeDemsBitsForEveryProduct) {
+    const Case c = GetParam();
+    const auto source = sharedSource(c.dem, 520, 430);
+    if (!source) GTEST_SKIP() << c.dem << " absent";
+    for (const ProductCase& p : productCases()) {
+        for (const std::size_t tile : {std::size_t{173}, std::size_t{300}}) {
+            EXPECT_EQ(windowMismatches(*source, p.run, tile), 0u) << c.dem << " " << p.name << " tile " << tile;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(RealDems, TiledProducts, ::testing::ValuesIn(kCases),
+                         [](const auto& testInfo) {
+                             std::string name = testInfo.param.dem;
+                             name = name.substr(0, name.find('.'));
+                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+                             return name;
+                         });
+
+TEST(TiledSweep, ATileKnowsTheFullGridItWasCutFrom) {
+    Terrain whole = makeUniformTerrain(Grid<float>(50, 40, 1.0f), 10.0);
+    const Terrain part = tileOf(whole, CellWindow{5, 7, 25, 30});
+    ASSERT_TRUE(part.frame);
+    EXPECT_EQ(part.frame->width, 50u);
+    EXPECT_EQ(part.frame->height, 40u);
+    EXPECT_EQ(part.frameCol0, 5u);
+    EXPECT_EQ(part.frameRow0, 7u);
+    const Terrain inner = tileOf(part, CellWindow{1, 2, 10, 10});
+    EXPECT_EQ(inner.frameCol0, 6u);
+    EXPECT_EQ(inner.frameRow0, 9u);
+    EXPECT_EQ(inner.frame.get(), part.frame.get());
+    EXPECT_DOUBLE_EQ(diagonalM(fullGrid(inner)), diagonalM(whole));
+}
+
+}  // namespace
+}  // namespace demlight
