@@ -11,6 +11,7 @@ namespace {
 struct ApertureOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::optional<std::size_t> directions;
 };
@@ -22,12 +23,13 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     request.directions = o.directions;
     request.search = o.search.request;
     notePlan(o.search, dem.dem().terrain, ctx);
-    ProgressBar bar(!ctx.quiet);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
     const auto start = std::chrono::steady_clock::now();
-    const ApertureResult result = apertureProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
+    const ApertureResult result = runRaster<ApertureResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return apertureProduct(dem, w, request, p); },
+        [](const ApertureResult& r) { return std::vector<const ProductResult*>{&r}; });
     const double seconds = secondsSince(start);
-    writeResult(result, o.out, ctx, o.dem.path);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
                   std::to_string(result.directions) + " directions, " + formatSeconds(seconds) + " compute");
 }
@@ -44,6 +46,7 @@ void registerAperture(CLI::App& app, CliContext& ctx) {
                     "--directions is the older spelling")
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runAperture(*o, ctx); });
 }
 

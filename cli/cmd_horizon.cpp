@@ -14,6 +14,7 @@ namespace {
 struct HorizonOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::vector<double> azimuthsDeg;
     int directions = 0;
@@ -36,18 +37,17 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     request.search = o.search.request;
     notePlan(o.search, dem.dem().terrain, ctx);
 
-    ProgressBar bar(!ctx.quiet);
-    const auto start = std::chrono::steady_clock::now();
-    const HorizonResult result = horizonProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
-    const double seconds = secondsSince(start);
-
     const std::string masks = truncationPath(o.out.path);
-    writeResult(result.horizons, o.out, ctx, o.dem.path, {{"DEMLIGHT_TRUNCATION_MASK", masks}});
     OutputOptions maskOut = o.out;
     maskOut.path = masks;
     maskOut.format = "GTiff";
-    writeResult(result.truncation, maskOut, ctx, o.dem.path, {{"DEMLIGHT_TRUNCATION_MASK", masks}});
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2 * request.azimuthsDeg.size(), ctx);
+    const auto start = std::chrono::steady_clock::now();
+    const HorizonResult result = runRaster<HorizonResult>(
+        run, {{o.out, {{"DEMLIGHT_TRUNCATION_MASK", masks}}}, {maskOut, {{"DEMLIGHT_TRUNCATION_MASK", masks}}}}, ctx,
+        o.dem.path, [&](const CellWindow& w, const ProgressFn& p) { return horizonProduct(dem, w, request, p); },
+        [](const HorizonResult& r) { return std::vector<const ProductResult*>{&r.horizons, &r.truncation}; });
+    const double seconds = secondsSince(start);
 
     const std::size_t bands = request.azimuthsDeg.size();
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.dem().terrain.heightsM.size() * bands);
@@ -70,6 +70,7 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
                      ->check(finiteRange(1, 4096));
     az->excludes(dirs);
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->add_option("--method", o->method, "sweep (fast, default) or reference (brute-force ray march)")
         ->check(CLI::IsMember({"sweep", "reference"}))
         ->capture_default_str();

@@ -13,6 +13,7 @@ namespace {
 struct LightOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::string time, tz;
     std::string model = "horizon";
@@ -50,12 +51,13 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out.path, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
-    ProgressBar bar(!ctx.quiet);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 3, ctx);
     const auto start = std::chrono::steady_clock::now();
-    const LightResult result = lightProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
+    const LightResult result = runRaster<LightResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return lightProduct(dem, w, request, p); },
+        [](const LightResult& r) { return std::vector<const ProductResult*>{&r}; });
     const double seconds = secondsSince(start);
-    writeResult(result, o.out, ctx, o.dem.path);
     std::string names;
     for (const auto& b : result.bands) names += (names.empty() ? "" : ", ") + b.name;
     note(ctx, "wrote " + o.out.path + " (" + names + "; " + o.model + " sun + " + o.skyModel + " sky), " +
@@ -90,6 +92,7 @@ void registerLight(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--cloud-shadow", o->cloudShadow, "Raster multiplying the sun term (band 1, 0-1)");
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runLight(*o, ctx); });
 }
 

@@ -13,6 +13,7 @@ namespace {
 struct SkyOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::optional<std::size_t> directions;
     double albedo = kDefaultAlbedo;
@@ -37,18 +38,17 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     const double loadSeconds = secondsSince(loadStart);
     if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.dem().terrain, ctx);
 
-    ProgressBar bar(!ctx.quiet);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4 + request.patches.patches.size(), ctx);
     const auto start = std::chrono::steady_clock::now();
-    const SkyResult result = skyProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
+    const SkyResult result = runRaster<SkyResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return skyProduct(dem, w, request, p); },
+        [](const SkyResult& r) { return std::vector<const ProductResult*>{&r}; });
     const double seconds = secondsSince(start);
     if (o.search.verbose && request.model == SkyModel::StewartLanger)
         note(ctx, "  sky sweeps: " + std::to_string(result.directions) + " directions, direction tolerance " +
                       formatNumber(result.directionToleranceDeg) + " deg, search distance " +
                       formatDistance(result.maxDistanceM));
-    const auto writeStart = std::chrono::steady_clock::now();
-    writeResult(result, o.out, ctx, o.dem.path);
-    const double writeSeconds = secondsSince(writeStart);
     std::string names;
     for (const auto& b : result.bands) names += (names.empty() ? "" : ", ") + b.name;
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(result.bands.size()) +
@@ -56,8 +56,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
                   (result.directions ? "; " + std::to_string(result.directions) + " directions, max distance " +
                                            formatDistance(result.maxDistanceM)
                                      : std::string()) +
-                  "; " + formatSeconds(loadSeconds) + " reading, " + formatSeconds(seconds) + " compute, " +
-                  formatSeconds(writeSeconds) + " writing");
+                  "; " + formatSeconds(loadSeconds) + " reading, " + formatSeconds(seconds) + " compute and writing");
 }
 
 }  // namespace
@@ -86,6 +85,7 @@ void registerSky(CLI::App& app, CliContext& ctx) {
         ->check(CLI::IsMember({"stewart-langer", "hemisphere"}))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runSky(*o, ctx); });
 }
 

@@ -12,6 +12,7 @@ namespace {
 struct SunOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::string time, tz;
     double sunDiameterDeg = kSunDiameterDeg;
@@ -33,12 +34,13 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out.path, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
-    ProgressBar bar(!ctx.quiet);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2, ctx);
     const auto start = std::chrono::steady_clock::now();
-    const SunResult r = sunProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
+    const SunResult r = runRaster<SunResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return sunProduct(dem, w, request, p); },
+        [](const SunResult& s) { return std::vector<const ProductResult*>{&s}; });
     const double seconds = secondsSince(start);
-    writeResult(r, o.out, ctx, o.dem.path);
     const std::string sweeps = request.model == SunModel::Horizon
                                    ? std::to_string(r.sweepRegions) + " sweep region(s), " + r.strategy + " strategy"
                                    : std::to_string(r.directions) + " aperture directions";
@@ -74,6 +76,7 @@ void registerSun(CLI::App& app, CliContext& ctx) {
                     "--quality auto, 64 with full); --directions is the older spelling")
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runSun(*o, ctx); });
 }
 

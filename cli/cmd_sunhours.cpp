@@ -14,6 +14,7 @@ namespace {
 struct SunhoursOptions {
     DemOptions dem;
     OutputOptions out;
+    TilingOptions tiling;
     SearchOptions search;
     std::string date, startDate, endDate;
     std::string tz;
@@ -51,12 +52,13 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out.path, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
-    ProgressBar bar(!ctx.quiet);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
     const auto start = std::chrono::steady_clock::now();
-    const SunhoursResult r = sunhoursProduct(dem, dem.whole(), request, bar.callback());
-    bar.finish();
+    const SunhoursResult r = runRaster<SunhoursResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return sunhoursProduct(dem, w, request, p); },
+        [](const SunhoursResult& s) { return std::vector<const ProductResult*>{&s}; });
     const double seconds = secondsSince(start);
-    writeResult(r, o.out, ctx, o.dem.path);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(r.instants) + " instants every " + o.step + ", " + std::to_string(r.instantsSwept) +
                   " with the sun up, " + formatSeconds(seconds) + " compute");
@@ -85,6 +87,7 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runSunhours(*o, ctx); });
 }
 

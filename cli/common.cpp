@@ -138,6 +138,96 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     writeRaster(out.path, bands, result.ref, w, inputPath);
 }
 
+void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
+    cmd->add_option("--tile-size", o.tileSize,
+                    "Compute in tiles of N x N cells, each with the halo its search needs, writing each as it "
+                    "completes; the output is bit for bit the one-piece output. auto: one piece unless that "
+                    "exceeds --memory-limit")
+        ->capture_default_str();
+    cmd->add_option("--memory-limit", o.memoryLimitMB,
+                    "Memory (MB) that --tile-size auto sizes tiles for (default: half of this machine's memory)")
+        ->check(finiteRange(16, 1e9));
+    cmd->add_option("--srcwin", o.srcwin,
+                    "Compute only the window XOFF YOFF XSIZE YSIZE (cells, as gdal_translate -srcwin), reading the "
+                    "halo it needs; its output has the window's georeference, and windows mosaicked with "
+                    "gdalbuildvrt equal the one-piece output bit for bit")
+        ->expected(4);
+}
+
+RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
+                        std::size_t outputBands, const CliContext& ctx) {
+    RasterRun run;
+    run.extent = dem.whole();
+    if (!tiling.srcwin.empty()) {
+        const auto& s = tiling.srcwin;
+        if (s[2] == 0 || s[3] == 0 || s[0] + s[2] > dem.width() || s[1] + s[3] > dem.height())
+            throw Error("--srcwin " + std::to_string(s[0]) + " " + std::to_string(s[1]) + " " + std::to_string(s[2]) +
+                        " " + std::to_string(s[3]) + ": the window must be non-empty and inside the " +
+                        std::to_string(dem.width()) + " x " + std::to_string(dem.height()) + " DEM");
+        run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
+    }
+    std::size_t tile = 0;
+    if (tiling.tileSize == "auto") {
+        const std::size_t halo = haloCellsFor(dem.dem().terrain, planFor(search, dem.dem().terrain).maxDistanceM);
+        const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
+        tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit);
+    } else {
+        std::size_t used = 0;
+        unsigned long long n = 0;
+        try {
+            n = std::stoull(tiling.tileSize, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != tiling.tileSize.size() || n < 16 || n > 1000000)
+            throw Error("--tile-size '" + tiling.tileSize + "': expected auto or a whole number of cells from 16 to 1000000");
+        tile = static_cast<std::size_t>(n);
+    }
+    run.ref = dem.dem().band.ref;
+    run.ref.geoTransform[0] += static_cast<double>(run.extent.col0) * run.ref.geoTransform[1];
+    run.ref.geoTransform[3] += static_cast<double>(run.extent.row0) * run.ref.geoTransform[5];
+    run.tiles = tilesOf(run.extent, tile);
+    if (run.tiles.size() > 1)
+        note(ctx, "computing in " + std::to_string(run.tiles.size()) + " tiles of up to " + std::to_string(tile) +
+                      " x " + std::to_string(tile) + " cells");
+    return run;
+}
+
+TiledWriter::TiledWriter(const RasterRun& run, std::vector<RasterTarget> targets, const CliContext& ctx,
+                         std::string inputPath)
+    : run_(run), targets_(std::move(targets)), ctx_(ctx), inputPath_(std::move(inputPath)) {}
+
+TiledWriter::~TiledWriter() = default;
+
+void TiledWriter::write(const CellWindow& tile, const std::vector<const ProductResult*>& parts) {
+    if (sinks_.empty()) {
+        for (std::size_t k = 0; k < targets_.size(); ++k) {
+            const ProductResult& r = *parts[k];
+            WriteOptions w;
+            w.format = targets_[k].out.format;
+            w.creationOptions = targets_[k].out.creationOptions;
+            w.nodata = r.flagNodata.value_or(r.nodata);
+            w.metadata = r.metadata;
+            w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
+            for (const auto& [key, value] : targets_[k].extra) w.metadata[key] = value;
+            sinks_.push_back(std::make_unique<RasterSink>(targets_[k].out.path, run_.extent.col1 - run_.extent.col0,
+                                                          run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_));
+        }
+    }
+    const CellWindow at{tile.col0 - run_.extent.col0, tile.row0 - run_.extent.row0, tile.col1 - run_.extent.col0,
+                        tile.row1 - run_.extent.row0};
+    for (std::size_t k = 0; k < targets_.size(); ++k) {
+        std::vector<OutputBand> bands;
+        for (const ProductBand& b : parts[k]->bands)
+            bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
+        sinks_[k]->write(at, bands);
+    }
+}
+
+void TiledWriter::commit() {
+    for (auto& sink : sinks_) sink->commit();
+}
+
 std::string flagForField(const std::string& field) {
     // One meaning per option name across commands, so one table for all of them.
     static const std::map<std::string, std::string> flags = {

@@ -3,14 +3,18 @@
 #pragma once
 
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "geo/dem_source.h"
 #include "geo/time.h"
 #include "geo/raster.h"
 #include "products/product.h"
 #include "products/render.h"
+#include "products/tiles.h"
 
 #include <array>
 #include <chrono>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +51,57 @@ void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& 
 /// are added to its metadata. Refuses to overwrite `inputPath`.
 void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,
                  const std::string& inputPath, const std::map<std::string, std::string>& extra = {});
+
+/// --tile-size, --memory-limit and --srcwin of the raster products.
+struct TilingOptions {
+    std::string tileSize = "auto";       ///< cells per tile side, or "auto"
+    double memoryLimitMB = 0;            ///< 0 = half of this machine's memory
+    std::vector<std::size_t> srcwin;     ///< XOFF YOFF XSIZE YSIZE (gdal_translate's order), or empty
+};
+void addTilingOptions(CLI::App* cmd, TilingOptions& o);
+
+/// One raster a product writes: where, and metadata items added to the result's.
+struct RasterTarget {
+    OutputOptions out;
+    std::map<std::string, std::string> extra;
+};
+
+/// The windows a raster product runs on: the extent (the whole DEM or --srcwin) in tiles.
+struct RasterRun {
+    CellWindow extent;
+    GeoReference ref;  ///< of the extent
+    std::vector<CellWindow> tiles;
+};
+/// Chooses the tiles: --tile-size N, or auto (one piece unless extent + halo exceeds
+/// --memory-limit for `outputBands` bands). Throws Error naming the option on bad values.
+RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
+                        std::size_t outputBands, const CliContext& ctx);
+
+/// Streamed outputs of a tiled run: one sink per target, opened at the first tile.
+class TiledWriter {
+public:
+    TiledWriter(const RasterRun& run, std::vector<RasterTarget> targets, const CliContext& ctx, std::string inputPath);
+    ~TiledWriter();
+    /// Writes the parts of one tile's result, part k to target k.
+    void write(const CellWindow& tile, const std::vector<const ProductResult*>& parts);
+    /// Renames every output to its name.
+    void commit();
+
+private:
+    RasterRun run_;
+    std::vector<RasterTarget> targets_;
+    const CliContext& ctx_;
+    std::string inputPath_;
+    std::vector<std::unique_ptr<RasterSink>> sinks_;
+};
+
+/// Runs a raster product on each window of `run` (product(window, progress) -> Result; parts(r)
+/// lists its rasters, one per target) with one progress bar for the whole job, and writes them:
+/// in one piece as writeResult does, in tiles through a TiledWriter. Returns the first window's
+/// result, for the command's notes.
+template <class Result, class Product, class Parts>
+Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
+                 const std::string& inputPath, Product&& product, Parts&& parts);
 
 /// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
 /// the field itself when no flag sets it.
@@ -95,5 +150,29 @@ double secondsSince(std::chrono::steady_clock::time_point start);
 std::string formatSeconds(double seconds);
 /// Prints a line to stderr unless quiet.
 void note(const CliContext& ctx, const std::string& line);
+
+template <class Result, class Product, class Parts>
+Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
+                 const std::string& inputPath, Product&& product, Parts&& parts) {
+    ProgressBar bar(!ctx.quiet);
+    if (run.tiles.size() == 1) {
+        Result r = product(run.tiles.front(), bar.callback());
+        bar.finish();
+        const std::vector<const ProductResult*> rasters = parts(r);
+        for (std::size_t k = 0; k < targets.size(); ++k)
+            writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
+        return r;
+    }
+    TiledWriter writer(run, targets, ctx, inputPath);
+    std::optional<Result> first;
+    for (std::size_t i = 0; i < run.tiles.size(); ++i) {
+        Result r = product(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
+        writer.write(run.tiles[i], parts(r));
+        if (!first) first = std::move(r);
+    }
+    bar.finish();
+    writer.commit();
+    return std::move(*first);
+}
 
 }  // namespace demlight::cli

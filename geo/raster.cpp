@@ -402,4 +402,142 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     }
 }
 
+struct RasterSink::State {
+    std::string path, tmp, staged;  // final name; the file written; the streamed GeoTIFF of a COG
+    std::size_t width, height;
+    GeoReference ref;
+    WriteOptions options;
+    DatasetPtr ds;
+    std::size_t bands = 0;
+    bool committed = false;
+};
+
+RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, GeoReference ref,
+                       WriteOptions options, const std::string& inputPath)
+    : state_(std::make_unique<State>()) {
+    detail::ensureGdal();
+    if (options.format != "GTiff" && options.format != "COG")
+        throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
+    std::error_code ec;
+    if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
+        throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
+    const fs::path parent = fs::absolute(fs::path(path)).parent_path();
+    if (!fs::is_directory(parent, ec))
+        throw Error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
+    if (fs::is_directory(path, ec)) throw Error("cannot write '" + path + "': it is a directory");
+    State& st = *state_;
+    const std::string base = (parent / fs::path(path).filename()).string() + ".tmp" + std::to_string(::getpid());
+    st.tmp = base;
+    st.staged = options.format == "COG" ? base + ".stream.tif" : base;
+    st.path = std::move(path);
+    st.width = width;
+    st.height = height;
+    st.ref = std::move(ref);
+    st.options = std::move(options);
+}
+
+RasterSink::~RasterSink() {
+    if (!state_ || state_->committed) return;
+    state_->ds.reset();
+    std::error_code ec;
+    fs::remove(state_->staged, ec);
+    fs::remove(state_->tmp, ec);
+}
+
+void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands) {
+    State& st = *state_;
+    if (bands.empty()) throw Error("internal: nothing to write to '" + st.path + "'");
+    const std::size_t cols = w.col1 - w.col0, rows = w.row1 - w.row0;
+    if (w.col1 > st.width || w.row1 > st.height || cols == 0 || rows == 0)
+        throw Error("internal: window outside the output '" + st.path + "'");
+    const bool allMasks = std::all_of(bands.begin(), bands.end(), [](const OutputBand& b) { return !b.values; });
+    const GDALDataType type = allMasks ? GDT_Byte : GDT_Float32;
+    if (!st.ds) {
+        // The streamed file: a tiled GeoTIFF (the COG layout needs the whole raster; it is made
+        // from this file at commit).
+        GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+        WriteOptions streamed = st.options;
+        if (st.options.format == "COG") {
+            streamed.format = "GTiff";
+            streamed.creationOptions.clear();
+        }
+        validateUserCreationOptions(gtiff, streamed);
+        CPLStringList co;
+        for (const auto& kv : creationOptions(streamed, type == GDT_Float32)) co.AddString(kv.c_str());
+        if (st.options.format == "COG") co.SetNameValue("COMPRESS", "ZSTD");
+        detail::takeGdalError();
+        st.ds.reset(gtiff->Create(st.staged.c_str(), static_cast<int>(st.width), static_cast<int>(st.height),
+                                  static_cast<int>(bands.size()), type, co.List()));
+        if (!st.ds) throw Error(withGdalReason("cannot write '" + st.path + "'"));
+        std::array<double, 6> gt = st.ref.geoTransform;
+        st.ds->SetGeoTransform(gt.data());
+        OGRSpatialReference srs;
+        if (!st.ref.crsWkt.empty() && srs.importFromWkt(st.ref.crsWkt.c_str()) == OGRERR_NONE)
+            st.ds->SetSpatialRef(&srs);
+        for (const auto& [key, value] : st.options.metadata) st.ds->SetMetadataItem(key.c_str(), value.c_str());
+        for (std::size_t i = 0; i < bands.size(); ++i) {
+            GDALRasterBand* out = st.ds->GetRasterBand(static_cast<int>(i) + 1);
+            out->SetDescription(bands[i].description.c_str());
+            if (!bands[i].unit.empty()) out->SetUnitType(bands[i].unit.c_str());
+            if (type == GDT_Float32 || (st.options.nodata >= 0 && st.options.nodata <= 255))
+                out->SetNoDataValue(st.options.nodata);
+        }
+        st.bands = bands.size();
+    }
+    if (bands.size() != st.bands) throw Error("internal: windows of '" + st.path + "' differ in bands");
+    const bool replaceNan = !std::isnan(st.options.nodata);
+    const auto nodataF = static_cast<float>(st.options.nodata);
+    std::vector<float> buffer;
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        const OutputBand& b = bands[i];
+        GDALRasterBand* out = st.ds->GetRasterBand(static_cast<int>(i) + 1);
+        CPLErr err;
+        if (type == GDT_Byte) {
+            err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
+                                static_cast<int>(rows), const_cast<std::uint8_t*>(b.mask->data()),
+                                static_cast<int>(cols), static_cast<int>(rows), GDT_Byte, 0, 0);
+        } else {
+            buffer.resize(cols * rows);
+            if (b.values) {
+                std::copy_n(b.values->data(), cols * rows, buffer.begin());
+            } else {
+                std::copy_n(b.mask->data(), cols * rows, buffer.begin());
+            }
+            if (replaceNan)
+                for (float& v : buffer)
+                    if (std::isnan(v)) v = nodataF;
+            err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
+                                static_cast<int>(rows), buffer.data(), static_cast<int>(cols), static_cast<int>(rows),
+                                GDT_Float32, 0, 0);
+        }
+        if (err != CE_None) throw Error(withGdalReason("cannot write band " + std::to_string(i + 1) + " of '" + st.path + "'"));
+    }
+}
+
+void RasterSink::commit() {
+    State& st = *state_;
+    if (!st.ds) throw Error("internal: nothing was written to '" + st.path + "'");
+    std::error_code ec;
+    if (st.options.format == "COG") {
+        GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
+        if (!cog) throw Error("GDAL has no 'COG' driver");
+        validateUserCreationOptions(cog, st.options);
+        CPLStringList co;
+        const bool isFloat = st.ds->GetRasterBand(1)->GetRasterDataType() == GDT_Float32;
+        for (const auto& kv : creationOptions(st.options, isFloat)) co.AddString(kv.c_str());
+        detail::takeGdalError();
+        GDALDataset* copy = cog->CreateCopy(st.tmp.c_str(), st.ds.get(), FALSE, co.List(), nullptr, nullptr);
+        if (!copy) throw Error(withGdalReason("cannot write '" + st.path + "'"));
+        GDALClose(GDALDataset::ToHandle(copy));
+    }
+    detail::takeGdalError();
+    st.ds.reset();  // flushes the streamed file
+    const std::string closeError = detail::takeGdalError();
+    if (!closeError.empty()) throw Error("cannot write '" + st.path + "' (" + closeError + ")");
+    if (st.staged != st.tmp) fs::remove(st.staged, ec);
+    fs::rename(st.tmp, st.path, ec);
+    if (ec) throw Error("cannot write '" + st.path + "': rename failed (" + ec.message() + ")");
+    st.committed = true;
+}
+
 }  // namespace demlight

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -95,5 +96,30 @@ struct RasterSummary {
     std::map<std::string, std::string> imageStructure;  // COMPRESSION, LAYOUT, ...
 };
 RasterSummary inspectRaster(const std::string& path);
+
+/// A raster written window by window as the tiles of a product complete, so that no more than
+/// one tile of each band is held in memory. The file is created under a temporary name in the
+/// folder of `path` at the first window (band names, units and types come from it), every band
+/// of each window is written as it arrives, and commit() renames the file to `path` (a COG is
+/// streamed to a tiled GeoTIFF first and copied to COG layout at commit). Destroyed without
+/// commit (an error, Ctrl-C), it removes its temporaries: nothing is left under `path`.
+class RasterSink {
+public:
+    /// A `width` x `height` raster on `ref`. Checks the path as writeRaster does.
+    RasterSink(std::string path, std::size_t width, std::size_t height, GeoReference ref, WriteOptions options,
+               const std::string& inputPath = {});
+    RasterSink(const RasterSink&) = delete;
+    RasterSink& operator=(const RasterSink&) = delete;
+    ~RasterSink();
+    /// Writes `bands` (all the window's size, the same bands in the same order every time) at
+    /// the window's cells.
+    void write(const CellWindow& window, const std::vector<OutputBand>& bands);
+    /// Closes, converts (COG) and renames the file to its path. Throws Error when GDAL fails.
+    void commit();
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 }  // namespace demlight

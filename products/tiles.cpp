@@ -1,0 +1,53 @@
+#include "products/tiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unistd.h>
+
+namespace demlight {
+
+std::vector<CellWindow> tilesOf(const CellWindow& extent, std::size_t tileCells) {
+    tileCells = std::max<std::size_t>(tileCells, 1);
+    std::vector<CellWindow> tiles;
+    for (std::size_t r0 = extent.row0; r0 < extent.row1; r0 += tileCells)
+        for (std::size_t c0 = extent.col0; c0 < extent.col1; c0 += tileCells)
+            tiles.push_back({c0, r0, std::min(extent.col1, c0 + tileCells), std::min(extent.row1, r0 + tileCells)});
+    return tiles;
+}
+
+ProgressFn tileProgress(const ProgressFn& job, std::size_t index, std::size_t count) {
+    if (!job) return {};
+    if (count <= 1) return job;
+    const std::string prefix = "tile " + std::to_string(index + 1) + "/" + std::to_string(count) + ": ";
+    return [job, index, count, prefix](double fraction, const std::string& stage) {
+        return job((static_cast<double>(index) + std::clamp(fraction, 0.0, 1.0)) / static_cast<double>(count),
+                   prefix + stage);
+    };
+}
+
+double productBytesPerCell(std::size_t outputBands) {
+    // Heights (4) and the DEM band (4), normals (12), two sweep planes (8), per-direction
+    // accumulators and scratch (~24), and each output band (4).
+    return 52.0 + 4.0 * static_cast<double>(outputBands);
+}
+
+std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, double bytesPerCell,
+                               double memoryBytes) {
+    const double cols = static_cast<double>(extent.col1 - extent.col0);
+    const double rows = static_cast<double>(extent.row1 - extent.row0);
+    const double halo = static_cast<double>(haloCells);
+    const std::size_t whole = std::max(extent.col1 - extent.col0, extent.row1 - extent.row0);
+    if ((cols + 2 * halo) * (rows + 2 * halo) * bytesPerCell <= memoryBytes) return whole;
+    const double side = std::sqrt(memoryBytes / bytesPerCell) - 2 * halo;
+    constexpr std::size_t kSmallestTile = 256;
+    return std::min(whole, std::max(kSmallestTile, static_cast<std::size_t>(std::max(side, 0.0))));
+}
+
+double defaultMemoryLimitBytes() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return 4e9;
+    return 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize);
+}
+
+}  // namespace demlight

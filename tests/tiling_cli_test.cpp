@@ -1,0 +1,138 @@
+// The CLI's --tile-size and --srcwin: tiled runs and windows mosaicked by gdalbuildvrt give the
+// one-piece output's bytes (gdalinfo -checksum of every band) on real DEMs of each kind of CRS.
+#include "cli_runner.h"
+#include "shared_dem.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::runDemlight;
+
+/// Output of a shell command (stdout), or "" when it fails.
+std::string shell(const std::string& cmd) {
+    std::FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return {};
+    const std::string out = testing::readAll(p);
+    return pclose(p) == 0 ? out : std::string();
+}
+
+/// gdalinfo -checksum's "Checksum=N" lines of every band, in band order.
+std::vector<std::string> checksums(const std::string& path) {
+    std::istringstream in(shell("gdalinfo -checksum '" + path + "'"));
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);)
+        if (const auto at = line.find("Checksum="); at != std::string::npos) out.push_back(line.substr(at));
+    return out;
+}
+
+struct DemCase {
+    const char* name;
+    const char* srcwin;  // crop of the shared DEM made with gdal_translate ("" = the whole file)
+};
+
+// Geographic (SRTM 1"), UTM 11N, and UTM 33N at 78° N.
+// 1000 x 520 cells: --tile-size 777 makes two tiles, 256 twelve, 2048 one.
+const DemCase kDems[] = {
+    {"N48W125_srtm1.tif", "1300 1500 1000 520"},
+    {"big_tujunga_srtm30m_utm11.tif", "150 60 1000 520"},
+    {"svalbard_longyearbyen_npi_dtm20.tif", "200 200 1000 520"},
+};
+
+// Each raster command with options that keep the halo a fraction of the DEM.
+const char* const kCommands[] = {
+    "horizon --azimuth 135 300 --max-distance 3000",
+    "sun --time 2024-06-21T15:30:00Z --max-distance 3000",
+    "sky --max-distance 2000",
+    "aperture --max-distance 2000",
+    "light --time 2024-06-21T15:30:00Z --max-distance 2000",
+    "sunhours --date 2024-06-21 --tz UTC --step 2h --max-distance 2000",
+};
+
+class TiledCli : public ::testing::TestWithParam<DemCase> {
+protected:
+    void SetUp() override {
+        const DemCase c = GetParam();
+        const std::string src = sharedDemPath(c.name);
+        if (!fs::exists(src)) GTEST_SKIP() << c.name << " absent";
+        dir_ = fs::temp_directory_path() / ("demlight_tiling_" + std::to_string(::getpid()) + "_" +
+                                            std::string(c.name).substr(0, 8));
+        fs::create_directories(dir_);
+        dem_ = (dir_ / "dem.tif").string();
+        ASSERT_FALSE(shell("gdal_translate -q -srcwin " + std::string(c.srcwin) + " '" + src + "' '" + dem_ + "' && echo ok")
+                         .empty());
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+    std::string out(const std::string& name) const { return (dir_ / name).string(); }
+
+    fs::path dir_;
+    std::string dem_;
+};
+
+TEST_P(TiledCli, TilesAndMosaickedWindowsAreTheOnePieceBytes) {
+    for (const std::string command : kCommands) {
+        const std::string verb = command.substr(0, command.find(' '));
+        const std::string options = command.substr(command.find(' '));
+        const std::string whole = out(verb + "_whole.tif");
+        const auto r = runDemlight(verb + " '" + dem_ + "' -o '" + whole + "'" + options + " -q");
+        ASSERT_EQ(r.exitCode, 0) << command << ": " << r.err;
+        const std::vector<std::string> expected = checksums(whole);
+        ASSERT_FALSE(expected.empty()) << command;
+        for (const int tile : {256, 777, 2048}) {
+            const std::string tiled = out(verb + "_tile" + std::to_string(tile) + ".tif");
+            const auto t = runDemlight(verb + " '" + dem_ + "' -o '" + tiled + "'" + options + " --tile-size " +
+                                       std::to_string(tile) + " -q");
+            ASSERT_EQ(t.exitCode, 0) << command << " tile " << tile << ": " << t.err;
+            EXPECT_EQ(checksums(tiled), expected) << command << " --tile-size " << tile;
+        }
+        // Four windows, each its own process, mosaicked.
+        std::string list;
+        for (const char* win : {"0 0 450 250", "450 0 550 250", "0 250 450 270", "450 250 550 270"}) {
+            std::string name = win;
+            for (char& ch : name) ch = ch == ' ' ? '_' : ch;
+            const std::string part = out(verb + "_win_" + name + ".tif");
+            const auto w = runDemlight(verb + " '" + dem_ + "' -o '" + part + "'" + options + " --srcwin " + win + " -q");
+            ASSERT_EQ(w.exitCode, 0) << command << " --srcwin " << win << ": " << w.err;
+            list += " '" + part + "'";
+        }
+        const std::string vrt = out(verb + "_mosaic.vrt");
+        ASSERT_FALSE(shell("gdalbuildvrt -q '" + vrt + "'" + list + " && echo ok").empty()) << command;
+        EXPECT_EQ(checksums(vrt), expected) << command << " --srcwin windows mosaicked by gdalbuildvrt";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(RealDems, TiledCli, ::testing::ValuesIn(kDems), [](const auto& testInfo) {
+    std::string name = testInfo.param.name;
+    name = name.substr(0, name.find('.'));
+    for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    return name;
+});
+
+TEST(TilingCli, BadTileSizesAndWindowsAreRefusedNamingTheOption) {
+    const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
+    const std::string o = (fs::temp_directory_path() / "demlight_tiling_bad.tif").string();
+    const auto a = runDemlight("sun '" + dem + "' -o '" + o + "' --time 2024-06-21T15:30:00Z --tile-size 4");
+    EXPECT_NE(a.exitCode, 0);
+    EXPECT_NE(a.err.find("--tile-size '4'"), std::string::npos) << a.err;
+    const auto b = runDemlight("sun '" + dem + "' -o '" + o + "' --time 2024-06-21T15:30:00Z --srcwin 100 100 100 100");
+    EXPECT_NE(b.exitCode, 0);
+    EXPECT_NE(b.err.find("--srcwin 100 100 100 100"), std::string::npos) << b.err;
+    EXPECT_FALSE(fs::exists(o));
+}
+
+}  // namespace
+}  // namespace demlight
