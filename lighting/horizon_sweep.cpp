@@ -192,9 +192,13 @@ struct RangeLog {
     /// one point and two queries per line step) so the walk appends without capacity checks.
     std::vector<Point> points;
     std::vector<Query> queries;
+    /// Over the previous chunk's points [prevBegin, prevEnd): the highest g from each point to
+    /// the chunk's nearest (suffix maxima), for the first pass's bound (prevChunkBound).
+    std::vector<double> suffixMaxG;
     std::size_t nPoints = 0, nQueries = 0;
     void reset(std::size_t steps) {
         if (points.size() < steps) points.resize(steps);
+        if (suffixMaxG.size() < steps) suffixMaxG.resize(steps);
         if (queries.size() < 2 * steps) queries.resize(2 * steps);
         nPoints = nQueries = 0;
     }
@@ -209,7 +213,23 @@ struct LineState {
     long chunk;
     double nextChunkM;  // σ at which the chunk changes
     RangeLog* log;      // range-limited sweeps only
+    /// Range-limited sweeps: log->points of the current chunk start at curBegin; those of the
+    /// previous chunk are [prevBegin, prevEnd), the ones before prevIdx out of range of every
+    /// cell still to come.
+    std::size_t curBegin, prevBegin, prevEnd, prevIdx;
 };
+
+/// The limit pass's bound (limitRangePass) from the previous chunk's points within range of a
+/// cell, known before that pass: the highest g among them (suffix maximum) at the distance that
+/// makes it steepest (the nearest point if above the cell, else the farthest). It depends on the
+/// in-range points only, which every walk that serves the cell has, so skipping the pass where
+/// it cannot beat the first pass's value gives tiles and the whole DEM the same bits.
+inline float prevChunkBound(double maxG, double gCell, double sigmaQ, double nearestSigmaM, double farthestSigmaM,
+                            double invR) {
+    const double rise = maxG - gCell;
+    const double boundDistM = sigmaQ - (rise >= 0.0 ? nearestSigmaM : farthestSigmaM);
+    return static_cast<float>(rise / boundDistM - sigmaQ * invR);
+}
 
 /// Largest g-space slope from (sigmaQ, gQ) to the hull, walking from vertex i (the slope from a
 /// point nearer than every vertex is unimodal along an upper hull). Slopes are compared by cross
@@ -279,12 +299,8 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
             hull[top++] = p;
         }
         if (top == 0) continue;
-        // Upper bound of the slope to any hull point: the highest g at the distance that makes
-        // it steepest (the nearest point if above the cell, else the farthest).
-        const double rise = maxG - q->gCell;
-        const double boundDistM = q->sigmaM - (rise >= 0.0 ? hull[0].sigmaM : hull[top - 1].sigmaM);
         float& cell = *q->cell;
-        if (static_cast<float>(rise / boundDistM - q->sigmaM * invR) <= cell) continue;
+        if (prevChunkBound(maxG, q->gCell, q->sigmaM, hull[0].sigmaM, hull[top - 1].sigmaM, invR) <= cell) continue;
         auto slopeTo = [&](std::size_t v) { return (hull[v].g - q->gCell) / (q->sigmaM - hull[v].sigmaM); };
         std::size_t lo = 0, hi = top - 1;
         while (lo < hi) {
@@ -318,6 +334,13 @@ struct LineGeometry {
     /// line sums its own steps from the edge. Either way a sample's distance has the same bits
     /// wherever a walk starts, so tiles and the full grid build the same hulls.
     std::vector<double> sigmaAt;
+    /// Without sigmaAt (X-major lines across rows of different step lengths: geographic grids):
+    /// arc length along a line per unit of minor coordinate y is stepLengthM[row of y] / |slope|,
+    /// so a sample's distance from the far edge is |A(y) - A(y_edge)| / |slope|, with A the
+    /// integral of the step lengths over rows (rowArc[r]: up to row r's upper boundary, r - 0.5).
+    /// A function of the sample's position alone, with no sum along the walk.
+    std::vector<double> rowArc;
+    double invAbsSlope = 0;
     std::vector<long> base;           // lineOffset() per major index
     std::vector<double> frac;
     /// Steps toward the far end before the line leaves the DEM (cell edges at -0.5 and
@@ -365,6 +388,26 @@ inline double observerHeight(const float* H, const Index& index, long m, long j,
     return lineSample + frac * (1.0 - frac) * (2.0 * cellHeight - hm - hp);
 }
 
+/// A(y) of LineGeometry::rowArc at minor coordinate y (rows clamped beyond the grid).
+inline double arcAt(const LineGeometry& geo, double y) {
+    const std::size_t rows = geo.stepLengthM.size();
+    if (!(y >= -0.5)) return (y + 0.5) * geo.stepLengthM.front();
+    const auto r = static_cast<std::size_t>(y + 0.5);
+    if (r >= rows) return geo.rowArc[rows] + (y - (static_cast<double>(rows) - 0.5)) * geo.stepLengthM.back();
+    return geo.rowArc[r] + (y - (static_cast<double>(r) - 0.5)) * geo.stepLengthM[r];
+}
+
+/// Distance (metres) from the far edge of the sample of a line at minor coordinate y and major
+/// index m, the line's arc coordinate at the edge being edgeArc (LineGeometry::rowArc).
+inline double lineDistance(const LineGeometry& geo, double edgeArc, double y, long m) {
+    if (geo.invAbsSlope == 0.0) {  // along a row: that row's steps
+        const std::size_t rows = geo.stepLengthM.size();
+        const auto r = static_cast<std::size_t>(std::clamp(y + 0.5, 0.0, static_cast<double>(rows - 1)));
+        return static_cast<double>(std::abs(m - geo.mEdge)) * geo.stepLengthM[r];
+    }
+    return std::abs(arcAt(geo, y) - edgeArc) * geo.invAbsSlope;
+}
+
 /// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
 /// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
 template <bool XMajor, bool Limited>
@@ -388,11 +431,6 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         return XMajor ? static_cast<std::size_t>(j - nLo) * W + static_cast<std::size_t>(m - mLo)
                       : static_cast<std::size_t>(m - mLo) * W + static_cast<std::size_t>(j - nLo);
     };
-    // The grid row whose cell sizes give the length of line n0's step at major index m.
-    auto stepRowOf = [N](long n0, long m, double frac) {
-        return XMajor ? static_cast<std::size_t>(std::clamp<long>(frac < 0.5 ? n0 : n0 + 1, 0, N - 1))
-                      : static_cast<std::size_t>(m);
-    };
 
     // A block serves window cells only where one of its lines is within a cell of the window's
     // minor range; off-axis, in a region narrower than the DEM, that is a fraction of the
@@ -410,16 +448,14 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     const long mStart = std::clamp(mServeFar + geo.farSign * geo.extensionSteps, std::min(geo.mFar, geo.mNear),
                                    std::max(geo.mFar, geo.mNear));
     LineState lines[kLinesPerBlock];
+    const auto edge = static_cast<std::size_t>(geo.mEdge);
     for (std::size_t b = 0; b < nLines; ++b) {
-        // Without a distance table, the line's distance at mStart: its steps summed from the
-        // far edge in walking order, as every walk that starts farther sums them.
-        double sigma0 = 0.0;
-        if (!sigmaTable) {
-            for (long m = geo.mEdge; m != mStart; m += mStep)
-                sigma0 += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + geo.base[static_cast<std::size_t>(m)],
-                                                    m, geo.frac[static_cast<std::size_t>(m)])];
-        }
-        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, sigma0, 0, maxDistanceM, limited ? &logs[b] : nullptr};
+        // Without a distance table, sigmaM holds the line's arc coordinate at the far edge
+        // (arcAt), from which every sample's distance is taken.
+        const long k = kBegin + static_cast<long>(b);
+        const double edgeArc = sigmaTable ? 0.0 : arcAt(geo, static_cast<double>(k + geo.base[edge]) + geo.frac[edge]);
+        lines[b] = {scratch.data() + b * lineCapacity, 0, 0, edgeArc, 0, maxDistanceM, limited ? &logs[b] : nullptr,
+                    0, 0, 0, 0};
         if (limited) logs[b].reset(lineCapacity);
     }
     for (long m = mStart;; m += mStep) {
@@ -462,25 +498,15 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         for (long j = std::max(nLo, n0First); allNodata && j <= std::min(nHi - 1, n0Last + 1); ++j)
             allNodata = std::isnan(H[index(m, j)]);
         if (allNodata || !anyInside) {
-            // Nothing to sample or serve (all nodata, or every line off the terrain's cells):
-            // the lines only advance their distances.
-            if (!sigmaTable) {
-                for (std::size_t b = 0; b < nLines; ++b)
-                    lines[b].sigmaM += geo.stepLengthM[stepRowOf(kBegin + static_cast<long>(b) + base, m, frac)];
-            }
+            // Nothing to sample or serve (all nodata, or every line off the terrain's cells).
         } else {
             for (std::size_t b = 0; b < nLines; ++b) {
                 LineState& line = lines[b];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 const long n1 = n0 + 1;
-                double sigma;
-                if (sigmaTable) {
-                    sigma = geo.sigmaAt[static_cast<std::size_t>(m)];
-                } else {
-                    sigma = line.sigmaM;
-                    line.sigmaM += geo.stepLengthM[stepRowOf(n0, m, frac)];
-                }
                 if (n0 < -1 || n0 > N - 1) continue;
+                const double sigma = sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(m)]
+                                                : lineDistance(geo, line.sigmaM, static_cast<double>(n0) + frac, m);
 
                 // Line sample: linear across the line between the two bracketing cells; heights
                 // are known inside the hull of the cell centres only. Cells of the full grid
@@ -503,6 +529,18 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // serves a cell starts within the halo and every walk builds the same hull.
                 if (limited && sigma >= line.nextChunkM) {
                     const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
+                    RangeLog& log = *line.log;
+                    line.prevBegin = line.prevEnd = log.nPoints;
+                    if (chunk == line.chunk + 1 && log.nPoints > line.curBegin) {
+                        line.prevBegin = line.curBegin;
+                        double highest = -std::numeric_limits<double>::infinity();
+                        for (std::size_t i = line.prevEnd; i-- > line.prevBegin;) {
+                            highest = std::max(highest, log.points[i].g);
+                            log.suffixMaxG[i] = highest;
+                        }
+                    }
+                    line.prevIdx = line.prevBegin;
+                    line.curBegin = log.nPoints;
                     line.lo = line.hi = 0;
                     line.chunk = chunk;
                     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
@@ -553,9 +591,18 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         float* cell = servedPlane[s] + idx;
                         *cell = value;
                         // The previous chunk's points within range: the second pass, from those
-                        // points alone (the walk may have started inside that chunk).
-                        if (Limited && line.chunk > 0)
-                            line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints, cell};
+                        // points alone (the walk may have started inside that chunk), unless
+                        // their bound cannot beat this value.
+                        if (Limited && line.prevBegin < line.prevEnd) {
+                            const RangeLog::Point* pts = line.log->points.data();
+                            while (line.prevIdx < line.prevEnd && pts[line.prevIdx].sigmaM < sigma - maxDistanceM)
+                                ++line.prevIdx;
+                            if (line.prevIdx < line.prevEnd &&
+                                prevChunkBound(line.log->suffixMaxG[line.prevIdx], gCell, sigma,
+                                               pts[line.prevEnd - 1].sigmaM, pts[line.prevIdx].sigmaM, invR) > value)
+                                line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints,
+                                                                           cell};
+                        }
                     }
                 }
 
@@ -630,7 +677,11 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
 
     // Distances from the far edge, summed in walking order (each sample's σ is the sum of the
     // steps walked before it).
-    if (!geo.xMajor || equalSteps) {
+    if (geo.xMajor && !equalSteps) {
+        geo.rowArc.assign(g.height + 1, 0.0);
+        for (std::size_t r = 0; r < g.height; ++r) geo.rowArc[r + 1] = geo.rowArc[r] + geo.stepLengthM[r];
+        geo.invAbsSlope = geo.slope != 0.0 ? 1.0 / std::abs(geo.slope) : 0.0;
+    } else {
         geo.sigmaAt.assign(geo.majorSize, 0.0);
         const long near = -geo.farSign;
         for (long m = geo.mEdge + near; m >= 0 && m < M; m += near) {
