@@ -167,8 +167,8 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
         run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
     }
     std::size_t tile = 0;
+    const std::size_t halo = haloCellsFor(dem.dem().terrain, planFor(search, dem.dem().terrain).maxDistanceM);
     if (tiling.tileSize == "auto") {
-        const std::size_t halo = haloCellsFor(dem.dem().terrain, planFor(search, dem.dem().terrain).maxDistanceM);
         const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
         tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit);
     } else {
@@ -187,9 +187,14 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
     run.ref.geoTransform[0] += static_cast<double>(run.extent.col0) * run.ref.geoTransform[1];
     run.ref.geoTransform[3] += static_cast<double>(run.extent.row0) * run.ref.geoTransform[5];
     run.tiles = tilesOf(run.extent, tile);
-    if (run.tiles.size() > 1)
+    if (run.tiles.size() > 1) {
         note(ctx, "computing in " + std::to_string(run.tiles.size()) + " tiles of up to " + std::to_string(tile) +
-                      " x " + std::to_string(tile) + " cells");
+                      " x " + std::to_string(tile) + " cells, each with a halo of " + std::to_string(halo) + " cells");
+        if (halo >= std::max(dem.width(), dem.height()))
+            note(ctx, "note: the search reaches across the whole DEM, so every tile reads and sweeps all of it: tiles "
+                      "then bound the output's memory only and multiply the time; a --max-distance shorter than the "
+                      "DEM makes tiles cheap");
+    }
     return run;
 }
 

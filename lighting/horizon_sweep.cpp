@@ -192,13 +192,9 @@ struct RangeLog {
     /// one point and two queries per line step) so the walk appends without capacity checks.
     std::vector<Point> points;
     std::vector<Query> queries;
-    /// Over the previous chunk's points [prevBegin, prevEnd): the highest g from each point to
-    /// the chunk's nearest (suffix maxima), for the first pass's bound (prevChunkBound).
-    std::vector<double> suffixMaxG;
     std::size_t nPoints = 0, nQueries = 0;
     void reset(std::size_t steps) {
         if (points.size() < steps) points.resize(steps);
-        if (suffixMaxG.size() < steps) suffixMaxG.resize(steps);
         if (queries.size() < 2 * steps) queries.resize(2 * steps);
         nPoints = nQueries = 0;
     }
@@ -213,23 +209,20 @@ struct LineState {
     long chunk;
     double nextChunkM;  // σ at which the chunk changes
     RangeLog* log;      // range-limited sweeps only
-    /// Range-limited sweeps: log->points of the current chunk start at curBegin; those of the
-    /// previous chunk are [prevBegin, prevEnd), the ones before prevIdx out of range of every
-    /// cell still to come.
-    std::size_t curBegin, prevBegin, prevEnd, prevIdx;
+    /// Range-limited sweeps: the previous chunk's final hull is kept at buf[prevLo, prevHi) (the
+    /// current one starts after it), and the vertex its last tangent touched.
+    std::size_t prevLo, prevHi, prevHint;
 };
 
-/// The limit pass's bound (limitRangePass) from the previous chunk's points within range of a
-/// cell, known before that pass: the highest g among them (suffix maximum) at the distance that
-/// makes it steepest (the nearest point if above the cell, else the farthest). It depends on the
-/// in-range points only, which every walk that serves the cell has, so skipping the pass where
-/// it cannot beat the first pass's value gives tiles and the whole DEM the same bits.
-inline float prevChunkBound(double maxG, double gCell, double sigmaQ, double nearestSigmaM, double farthestSigmaM,
-                            double invR) {
-    const double rise = maxG - gCell;
-    const double boundDistM = sigmaQ - (rise >= 0.0 ? nearestSigmaM : farthestSigmaM);
-    return static_cast<float>(rise / boundDistM - sigmaQ * invR);
+/// The curved-earth tangent (slope of the sight line) from a cell at (sigmaQ, gQ) to a line
+/// point (sigmaP, gP), as both passes evaluate it. Not inlined, so that both get the same bits
+/// whatever the compiler contracts at each call: a tile's first pass may find a point its
+/// DEM's walk leaves to the exact pass (its previous chunk started later), and the two must agree.
+[[gnu::noinline]] float rangeSlope(double gP, double sigmaP, double gQ, double sigmaQ, double invR) {
+    return static_cast<float>((gP - gQ) / (sigmaQ - sigmaP) - sigmaQ * invR);
 }
+
+
 
 /// Largest g-space slope from (sigmaQ, gQ) to the hull, walking from vertex i (the slope from a
 /// point nearer than every vertex is unimodal along an upper hull). Slopes are compared by cross
@@ -299,16 +292,19 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
             hull[top++] = p;
         }
         if (top == 0) continue;
+        // Upper bound of the slope to any hull point: the highest g at the distance that makes
+        // it steepest (the nearest point if above the cell, else the farthest).
+        const double rise = maxG - q->gCell;
+        const double boundDistM = q->sigmaM - (rise >= 0.0 ? hull[0].sigmaM : hull[top - 1].sigmaM);
         float& cell = *q->cell;
-        if (prevChunkBound(maxG, q->gCell, q->sigmaM, hull[0].sigmaM, hull[top - 1].sigmaM, invR) <= cell) continue;
+        if (static_cast<float>(rise / boundDistM - q->sigmaM * invR) <= cell) continue;
         auto slopeTo = [&](std::size_t v) { return (hull[v].g - q->gCell) / (q->sigmaM - hull[v].sigmaM); };
         std::size_t lo = 0, hi = top - 1;
         while (lo < hi) {
             const std::size_t mid = (lo + hi) / 2;
             if (slopeTo(mid + 1) > slopeTo(mid)) lo = mid + 1; else hi = mid;
         }
-        const float value = static_cast<float>(slopeTo(lo) - q->sigmaM * invR);
-        cell = std::max(cell, value);
+        cell = std::max(cell, rangeSlope(hull[lo].g, hull[lo].sigmaM, q->gCell, q->sigmaM, invR));
     }
 }
 
@@ -455,7 +451,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         const long k = kBegin + static_cast<long>(b);
         const double edgeArc = sigmaTable ? 0.0 : arcAt(geo, static_cast<double>(k + geo.base[edge]) + geo.frac[edge]);
         lines[b] = {scratch.data() + b * lineCapacity, 0, 0, edgeArc, 0, maxDistanceM, limited ? &logs[b] : nullptr,
-                    0, 0, 0, 0};
+                    0, 0, 0};
         if (limited) logs[b].reset(lineCapacity);
     }
     for (long m = mStart;; m += mStep) {
@@ -529,19 +525,14 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // serves a cell starts within the halo and every walk builds the same hull.
                 if (limited && sigma >= line.nextChunkM) {
                     const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
-                    RangeLog& log = *line.log;
-                    line.prevBegin = line.prevEnd = log.nPoints;
-                    if (chunk == line.chunk + 1 && log.nPoints > line.curBegin) {
-                        line.prevBegin = line.curBegin;
-                        double highest = -std::numeric_limits<double>::infinity();
-                        for (std::size_t i = line.prevEnd; i-- > line.prevBegin;) {
-                            highest = std::max(highest, log.points[i].g);
-                            log.suffixMaxG[i] = highest;
-                        }
+                    if (chunk == line.chunk + 1) {
+                        line.prevLo = line.lo;
+                        line.prevHi = line.hi;
+                        line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
+                        line.lo = line.hi;
+                    } else {
+                        line.prevLo = line.prevHi = line.lo = line.hi = 0;
                     }
-                    line.prevIdx = line.prevBegin;
-                    line.curBegin = log.nPoints;
-                    line.lo = line.hi = 0;
                     line.chunk = chunk;
                     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
                 }
@@ -590,18 +581,25 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         }
                         float* cell = servedPlane[s] + idx;
                         *cell = value;
-                        // The previous chunk's points within range: the second pass, from those
-                        // points alone (the walk may have started inside that chunk), unless
-                        // their bound cannot beat this value.
-                        if (Limited && line.prevBegin < line.prevEnd) {
-                            const RangeLog::Point* pts = line.log->points.data();
-                            while (line.prevIdx < line.prevEnd && pts[line.prevIdx].sigmaM < sigma - maxDistanceM)
-                                ++line.prevIdx;
-                            if (line.prevIdx < line.prevEnd &&
-                                prevChunkBound(line.log->suffixMaxG[line.prevIdx], gCell, sigma,
-                                               pts[line.prevEnd - 1].sigmaM, pts[line.prevIdx].sigmaM, invR) > value)
-                                line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk, line.log->nPoints,
-                                                                           cell};
+                        // The previous chunk: the tangent to its hull bounds what its points within
+                        // range can add, and is that answer when its vertex is in range; otherwise
+                        // the cell is left to the exact pass. (A walk that starts inside that chunk
+                        // has a hull of fewer points; every point within range is in both, so both
+                        // find the same answer, the exact pass by the same rangeSlope.)
+                        if (Limited && line.prevLo < line.prevHi) {
+                            const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
+                                                                sigma, gCell);
+                            line.prevHint = v;
+                            const HullPoint& pv = line.buf[v];
+                            const float bound = rangeSlope(pv.g, pv.sigmaM, gCell, sigma, invR);
+                            if (bound > value) {
+                                if (pv.sigmaM >= sigma - maxDistanceM) {
+                                    *cell = bound;
+                                } else {
+                                    line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk,
+                                                                               line.log->nPoints, cell};
+                                }
+                            }
                         }
                     }
                 }
