@@ -28,6 +28,8 @@ std::string truncationPath(const std::string& outPath) {
 void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     if (o.azimuthsDeg.empty() == (o.directions == 0)) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
     checkOutputPath(o.out.path, o.dem.path);
+    const std::string masks = truncationPath(o.out.path);
+    checkOutputPath(masks, o.dem.path);
     const DemSource dem = openDem(o.dem);
     HorizonRequest request;
     request.azimuthsDeg = o.azimuthsDeg;
@@ -42,12 +44,18 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     bar.finish();
     const double seconds = secondsSince(start);
 
-    const std::string masks = truncationPath(o.out.path);
     writeResult(result.horizons, o.out, ctx, o.dem.path, {{"DEMLIGHT_TRUNCATION_MASK", masks}});
-    OutputOptions maskOut = o.out;
+    OutputOptions maskOut = o.out;  // the same format and creation options as the horizons
     maskOut.path = masks;
-    maskOut.format = "GTiff";
-    writeResult(result.truncation, maskOut, ctx, o.dem.path, {{"DEMLIGHT_TRUNCATION_MASK", masks}});
+    try {
+        writeResult(result.truncation, maskOut, ctx, o.dem.path, {{"DEMLIGHT_TRUNCATION_MASK", masks}});
+    } catch (const Error&) {
+        // The horizons name their mask (DEMLIGHT_TRUNCATION_MASK): without it they are not
+        // the output asked for either.
+        std::error_code ec;
+        std::filesystem::remove(o.out.path, ec);
+        throw;
+    }
 
     const std::size_t bands = request.azimuthsDeg.size();
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.dem().terrain.heightsM.size() * bands);

@@ -5,20 +5,27 @@
 //   DIR/frame_NNN.png  previews with the render rig
 //   DIR/frames.csv     frame number -> local time, UTC, the sun at the DEM centre
 //   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
+// DIR must be missing or empty, or hold an earlier time-lapse and --overwrite be given (its files
+// are removed first, so frames of two runs never mix).
 #include "cli/common.h"
-#include "geo/image_out.h"
 #include "cli/progress_bar.h"
+#include "geo/image_out.h"
+#include "geo/output_file.h"
 #include "products/timelapse.h"
 #include "src/error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace demlight::cli {
 namespace {
@@ -40,6 +47,7 @@ struct TimelapseOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     int fitDegree = 0;
     std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
+    bool overwrite = false;         ///< replace the outputs of an earlier time-lapse in the folder
 };
 
 std::set<std::string> parseFormats(const std::string& text) {
@@ -64,19 +72,64 @@ std::string frameName(std::size_t i, std::size_t count, const std::string& ext) 
     return buf + ext;
 }
 
-/// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size).
+/// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size),
+/// under a temporary name (so -f mp4) renamed on success.
 void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
     const int digits = std::max(3, static_cast<int>(std::to_string(frameCount - 1).size()));
-    const fs::path mp4 = fs::path(dir) / "timelapse.mp4";
+    TemporaryFile mp4((fs::path(dir) / "timelapse.mp4").string(), TemporaryNaming::Hidden);
     const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
                             (fs::path(dir) / ("frame_%0" + std::to_string(digits) + "d.png")).string() +
-                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' '" +
-                            mp4.string() + "'";
-    if (std::system(cmd.c_str()) != 0) {
-        std::error_code ec;
-        fs::remove(mp4, ec);
-        throw Error("ffmpeg could not encode " + mp4.string());
+                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -f mp4 '" +
+                            mp4.path() + "'";
+    if (std::system(cmd.c_str()) != 0) throw Error("ffmpeg could not encode " + mp4.finalPath());
+    mp4.commit();
+}
+
+/// Whether `name` is a file a time-lapse writes (or its temporary: ".NAME.tmpPID", "NAME.tmpPID").
+bool isTimelapseOutput(std::string name) {
+    if (name.starts_with('.')) name.erase(0, 1);
+    const auto tmp = name.rfind(".tmp");
+    if (tmp != std::string::npos && tmp + 4 < name.size() &&
+        std::all_of(name.begin() + static_cast<std::ptrdiff_t>(tmp) + 4, name.end(), [](unsigned char c) { return std::isdigit(c); }))
+        name.erase(tmp);
+    static const std::set<std::string> fixed = {"sky_k.tif", "frames.csv", "timelapse.gif", "timelapse.mp4",
+                                                "sequence_fit.tif"};
+    if (fixed.count(name)) return true;
+    static const std::regex frame(R"(frame_[0-9]+\.(tif|png))");
+    return std::regex_match(name, frame);
+}
+
+/// The output folder before any work: missing, or a folder that is empty or (with --overwrite)
+/// holds anything. A file, a device or a fifo at DIR is refused.
+void checkOutputFolder(const TimelapseOptions& o) {
+    if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
+    std::error_code ec;
+    const fs::file_status status = fs::status(o.outDir, ec);
+    if (!fs::exists(status)) return;
+    if (!fs::is_directory(status))
+        throw Error("-o " + o.outDir + ": not a folder; timelapse writes a folder of frames (give a new or empty folder)");
+    if (o.overwrite) return;
+    std::size_t entries = 0;
+    std::string example;
+    for (const auto& e : fs::directory_iterator(o.outDir, ec)) {
+        if (entries++ == 0) example = e.path().filename().string();
     }
+    if (entries > 0)
+        throw Error("-o " + o.outDir + ": the folder is not empty (" + std::to_string(entries) +
+                    (entries == 1 ? " entry" : " entries") + ", e.g. '" + example +
+                    "'), and frames of two runs would mix; give --overwrite to replace an earlier time-lapse "
+                    "there, or choose a new folder");
+}
+
+/// --overwrite: removes the files of an earlier time-lapse from the folder (nothing else), so
+/// none of its frames outlive this run.
+void removeEarlierTimelapse(const std::string& dir) {
+    std::error_code ec;
+    std::vector<fs::path> old;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        if (e.is_regular_file(ec) && isTimelapseOutput(e.path().filename().string())) old.push_back(e.path());
+    for (const auto& p : old)
+        if (!fs::remove(p, ec) && ec) throw Error("--overwrite: cannot remove " + p.string() + " (" + ec.message() + ")");
 }
 
 TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
@@ -102,7 +155,9 @@ class FrameWriter {
 public:
     FrameWriter(const TimelapseOptions& o, const std::set<std::string>& formats, std::size_t frames,
                 const CliContext& ctx)
-        : o_(o), formats_(formats), n_(frames), ctx_(ctx), index_(fs::path(o.outDir) / "frames.csv") {
+        : o_(o), formats_(formats), n_(frames), ctx_(ctx),
+          indexFile_((fs::path(o.outDir) / "frames.csv").string(), TemporaryNaming::Hidden),
+          index_(indexFile_.path()) {
         if (formats.count("gif")) gif_ = std::make_unique<GifWriter>((fs::path(o.outDir) / "timelapse.gif").string(), o.fps);
         index_ << "frame,time_local,time_utc,sun_azimuth_deg,sun_elevation_deg\n";
     }
@@ -122,7 +177,8 @@ public:
         wait();
         if (gif_) gif_->finish();
         index_.close();
-        if (!index_) throw Error("cannot write " + (fs::path(o_.outDir) / "frames.csv").string());
+        if (!index_) throw Error(writeFailureMessage("'" + indexFile_.finalPath() + "'", indexFile_.path(), {}));
+        indexFile_.commit();
     }
     void write(const ProductResult& r, const std::string& name) {
         OutputOptions out;
@@ -138,6 +194,7 @@ private:
     const std::set<std::string>& formats_;
     std::size_t n_;
     const CliContext& ctx_;
+    TemporaryFile indexFile_;  // frames.csv, renamed into place by finish()
     std::ofstream index_;
     std::unique_ptr<GifWriter> gif_;
     std::future<void> writing_;
@@ -181,6 +238,7 @@ void noteTimelapse(const TimelapseOptions& o, const TimelapseRequest& r, const T
 }
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
+    checkOutputFolder(o);
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.dem());
@@ -188,6 +246,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
+    if (o.overwrite) removeEarlierTimelapse(o.outDir);
     notePlan(o.search, dem.dem().terrain, ctx);
 
     const auto start = std::chrono::steady_clock::now();
@@ -213,7 +272,11 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<TimelapseOptions>();
     CLI::App* cmd = app.add_subcommand("timelapse", "A lightmap and preview per instant, and an animated GIF");
     addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing)")->required();
+    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing; must be empty unless --overwrite)")
+        ->required();
+    cmd->add_flag("--overwrite", o->overwrite,
+                  "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 "
+                  "and sequence_fit.tif of an earlier run there are removed first (other files are left)");
     cmd->add_option("--start", o->start, "First instant (ISO 8601 with offset, or local with --tz)");
     cmd->add_option("--end", o->end, "Last instant (inclusive when on a step)");
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");

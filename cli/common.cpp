@@ -1,5 +1,7 @@
 #include "cli/common.h"
 
+#include "cli/progress_bar.h"
+#include "geo/output_file.h"
 #include "geo/time.h"
 #include "src/error.h"
 
@@ -132,9 +134,13 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     w.metadata = result.metadata;
     w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
     for (const auto& [k, v] : extra) w.metadata[k] = v;
+    // Ctrl-C while writing stops the write (its temporary file removed) like any other work;
+    // nothing is drawn, so the notes stay as they are.
+    w.progress = [](double, const std::string&) { return !cancelRequested(); };
     std::vector<OutputBand> bands;
     for (const ProductBand& b : result.bands)
-        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
+        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
+                         b.resampling});
     writeRaster(out.path, bands, result.ref, w, inputPath);
 }
 
@@ -156,13 +162,13 @@ std::string flagForField(const std::string& field) {
 }
 
 void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
+    if (outPath.empty()) throw Error("-o: the output path is empty");
+    // Before anything touches the folder: a device's folder (/dev) gets no probe file either.
+    checkOutputFile(outPath);
     std::error_code ec;
     if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
         throw Error("output '" + outPath + "' would overwrite the input DEM; choose another -o");
-    if (fs::is_directory(outPath, ec)) throw Error("cannot write '" + outPath + "': it is a directory");
     const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
-    if (!fs::is_directory(parent, ec))
-        throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' does not exist");
     // Probe that the folder accepts new files, so a long computation does not end in failure.
     const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));
     if (std::FILE* f = std::fopen(probe.c_str(), "w")) {

@@ -115,10 +115,12 @@ SunhoursResult computeSunhours(const Dem& dem, const ScenePlan& plan, const Sunh
          "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
          "(1 h of unit sky on open flat ground = 1)",
          std::move(skyIrr), {}},
+        // Nearest: kNeverLitClock (-1) sits beside clock hours, and a mean of the two (a cell
+        // "first lit" at 2 a.m.) is a time no cell has.
         {"first_lit", "local clock hours (" + zone + ") when half the sun first shows; -1 = never",
-         std::move(maps.firstLitClock), {}},
+         std::move(maps.firstLitClock), {}, Resampling::Nearest},
         {"last_lit", "local clock hours (" + zone + ") when half the sun last shows; -1 = never",
-         std::move(maps.lastLitClock), {}}};
+         std::move(maps.lastLitClock), {}, Resampling::Nearest}};
     return out;
 }
 

@@ -7,6 +7,10 @@
 
 namespace demlight {
 
+/// Most worker threads a request may ask for. Far more than any machine's cores; beyond it TBB
+/// cannot make the arena (65537 crashed it), so requests above are refused, not clamped.
+inline constexpr int kMaxThreads = 1024;
+
 /// Number of worker threads to use: `requested` if > 0, else all hardware threads.
 int resolveThreadCount(int requested);
 
