@@ -14,8 +14,6 @@
 #include "products/timelapse.h"
 #include "src/error.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -25,7 +23,6 @@
 #include <regex>
 #include <set>
 #include <sstream>
-#include <vector>
 
 namespace demlight::cli {
 namespace {
@@ -85,51 +82,12 @@ void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
     mp4.commit();
 }
 
-/// Whether `name` is a file a time-lapse writes (or its temporary: ".NAME.tmpPID", "NAME.tmpPID").
-bool isTimelapseOutput(std::string name) {
-    if (name.starts_with('.')) name.erase(0, 1);
-    const auto tmp = name.rfind(".tmp");
-    if (tmp != std::string::npos && tmp + 4 < name.size() &&
-        std::all_of(name.begin() + static_cast<std::ptrdiff_t>(tmp) + 4, name.end(), [](unsigned char c) { return std::isdigit(c); }))
-        name.erase(tmp);
+/// Whether `name` is a file a time-lapse writes (frameName and FrameWriter's names).
+bool isTimelapseOutput(const std::string& name) {
     static const std::set<std::string> fixed = {"sky_k.tif", "frames.csv", "timelapse.gif", "timelapse.mp4",
                                                 "sequence_fit.tif"};
-    if (fixed.count(name)) return true;
     static const std::regex frame(R"(frame_[0-9]+\.(tif|png))");
-    return std::regex_match(name, frame);
-}
-
-/// The output folder before any work: missing, or a folder that is empty or (with --overwrite)
-/// holds anything. A file, a device or a fifo at DIR is refused.
-void checkOutputFolder(const TimelapseOptions& o) {
-    if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
-    std::error_code ec;
-    const fs::file_status status = fs::status(o.outDir, ec);
-    if (!fs::exists(status)) return;
-    if (!fs::is_directory(status))
-        throw Error("-o " + o.outDir + ": not a folder; timelapse writes a folder of frames (give a new or empty folder)");
-    if (o.overwrite) return;
-    std::size_t entries = 0;
-    std::string example;
-    for (const auto& e : fs::directory_iterator(o.outDir, ec)) {
-        if (entries++ == 0) example = e.path().filename().string();
-    }
-    if (entries > 0)
-        throw Error("-o " + o.outDir + ": the folder is not empty (" + std::to_string(entries) +
-                    (entries == 1 ? " entry" : " entries") + ", e.g. '" + example +
-                    "'), and frames of two runs would mix; give --overwrite to replace an earlier time-lapse "
-                    "there, or choose a new folder");
-}
-
-/// --overwrite: removes the files of an earlier time-lapse from the folder (nothing else), so
-/// none of its frames outlive this run.
-void removeEarlierTimelapse(const std::string& dir) {
-    std::error_code ec;
-    std::vector<fs::path> old;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.is_regular_file(ec) && isTimelapseOutput(e.path().filename().string())) old.push_back(e.path());
-    for (const auto& p : old)
-        if (!fs::remove(p, ec) && ec) throw Error("--overwrite: cannot remove " + p.string() + " (" + ec.message() + ")");
+    return fixed.count(name) > 0 || std::regex_match(name, frame);
 }
 
 TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
@@ -238,7 +196,8 @@ void noteTimelapse(const TimelapseOptions& o, const TimelapseRequest& r, const T
 }
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
-    checkOutputFolder(o);
+    if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
+    checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.dem());
@@ -246,7 +205,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
-    if (o.overwrite) removeEarlierTimelapse(o.outDir);
+    if (o.overwrite) removeEarlierOutputs(o.outDir, isTimelapseOutput);
     notePlan(o.search, dem.dem().terrain, ctx);
 
     const auto start = std::chrono::steady_clock::now();

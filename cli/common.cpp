@@ -155,7 +155,7 @@ std::string flagForField(const std::string& field) {
         {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
         {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
         {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
-        {"time", "--time"},               {"toleranceDeg", "--tolerance"},
+        {"time", "--time"},               {"toleranceDeg", "--tolerance"},       {"overwrite", "--overwrite"},
     };
     const auto it = flags.find(field);
     return it == flags.end() ? field : it->second;

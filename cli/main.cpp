@@ -3,17 +3,14 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "geo/output_file.h"
+#include "geo/signals.h"
 #include "src/error.h"
 
 #include <malloc.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
@@ -22,7 +19,7 @@
 
 namespace {
 
-/// Exit codes of every command (README "Exit codes"; also in --help).
+/// Exit codes of every command (docs/commands.md "Exit codes"; also in --help).
 enum ExitCode : int {
     kExitOk = 0,
     kExitError = 1,         ///< a demlight::Error: bad input, option value, output path, full disk, ...
@@ -34,54 +31,26 @@ constexpr const char* kExitCodesHelp =
     "Exit codes: 0 done, 1 error (input, options, output), 2 bad command line, 3 internal error, "
     "130 cancelled (Ctrl-C, SIGTERM); a second Ctrl-C ends it at once, killed by SIGINT.";
 
-/// Whether a signal already asked the run to stop.
-volatile std::sig_atomic_t gStopRequested = 0;
-
-/// SIGINT/SIGTERM/SIGHUP. The first asks the work to stop at its next safe point (progress
-/// callbacks, writers between strips, then return false; the library throws Cancelled, its
-/// temporary files are removed as the stack unwinds, main prints "cancelled"). A second ends the
-/// process at once, after unlinking the temporary files still registered (geo/output_file.h).
-/// Only async-signal-safe calls here.
-void onInterrupt(int sig) {
-    if (gStopRequested == 0) {
-        gStopRequested = 1;
-        demlight::cli::requestCancel();
-        static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";
-        [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
-        return;
-    }
-    demlight::removeTemporaryFiles();
-    // The signal is blocked while its handler runs: with the default action restored it ends
-    // the process as soon as this returns, with the status a shell expects from it.
-    ::signal(sig, SIG_DFL);
-    ::raise(sig);
+/// The first Ctrl-C (SIGTERM, SIGHUP): stop at the next safe point, and say so. Runs in the
+/// signal handler (geo/signals.h): async-signal-safe calls only.
+void onFirstInterrupt() noexcept {
+    demlight::cli::requestCancel();
+    static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
 }
 
-/// Installs onInterrupt, except where the parent made the process ignore the signal (nohup,
-/// background jobs of a non-interactive shell): that choice stands. SIGXFSZ (a write past the
-/// file size limit, ulimit -f) would end the process with its temporary files left; ignored,
-/// that write fails with EFBIG and is reported like a full disk.
-void installSignalHandlers() {
-    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
-        struct sigaction old {};
-        if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
-        struct sigaction sa {};
-        sa.sa_handler = onInterrupt;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = SA_RESTART;  // restart reads and writes the signal interrupts
-        sigaction(sig, &sa, nullptr);
+/// An unknown first word is a mistyped command, not a missing one: its message, or empty. The
+/// global flags before it (-q, --quiet) take no value, so it is the first argument that is not a
+/// flag. `reversed` is the command line as CLI11 takes it.
+std::string unknownCommand(const CLI::App& app, const std::vector<std::string>& reversed) {
+    const auto word = std::find_if(reversed.rbegin(), reversed.rend(), [](const std::string& a) { return !a.starts_with('-'); });
+    if (word == reversed.rend() || word->empty()) return {};
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        if (sub->get_name() == *word) return {};
+        names += (names.empty() ? "" : ", ") + sub->get_name();
     }
-    ::signal(SIGXFSZ, SIG_IGN);
-}
-
-std::terminate_handler gDefaultTerminate = nullptr;
-
-/// std::terminate (an exception escaping a thread) ends the process without unwinding: remove
-/// the temporary files first, then report as the runtime does.
-[[noreturn]] void terminateRemovingTemporaries() {
-    demlight::removeTemporaryFiles();
-    if (gDefaultTerminate) gDefaultTerminate();
-    std::abort();
+    return "unknown command '" + *word + "' (commands: " + names + ")";
 }
 
 }  // namespace
@@ -131,28 +100,12 @@ int main(int argc, char** argv) {
         if (failed && !failed->get_subcommands().empty()) help += " " + failed->get_subcommands().front()->get_name();
         return std::string("demlight: error: ") + e.what() + "\nRun '" + help + " --help' for the options.\n";
     });
-    // An unknown first word is a mistyped command, not a missing one. The global flags before
-    // it (-q, --quiet) take no value, so it is the first argument that is not a flag.
-    const auto word = std::find_if(args.rbegin(), args.rend(), [](const std::string& a) { return !a.starts_with('-'); });
-    if (word != args.rend()) {
-        const std::string& first = *word;  // args are reversed
-        std::string names;
-        bool known = false;
-        for (const CLI::App* sub : app.get_subcommands({})) {
-            names += (names.empty() ? "" : ", ") + sub->get_name();
-            known = known || sub->get_name() == first;
-        }
-        if (!first.empty() && first[0] != '-' && !known) {
-            std::cerr << "demlight: error: unknown command '" << first << "' (commands: " << names << ")\n";
-            return kExitUsage;
-        }
+    if (const std::string unknown = unknownCommand(app, args); !unknown.empty()) {
+        std::cerr << "demlight: error: " << unknown << "\n";
+        return kExitUsage;
     }
 
-    installSignalHandlers();
-    gDefaultTerminate = std::set_terminate(terminateRemovingTemporaries);
-    // A library that calls exit() on a write error (libjpeg's default handler does, on a full
-    // disk) skips the unwinding that removes temporary files.
-    std::atexit(demlight::removeTemporaryFiles);
+    installOutputCleanup(onFirstInterrupt);
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {

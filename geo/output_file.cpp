@@ -3,10 +3,13 @@
 
 #include "src/error.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -118,6 +121,45 @@ void checkOutputFile(const std::string& path) {
     const fs::path parent = fs::absolute(fs::path(path), ec).parent_path();
     if (ec || !fs::is_directory(parent, ec))
         throw Error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
+}
+
+void checkOutputFolder(const std::string& dir, bool replaceEarlier) {
+    if (dir.empty()) throw Error("cannot write '': the output folder path is empty");
+    std::error_code ec;
+    const fs::file_status status = fs::status(dir, ec);
+    if (!fs::exists(status)) return;
+    if (!fs::is_directory(status))
+        throw Error("'" + dir + "' is not a folder: give a new or an empty folder for the outputs");
+    if (replaceEarlier) return;
+    std::size_t entries = 0;
+    std::string example;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        if (entries++ == 0) example = e.path().filename().string();
+    if (entries > 0)
+        throw FieldError("overwrite", " not given, and the folder '" + dir + "' is not empty (" + std::to_string(entries) +
+                                          (entries == 1 ? " entry" : " entries") + ", e.g. '" + example +
+                                          "'): the files of two runs would mix; give it to replace an earlier run's "
+                                          "files there, or choose a new folder");
+}
+
+void removeEarlierOutputs(const std::string& dir, const std::function<bool(const std::string& name)>& isEarlierOutput) {
+    // A temporary name is the final one, hidden or not, with ".tmp<pid>" after it (TemporaryFile).
+    const auto finalName = [](std::string name) {
+        const auto tmp = name.rfind(".tmp");
+        if (tmp == std::string::npos || tmp + 4 == name.size() ||
+            !std::all_of(name.begin() + static_cast<std::ptrdiff_t>(tmp) + 4, name.end(),
+                         [](unsigned char c) { return std::isdigit(c); }))
+            return name;
+        name.erase(tmp);
+        if (name.starts_with('.')) name.erase(0, 1);
+        return name;
+    };
+    std::error_code ec;
+    std::vector<fs::path> earlier;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        if (e.is_regular_file(ec) && isEarlierOutput(finalName(e.path().filename().string()))) earlier.push_back(e.path());
+    for (const auto& p : earlier)
+        if (!fs::remove(p, ec) && ec) throw Error("cannot remove '" + p.string() + "' of an earlier run (" + ec.message() + ")");
 }
 
 std::string diagnoseWriteFailure(const std::string& path) {

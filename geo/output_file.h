@@ -4,6 +4,7 @@
 // removed, so that a signal handler can still remove them when the process is ended at once.
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace demlight {
@@ -13,6 +14,17 @@ namespace demlight {
 /// refused: committing an output renames a new file over its path, which would replace the node
 /// (as root, a GeoTIFF where /dev/null was).
 void checkOutputFile(const std::string& path);
+
+/// Throws unless `dir` can become an output folder (a folder of files written by one run): missing
+/// (the caller creates it), an empty folder, or, with `replaceEarlier`, any folder. A file, a
+/// device or a fifo at `dir` is refused (Error); a folder that is not empty without
+/// `replaceEarlier` too (FieldError "overwrite"), since the files of two runs would mix.
+void checkOutputFolder(const std::string& dir, bool replaceEarlier);
+
+/// Removes the regular files in `dir` whose names `isEarlierOutput` accepts, and the temporary
+/// files of such names (".NAME.tmpPID", "NAME.tmpPID"); nothing else. Throws Error naming a
+/// file that cannot be removed.
+void removeEarlierOutputs(const std::string& dir, const std::function<bool(const std::string& name)>& isEarlierOutput);
 
 /// Why writing `path` failed at the file-system level, when that can be told, e.g. "the disk is
 /// full (No space left on device)" or "the file is too large for the file size limit (ulimit -f;
