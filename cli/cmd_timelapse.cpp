@@ -1,4 +1,4 @@
-// demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D [--tz ZONE]): a
+// demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D --tz ZONE): a
 // frame per instant (products/timelapse.h). Writes
 //   DIR/frame_NNN.tif  lightmaps: sun_visibility, sun_irradiance (Float32, linear)
 //   DIR/sky_k.tif      the sky light K every frame shares (written once)
@@ -95,7 +95,7 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
     try {
         if (!o.date.empty()) {
             if (!o.start.empty() || !o.end.empty()) throw Error("give either --date or --start/--end, not both");
-            return instantsOfDay(dem, parseDate(o.date), TimeZoneSpec::fromName(o.tz), step, o.maxFrames);
+            return instantsOfDay(dem, parseDate(o.date), zoneOfDays(o.tz), step, o.maxFrames);
         }
         if (o.start.empty() || o.end.empty()) throw Error("give --start T and --end T (with --step), or --date D");
         return instantsBetween(parseTimeOptions(o.start, o.tz), parseTimeOptions(o.end, o.tz), step, o.maxFrames);
@@ -239,7 +239,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--start", o->start, "First instant (ISO 8601 with offset, or local with --tz)");
     cmd->add_option("--end", o->end, "Last instant (inclusive when on a step)");
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
-    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (default UTC)");
+    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (required with --date; UTC for universal time)");
     cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (a bare number = minutes)")
         ->capture_default_str();
     cmd->add_option("--max-frames", o->maxFrames, "Refuse a sequence of more frames than this (guards against a mistyped --step)")

@@ -156,6 +156,7 @@ std::string flagForField(const std::string& field) {
         {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
         {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
         {"time", "--time"},               {"toleranceDeg", "--tolerance"},       {"overwrite", "--overwrite"},
+        {"zone", "--tz"},
     };
     const auto it = flags.find(field);
     return it == flags.end() ? field : it->second;

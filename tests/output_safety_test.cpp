@@ -9,10 +9,12 @@
 //  - a time-lapse into a non-empty folder is refused unless --overwrite, which removes the
 //    earlier run's files first;
 //  - COG overviews are resampled per band by what it holds;
-//  - --threads beyond kMaxThreads is refused; exit codes follow the documented table.
+//  - --threads beyond kMaxThreads is refused; exit codes follow the documented table;
+//  - a date needs a time zone.
 #include "cli_runner.h"
 #include "geo/image_out.h"
 #include "geo/raster.h"
+#include "geo/time.h"
 #include "products/product.h"
 #include "shared_dem.h"
 #include "src/error.h"
@@ -585,6 +587,38 @@ TEST(OutputSafety, ExitCodesFollowTheTable) {
     // The table is in the help of every command.
     const auto help = runDemlight("sun --help");
     EXPECT_NE(help.out.find("Exit codes: 0 done, 1 error"), std::string::npos) << help.out;
+}
+
+// ---- Smaller ones ------------------------------------------------------------------------------
+
+// A date alone has times too (its day runs midnight to midnight in some zone, first_lit and
+// last_lit are clock times), so without --tz it is refused like a time without a zone; it was
+// silently UTC.
+TEST(OutputSafety, DatesWithoutATimeZoneAreRefused) {
+    const fs::path dir = scratch();
+    const std::string out = (dir / "sh.tif").string();
+    for (const std::string& command :
+         {"sunhours " + kHelens + " --date 2024-06-21 -o " + out,
+          "sunhours " + kHelens + " --start 2024-06-21 --end 2024-06-22 -o " + out,
+          "timelapse " + kHelens + " --date 2024-06-21 --formats tif -o " + (dir / "tl").string()}) {
+        SCOPED_TRACE(command);
+        const auto r = runDemlight("-q " + command);
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find("--tz missing: a date is a day from midnight to midnight in some time zone"),
+                  std::string::npos)
+            << r.err;
+    }
+    EXPECT_TRUE(namesIn(dir).empty()) << joined(namesIn(dir));
+    // The library names the field; "UTC" is an explicit zone.
+    try {
+        zoneOfDays("");
+        ADD_FAILURE() << "a day without a zone accepted";
+    } catch (const FieldError& e) {
+        EXPECT_EQ(e.field(), "zone");
+    }
+    EXPECT_EQ(zoneOfDays("UTC").offsetAt(UtcInstant{}), std::chrono::seconds(0));
+    const auto r = runDemlight("-q sunhours " + kHelens + " --date 2024-06-21 --tz UTC --step 2h -o " + out);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 }  // namespace
