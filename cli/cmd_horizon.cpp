@@ -27,7 +27,7 @@ std::string truncationPath(const std::string& outPath) {
 
 void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     if (o.azimuthsDeg.empty() == (o.directions == 0)) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const std::string masks = truncationPath(o.out.path);
     checkOutputPath(masks, o.dem.path);
     const DemSource dem = openDem(o.dem);

@@ -48,7 +48,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o);
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
     ProgressBar bar(!ctx.quiet);

@@ -98,7 +98,7 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
                     "0 = pure geometry")
         ->check(finiteRange(0.0, 0.99))
         ->capture_default_str();
-    cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores)")
+    cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores; at most the cores are used)")
         ->check(finiteRange(0, kUnbounded))
         ->capture_default_str();
     cmd->add_option_function<std::string>(
@@ -178,6 +178,11 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     } else {
         throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' is not writable");
     }
+}
+
+void checkOutputPath(const OutputOptions& out, const std::string& inputPath) {
+    checkOutputPath(out.path, inputPath);
+    checkRasterPath(out.path);
 }
 
 std::array<double, 3> parseColor(const std::string& text, const std::string& option) {

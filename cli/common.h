@@ -54,6 +54,8 @@ std::string flagForField(const std::string& field);
 
 /// Fails early (before any work) if the output cannot be written or would replace the input.
 void checkOutputPath(const std::string& outPath, const std::string& inputPath);
+/// As above for a raster output, which must also be named as a GeoTIFF (checkRasterPath).
+void checkOutputPath(const OutputOptions& out, const std::string& inputPath);
 
 /// "R,G,B" linear, each >= 0; throws Error naming the option.
 std::array<double, 3> parseColor(const std::string& text, const std::string& option);

@@ -382,6 +382,13 @@ CPLErr buildOverviewsPerBand(GDALDataset& ds, const std::vector<OutputBand>& ban
 
 }  // namespace
 
+void checkRasterPath(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    if (!ext.empty() && strcasecmp(ext.c_str(), ".tif") != 0 && strcasecmp(ext.c_str(), ".tiff") != 0)
+        throw Error("cannot write '" + path + "': its extension '" + ext +
+                    "' names another format, and this output is a GeoTIFF; name it .tif or .tiff");
+}
+
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath) {
@@ -390,6 +397,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     if (options.format != "GTiff" && options.format != "COG")
         throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
     checkOutputFile(path);
+    checkRasterPath(path);
 
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) &&

@@ -92,10 +92,15 @@ struct WriteOptions {
     ProgressFn progress;
 };
 
+/// Throws Error unless `path` names a GeoTIFF: its extension, if it has one, must be .tif or .tiff
+/// (any case). GTiff and COG both write GeoTIFF; a raster named .png or .jpg would be a TIFF that
+/// every reader mistakes for a picture.
+void checkRasterPath(const std::string& path);
+
 /// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success
 /// (geo/output_file.h); a failure or a cancel leaves neither `path` changed nor a temporary file.
-/// All bands must be the same shape. Refuses to overwrite `inputPath` when given, and a `path`
-/// that is not a regular file (checkOutputFile). COG overviews are built per band with its
+/// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path`
+/// that is not a regular file (checkOutputFile) or not named as a GeoTIFF (checkRasterPath). COG overviews are built per band with its
 /// Resampling, unless the creation options choose the overviews (RESAMPLING, OVERVIEW_RESAMPLING,
 /// OVERVIEWS, or a reprojection: TILING_SCHEME, TARGET_SRS); GDAL's COG driver would resample
 /// every band alike (cubic by default, which overshoots: a visibility of -0.24 or 1.19).

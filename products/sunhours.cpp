@@ -1,5 +1,6 @@
 #include "products/sunhours.h"
 
+#include "geo/solar_position.h"
 #include "geo/sun_field.h"
 #include "lighting/directions.h"
 #include "lighting/sunhours.h"
@@ -134,6 +135,8 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         throw FieldError("step", " " + formatNumber(std::chrono::duration<double>(request.step).count()) +
                     " s: must be from 6 s to 2 h");
     validateSun(request.sunDiameterDeg, Atmosphere{});
+    checkSpaValidity(localDay(request.firstDay, request.zone).startUtc);
+    checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
     const Terrain& whole = source.dem().terrain;

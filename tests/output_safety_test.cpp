@@ -9,11 +9,14 @@
 //  - a time-lapse into a non-empty folder is refused unless --overwrite, which removes the
 //    earlier run's files first;
 //  - COG overviews are resampled per band by what it holds;
-//  - --threads beyond kMaxThreads is refused; exit codes follow the documented table;
-//  - a date needs a time zone.
+//  - --threads beyond kMaxThreads is refused, beyond the cores quietly capped; exit codes follow
+//    the documented table;
+//  - smaller ones: a date needs a time zone, a raster is named .tif, the horizon's mask follows
+//    --of, years outside SPA's are refused, a missing input reads the same in every command.
 #include "cli_runner.h"
 #include "geo/image_out.h"
 #include "geo/raster.h"
+#include "geo/solar_position.h"
 #include "geo/time.h"
 #include "products/product.h"
 #include "shared_dem.h"
@@ -619,6 +622,109 @@ TEST(OutputSafety, DatesWithoutATimeZoneAreRefused) {
     EXPECT_EQ(zoneOfDays("UTC").offsetAt(UtcInstant{}), std::chrono::seconds(0));
     const auto r = runDemlight("-q sunhours " + kHelens + " --date 2024-06-21 --tz UTC --step 2h -o " + out);
     EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+// sun -o out.png wrote a GeoTIFF named .png (readers take it for a picture).
+TEST(OutputSafety, RastersNamedAsAnotherFormatAreRefused) {
+    const fs::path dir = scratch();
+    for (const std::string name : {"out.png", "out.jpg", "out.gif"}) {
+        for (const std::string& command : rasterCommands()) {
+            if (command.starts_with("render")) continue;  // render writes pictures
+            SCOPED_TRACE(command + name);
+            const auto r = runDemlight("-q " + command + (dir / name).string());
+            EXPECT_EQ(r.exitCode, 1) << r.err;
+            EXPECT_NE(r.err.find("its extension '" + fs::path(name).extension().string() +
+                                 "' names another format, and this output is a GeoTIFF; name it .tif or .tiff"),
+                      std::string::npos)
+                << r.err;
+        }
+    }
+    EXPECT_TRUE(namesIn(dir).empty()) << joined(namesIn(dir));
+    // The library refuses it too; .tif and .TIFF are GeoTIFF names, and so is a name without one.
+    const Grid<float> z(2, 2, 0.0f);
+    EXPECT_THROW(writeRaster((dir / "x.png").string(), {{&z, nullptr, "v", ""}}, GeoReference{}, WriteOptions{}), Error);
+    for (const std::string name : {"a.tif", "b.TIFF", "c"})
+        EXPECT_NO_THROW(writeRaster((dir / name).string(), {{&z, nullptr, "v", ""}}, GeoReference{}, WriteOptions{}))
+            << name;
+}
+
+// The truncation mask beside the horizons stayed a plain GTiff under --of COG.
+TEST(OutputSafety, HorizonMaskFollowsTheOutputFormat) {
+    const fs::path dir = scratch();
+    const auto r = runDemlight("-q horizon " + kHelens + " --directions 2 --of COG -o " + (dir / "h.tif").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const std::string name : {"h.tif", "h.truncated.tif"}) {
+        SCOPED_TRACE(name);
+        const RasterSummary s = inspectRaster((dir / name).string());
+        const auto layout = s.imageStructure.find("LAYOUT");
+        ASSERT_NE(layout, s.imageStructure.end()) << "not a COG";
+        EXPECT_EQ(layout->second, "COG");
+    }
+}
+
+// --threads above the cores made TBB print "TBB Warning: The number of workers is currently
+// limited to ..." on stderr, -q or not.
+TEST(OutputSafety, ThreadsBeyondTheCoresPrintNothingUnderQuiet) {
+    const fs::path dir = scratch();
+    for (const std::string& command :
+         {"sun " + kHelens + " --time " + kTime + " -o " + (dir / "o.tif").string(),
+          "sky " + kHelens + " --sky-directions 8 -o " + (dir / "o.tif").string()}) {
+        SCOPED_TRACE(command);
+        const auto r = runDemlight("-q " + command + " --threads " + std::to_string(kMaxThreads));
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err, "");
+    }
+}
+
+// A year past SPA's validity (6000) was accepted and its sun shown as exactly as any other.
+TEST(OutputSafety, YearsOutsideSpaAreRefused) {
+    const fs::path dir = scratch();
+    const std::string message = "outside the years -2000 to 6000 the solar position algorithm (NREL SPA) is valid for";
+    for (const std::string& command :
+         {"sun " + kHelens + " --time 6001-06-21T12:00Z -o " + (dir / "o.tif").string(),
+          "light " + kHelens + " --time 9999-06-21T12:00Z -o " + (dir / "o.tif").string(),
+          "sunhours " + kHelens + " --date 6001-06-21 --tz UTC -o " + (dir / "o.tif").string(),
+          "timelapse " + kHelens + " --start 6001-06-21T12:00Z --end 6001-06-21T14:00Z --step 1h -o " +
+              (dir / "tl").string(),
+          "timelapse " + kHelens + " --date 6001-06-21 --tz UTC -o " + (dir / "tl").string(),
+          std::string("sunpos --time 6001-01-01T00:00Z --lat 46 --lon 7")}) {
+        SCOPED_TRACE(command);
+        const auto r = runDemlight("-q " + command);
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    }
+    EXPECT_TRUE(namesIn(dir).empty()) << joined(namesIn(dir));
+    EXPECT_EQ(runDemlight("-q sunpos --time 6000-12-31T23:00Z --lat 46 --lon 7").exitCode, 0);
+    // The library's bounds are inclusive years of UTC.
+    const auto at = [](int year) {
+        return UtcInstant{std::chrono::sys_days{std::chrono::year{year} / 6 / 21}};
+    };
+    EXPECT_NO_THROW(solarPosition(SolarSite{}, at(kSpaFirstYear)));
+    EXPECT_NO_THROW(solarPosition(SolarSite{}, at(kSpaLastYear)));
+    EXPECT_THROW(solarPosition(SolarSite{}, at(kSpaFirstYear - 1)), Error);
+    EXPECT_THROW(solarPosition(SolarSite{}, at(kSpaLastYear + 1)), Error);
+    EXPECT_THROW(sunEvents(SolarSite{}, at(kSpaLastYear + 1)), Error);
+}
+
+// info and every other command say the same about a missing input.
+TEST(OutputSafety, MissingInputReadsTheSameInEveryCommand) {
+    const fs::path dir = scratch();
+    const std::string missing = (dir / "absent.tif").string();
+    const std::string expected = "demlight: error: cannot open '" + missing + "': no such file\n";
+    std::vector<std::string> commands = {"info " + missing,
+                                         "timelapse " + missing + " --date 2024-06-21 --tz UTC -o " + (dir / "tl").string(),
+                                         "sequence " + missing + " --time " + kTime + " -o " + (dir / "s.tif").string()};
+    for (std::string command : rasterCommands()) {
+        command.replace(command.find(kHelens), kHelens.size(), missing);
+        commands.push_back(command + (dir / (command.starts_with("render") ? "o.png" : "o.tif")).string());
+    }
+    for (const std::string& command : commands) {
+        SCOPED_TRACE(command);
+        const auto r = runDemlight("-q " + command);
+        EXPECT_EQ(r.exitCode, 1);
+        EXPECT_EQ(r.err, expected);
+    }
+    EXPECT_TRUE(namesIn(dir).empty()) << joined(namesIn(dir));
 }
 
 }  // namespace
