@@ -17,7 +17,7 @@ struct ApertureOptions {
 };
 
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
     ApertureRequest request;
     request.directions = o.directions;

@@ -28,7 +28,9 @@ std::string truncationPath(const std::string& outPath) {
 
 void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     if (o.azimuthsDeg.empty() == (o.directions == 0)) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
+    const std::string masks = truncationPath(o.out.path);
+    checkOutputPath(masks, o.dem.path);
     const DemSource dem = openDem(o.dem);
     HorizonRequest request;
     request.azimuthsDeg = o.azimuthsDeg;
@@ -37,10 +39,8 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     request.search = o.search.request;
     notePlan(o.search, dem.dem().terrain, ctx);
 
-    const std::string masks = truncationPath(o.out.path);
-    OutputOptions maskOut = o.out;
+    OutputOptions maskOut = o.out;  // the same format and creation options as the horizons
     maskOut.path = masks;
-    maskOut.format = "GTiff";
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2 * request.azimuthsDeg.size(), ctx);
     const auto start = std::chrono::steady_clock::now();
     const HorizonResult result = runRaster<HorizonResult>(

@@ -48,7 +48,7 @@ LightRequest lightRequest(const LightOptions& o) {
 
 void runLight(const LightOptions& o, const CliContext& ctx) {
     const LightRequest request = lightRequest(o);
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 3, ctx);

@@ -16,7 +16,7 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
     SequenceRequest request;
     request.fitPath = o.fitPath;
     request.time = parseTimeOptions(o.time, o.tz);
-    checkOutputPath(o.out.path, o.fitPath);
+    checkOutputPath(o.out, o.fitPath);
     const ProductResult result = sequenceProduct(request);
     writeResult(result, o.out, ctx, o.fitPath);
     note(ctx, "wrote " + o.out.path + " (sun_irradiance at " + formatInstant(request.time.utc, request.time.zone) +

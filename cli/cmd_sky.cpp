@@ -23,7 +23,7 @@ struct SkyOptions {
 };
 
 void runSky(const SkyOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     SkyRequest request;
     request.model = parseSkyModel(o.model);
     if (request.model == SkyModel::Hemisphere && !o.patches.empty())

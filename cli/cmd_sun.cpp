@@ -31,7 +31,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     request.search = o.search.request;
     if (request.model == SunModel::Horizon && o.directions)
         note(ctx, "note: --sky-directions is used by the aperture models only; --model horizon sweeps the sun's azimuth");
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2, ctx);

@@ -1,4 +1,4 @@
-// demlight sunhours DEM -o OUT.tif (--date D | --start D --end D) [--tz ZONE]: hours of direct
+// demlight sunhours DEM -o OUT.tif (--date D | --start D --end D) --tz ZONE: hours of direct
 // sun, sun and sky irradiation and the cell's own sunrise/sunset over local days
 // (products/sunhours.h).
 #include "cli/common.h"
@@ -26,7 +26,7 @@ struct SunhoursOptions {
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     SunhoursRequest r;
-    r.zone = TimeZoneSpec::fromName(o.tz);
+    r.zone = zoneOfDays(o.tz);
     if (!o.date.empty()) {
         if (!o.startDate.empty() || !o.endDate.empty())
             throw Error("sunhours: give either --date or --start/--end, not both");
@@ -49,7 +49,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o);
-    checkOutputPath(o.out.path, o.dem.path);
+    checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
     notePlan(o.search, dem.dem().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
@@ -75,7 +75,7 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
     cmd->add_option("--start", o->startDate, "First local day YYYY-MM-DD of a range");
     cmd->add_option("--end", o->endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
-    cmd->add_option("--tz", o->tz, "IANA time zone of the days and clock times (default UTC)");
+    cmd->add_option("--tz", o->tz, "IANA time zone of the days and clock times (required; UTC for universal time)");
     cmd->add_option("--step", o->step,
                     "Integration step (trapezoid rule), 6 s to 2 h: 10m, 90s, 1h (a bare number = minutes)")
         ->capture_default_str();

@@ -1,13 +1,16 @@
-// demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D [--tz ZONE]): a
+// demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D --tz ZONE): a
 // frame per instant (products/timelapse.h). Writes
 //   DIR/frame_NNN.tif  lightmaps: sun_visibility, sun_irradiance (Float32, linear)
 //   DIR/sky_k.tif      the sky light K every frame shares (written once)
 //   DIR/frame_NNN.png  previews with the render rig
 //   DIR/frames.csv     frame number -> local time, UTC, the sun at the DEM centre
 //   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
+// DIR must be missing or empty, or hold an earlier time-lapse and --overwrite be given (its files
+// are removed first, so frames of two runs never mix).
 #include "cli/common.h"
-#include "geo/image_out.h"
 #include "cli/progress_bar.h"
+#include "geo/image_out.h"
+#include "geo/output_file.h"
 #include "products/timelapse.h"
 #include "src/error.h"
 
@@ -17,6 +20,7 @@
 #include <fstream>
 #include <future>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -40,6 +44,7 @@ struct TimelapseOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     int fitDegree = 0;
     std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
+    bool overwrite = false;         ///< replace the outputs of an earlier time-lapse in the folder
 };
 
 std::set<std::string> parseFormats(const std::string& text) {
@@ -64,19 +69,25 @@ std::string frameName(std::size_t i, std::size_t count, const std::string& ext) 
     return buf + ext;
 }
 
-/// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size).
+/// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size),
+/// under a temporary name (so -f mp4) renamed on success.
 void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
     const int digits = std::max(3, static_cast<int>(std::to_string(frameCount - 1).size()));
-    const fs::path mp4 = fs::path(dir) / "timelapse.mp4";
+    TemporaryFile mp4((fs::path(dir) / "timelapse.mp4").string(), TemporaryNaming::Hidden);
     const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
                             (fs::path(dir) / ("frame_%0" + std::to_string(digits) + "d.png")).string() +
-                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' '" +
-                            mp4.string() + "'";
-    if (std::system(cmd.c_str()) != 0) {
-        std::error_code ec;
-        fs::remove(mp4, ec);
-        throw Error("ffmpeg could not encode " + mp4.string());
-    }
+                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -f mp4 '" +
+                            mp4.path() + "'";
+    if (std::system(cmd.c_str()) != 0) throw Error("ffmpeg could not encode " + mp4.finalPath());
+    mp4.commit();
+}
+
+/// Whether `name` is a file a time-lapse writes (frameName and FrameWriter's names).
+bool isTimelapseOutput(const std::string& name) {
+    static const std::set<std::string> fixed = {"sky_k.tif", "frames.csv", "timelapse.gif", "timelapse.mp4",
+                                                "sequence_fit.tif"};
+    static const std::regex frame(R"(frame_[0-9]+\.(tif|png))");
+    return fixed.count(name) > 0 || std::regex_match(name, frame);
 }
 
 TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
@@ -84,7 +95,7 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
     try {
         if (!o.date.empty()) {
             if (!o.start.empty() || !o.end.empty()) throw Error("give either --date or --start/--end, not both");
-            return instantsOfDay(dem, parseDate(o.date), TimeZoneSpec::fromName(o.tz), step, o.maxFrames);
+            return instantsOfDay(dem, parseDate(o.date), zoneOfDays(o.tz), step, o.maxFrames);
         }
         if (o.start.empty() || o.end.empty()) throw Error("give --start T and --end T (with --step), or --date D");
         return instantsBetween(parseTimeOptions(o.start, o.tz), parseTimeOptions(o.end, o.tz), step, o.maxFrames);
@@ -102,7 +113,9 @@ class FrameWriter {
 public:
     FrameWriter(const TimelapseOptions& o, const std::set<std::string>& formats, std::size_t frames,
                 const CliContext& ctx)
-        : o_(o), formats_(formats), n_(frames), ctx_(ctx), index_(fs::path(o.outDir) / "frames.csv") {
+        : o_(o), formats_(formats), n_(frames), ctx_(ctx),
+          indexFile_((fs::path(o.outDir) / "frames.csv").string(), TemporaryNaming::Hidden),
+          index_(indexFile_.path()) {
         if (formats.count("gif")) gif_ = std::make_unique<GifWriter>((fs::path(o.outDir) / "timelapse.gif").string(), o.fps);
         index_ << "frame,time_local,time_utc,sun_azimuth_deg,sun_elevation_deg\n";
     }
@@ -122,7 +135,8 @@ public:
         wait();
         if (gif_) gif_->finish();
         index_.close();
-        if (!index_) throw Error("cannot write " + (fs::path(o_.outDir) / "frames.csv").string());
+        if (!index_) throw Error(writeFailureMessage("'" + indexFile_.finalPath() + "'", indexFile_.path(), {}));
+        indexFile_.commit();
     }
     void write(const ProductResult& r, const std::string& name) {
         OutputOptions out;
@@ -138,6 +152,7 @@ private:
     const std::set<std::string>& formats_;
     std::size_t n_;
     const CliContext& ctx_;
+    TemporaryFile indexFile_;  // frames.csv, renamed into place by finish()
     std::ofstream index_;
     std::unique_ptr<GifWriter> gif_;
     std::future<void> writing_;
@@ -181,6 +196,8 @@ void noteTimelapse(const TimelapseOptions& o, const TimelapseRequest& r, const T
 }
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
+    if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
+    checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.dem());
@@ -188,6 +205,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
+    if (o.overwrite) removeEarlierOutputs(o.outDir, isTimelapseOutput);
     notePlan(o.search, dem.dem().terrain, ctx);
 
     const auto start = std::chrono::steady_clock::now();
@@ -213,11 +231,15 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<TimelapseOptions>();
     CLI::App* cmd = app.add_subcommand("timelapse", "A lightmap and preview per instant, and an animated GIF");
     addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing)")->required();
+    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing; must be empty unless --overwrite)")
+        ->required();
+    cmd->add_flag("--overwrite", o->overwrite,
+                  "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 "
+                  "and sequence_fit.tif of an earlier run there are removed first (other files are left)");
     cmd->add_option("--start", o->start, "First instant (ISO 8601 with offset, or local with --tz)");
     cmd->add_option("--end", o->end, "Last instant (inclusive when on a step)");
     cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
-    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (default UTC)");
+    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (required with --date; UTC for universal time)");
     cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (a bare number = minutes)")
         ->capture_default_str();
     cmd->add_option("--max-frames", o->maxFrames, "Refuse a sequence of more frames than this (guards against a mistyped --step)")

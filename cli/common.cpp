@@ -1,5 +1,7 @@
 #include "cli/common.h"
 
+#include "cli/progress_bar.h"
+#include "geo/output_file.h"
 #include "geo/time.h"
 #include "src/error.h"
 
@@ -96,7 +98,7 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
                     "0 = pure geometry")
         ->check(finiteRange(0.0, 0.99))
         ->capture_default_str();
-    cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores)")
+    cmd->add_option("--threads", r.threads, "Worker threads (0 = all cores; at most the cores are used)")
         ->check(finiteRange(0, kUnbounded))
         ->capture_default_str();
     cmd->add_option_function<std::string>(
@@ -132,9 +134,13 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     w.metadata = result.metadata;
     w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
     for (const auto& [k, v] : extra) w.metadata[k] = v;
+    // Ctrl-C while writing stops the write (its temporary file removed) like any other work;
+    // nothing is drawn, so the notes stay as they are.
+    w.progress = [](double, const std::string&) { return !cancelRequested(); };
     std::vector<OutputBand> bands;
     for (const ProductBand& b : result.bands)
-        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
+        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
+                         b.resampling});
     writeRaster(out.path, bands, result.ref, w, inputPath);
 }
 
@@ -224,13 +230,26 @@ void TiledWriter::write(const CellWindow& tile, const std::vector<const ProductR
     for (std::size_t k = 0; k < targets_.size(); ++k) {
         std::vector<OutputBand> bands;
         for (const ProductBand& b : parts[k]->bands)
-            bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit});
+            bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
+                             b.resampling});
         sinks_[k]->write(at, bands);
     }
 }
 
 void TiledWriter::commit() {
-    for (auto& sink : sinks_) sink->commit();
+    for (std::size_t k = 0; k < sinks_.size(); ++k) {
+        try {
+            sinks_[k]->commit();
+        } catch (const Error&) {
+            removeOutputs(targets_, k);  // a product's rasters are all written or none
+            throw;
+        }
+    }
+}
+
+void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count) {
+    std::error_code ec;
+    for (std::size_t k = 0; k < count && k < targets.size(); ++k) std::filesystem::remove(targets[k].out.path, ec);
 }
 
 std::string flagForField(const std::string& field) {
@@ -244,20 +263,21 @@ std::string flagForField(const std::string& field) {
         {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
         {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
         {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
-        {"time", "--time"},               {"toleranceDeg", "--tolerance"},
+        {"time", "--time"},               {"toleranceDeg", "--tolerance"},       {"overwrite", "--overwrite"},
+        {"zone", "--tz"},
     };
     const auto it = flags.find(field);
     return it == flags.end() ? field : it->second;
 }
 
 void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
+    if (outPath.empty()) throw Error("-o: the output path is empty");
+    // Before anything touches the folder: a device's folder (/dev) gets no probe file either.
+    checkOutputFile(outPath);
     std::error_code ec;
     if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
         throw Error("output '" + outPath + "' would overwrite the input DEM; choose another -o");
-    if (fs::is_directory(outPath, ec)) throw Error("cannot write '" + outPath + "': it is a directory");
     const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
-    if (!fs::is_directory(parent, ec))
-        throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' does not exist");
     // Probe that the folder accepts new files, so a long computation does not end in failure.
     const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));
     if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
@@ -266,6 +286,11 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     } else {
         throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' is not writable");
     }
+}
+
+void checkOutputPath(const OutputOptions& out, const std::string& inputPath) {
+    checkOutputPath(out.path, inputPath);
+    checkRasterPath(out.path);
 }
 
 std::array<double, 3> parseColor(const std::string& text, const std::string& option) {

@@ -10,6 +10,7 @@
 #include "products/product.h"
 #include "products/render.h"
 #include "products/tiles.h"
+#include "src/error.h"
 
 #include <array>
 #include <chrono>
@@ -95,6 +96,9 @@ private:
     std::vector<std::unique_ptr<RasterSink>> sinks_;
 };
 
+/// Removes the first `count` targets' files (written before a later one failed).
+void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
+
 /// Runs a raster product on each window of `run` (product(window, progress) -> Result; parts(r)
 /// lists its rasters, one per target) with one progress bar for the whole job, and writes them:
 /// in one piece as writeResult does, in tiles through a TiledWriter. Returns the first window's
@@ -109,6 +113,8 @@ std::string flagForField(const std::string& field);
 
 /// Fails early (before any work) if the output cannot be written or would replace the input.
 void checkOutputPath(const std::string& outPath, const std::string& inputPath);
+/// As above for a raster output, which must also be named as a GeoTIFF (checkRasterPath).
+void checkOutputPath(const OutputOptions& out, const std::string& inputPath);
 
 /// "R,G,B" linear, each >= 0; throws Error naming the option.
 std::array<double, 3> parseColor(const std::string& text, const std::string& option);
@@ -159,8 +165,14 @@ Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets,
         Result r = product(run.tiles.front(), bar.callback());
         bar.finish();
         const std::vector<const ProductResult*> rasters = parts(r);
-        for (std::size_t k = 0; k < targets.size(); ++k)
-            writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
+        for (std::size_t k = 0; k < targets.size(); ++k) {
+            try {
+                writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
+            } catch (const Error&) {
+                removeOutputs(targets, k);  // a product's rasters are all written or none
+                throw;
+            }
+        }
         return r;
     }
     TiledWriter writer(run, targets, ctx, inputPath);

@@ -3,10 +3,10 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/progress_bar.h"
+#include "geo/signals.h"
 #include "src/error.h"
 
 #include <malloc.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,28 +19,38 @@
 
 namespace {
 
-/// SIGINT/SIGTERM: ask the work to stop at its next safe point (progress callbacks then return
-/// false, the library throws Cancelled, main prints "cancelled" and returns 130). Only
-/// async-signal-safe calls here. SA_RESETHAND has already restored the default action, so a
-/// second signal ends the process at once.
-void onInterrupt(int) {
+/// Exit codes of every command (docs/commands.md "Exit codes"; also in --help).
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitError = 1,         ///< a demlight::Error: bad input, option value, output path, full disk, ...
+    kExitUsage = 2,         ///< the command line does not parse (unknown command or option, missing value)
+    kExitInternal = 3,      ///< a bug: any other exception
+    kExitCancelled = 130,   ///< stopped by SIGINT (Ctrl-C), SIGTERM or SIGHUP at a safe point (128 + SIGINT)
+};
+constexpr const char* kExitCodesHelp =
+    "Exit codes: 0 done, 1 error (input, options, output), 2 bad command line, 3 internal error, "
+    "130 cancelled (Ctrl-C, SIGTERM); a second Ctrl-C ends it at once, killed by SIGINT.";
+
+/// The first Ctrl-C (SIGTERM, SIGHUP): stop at the next safe point, and say so. Runs in the
+/// signal handler (geo/signals.h): async-signal-safe calls only.
+void onFirstInterrupt() noexcept {
     demlight::cli::requestCancel();
     static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";
     [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
 }
 
-/// Installs onInterrupt for SIGINT and SIGTERM, except where the parent made the process ignore
-/// the signal (nohup, background jobs of a non-interactive shell): that choice stands.
-void installInterruptHandlers() {
-    for (const int sig : {SIGINT, SIGTERM}) {
-        struct sigaction old {};
-        if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
-        struct sigaction sa {};
-        sa.sa_handler = onInterrupt;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = SA_RESETHAND | SA_RESTART;  // restart reads and writes the signal interrupts
-        sigaction(sig, &sa, nullptr);
+/// An unknown first word is a mistyped command, not a missing one: its message, or empty. The
+/// global flags before it (-q, --quiet) take no value, so it is the first argument that is not a
+/// flag. `reversed` is the command line as CLI11 takes it.
+std::string unknownCommand(const CLI::App& app, const std::vector<std::string>& reversed) {
+    const auto word = std::find_if(reversed.rbegin(), reversed.rend(), [](const std::string& a) { return !a.starts_with('-'); });
+    if (word == reversed.rend() || word->empty()) return {};
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        if (sub->get_name() == *word) return {};
+        names += (names.empty() ? "" : ", ") + sub->get_name();
     }
+    return "unknown command '" + *word + "' (commands: " + names + ")";
 }
 
 }  // namespace
@@ -63,6 +73,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "demlight " DEMLIGHT_VERSION);
     app.add_flag("-q,--quiet", ctx.quiet, "No progress output");
     app.require_subcommand(1);
+    app.footer(kExitCodesHelp);
     app.fallthrough();  // subcommands inherit it: -q also works after the subcommand
     cli::registerInfo(app, ctx);
     cli::registerSunpos(app, ctx);
@@ -75,6 +86,7 @@ int main(int argc, char** argv) {
     cli::registerTimelapse(app, ctx);
     cli::registerSunhours(app, ctx);
     cli::registerSequence(app, ctx);
+    for (CLI::App* sub : app.get_subcommands({})) sub->footer(kExitCodesHelp);
 
     // GDAL spells these with one dash (-of COG, -co KEY=VALUE); accept both spellings.
     std::vector<std::string> args(argv + 1, argv + argc);
@@ -88,38 +100,29 @@ int main(int argc, char** argv) {
         if (failed && !failed->get_subcommands().empty()) help += " " + failed->get_subcommands().front()->get_name();
         return std::string("demlight: error: ") + e.what() + "\nRun '" + help + " --help' for the options.\n";
     });
-    // An unknown first word is a mistyped command, not a missing one.
-    if (!args.empty()) {
-        const std::string& first = args.back();  // reversed
-        std::string names;
-        bool known = false;
-        for (const CLI::App* sub : app.get_subcommands({})) {
-            names += (names.empty() ? "" : ", ") + sub->get_name();
-            known = known || sub->get_name() == first;
-        }
-        if (!first.empty() && first[0] != '-' && !known) {
-            std::cerr << "demlight: error: unknown command '" << first << "' (commands: " << names << ")\n";
-            return 109;
-        }
+    if (const std::string unknown = unknownCommand(app, args); !unknown.empty()) {
+        std::cerr << "demlight: error: " << unknown << "\n";
+        return kExitUsage;
     }
 
-    installInterruptHandlers();
+    installOutputCleanup(onFirstInterrupt);
     try {
         app.parse(args);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version end parsing too, successfully.
+        return app.exit(e) == 0 ? kExitOk : kExitUsage;
     } catch (const Cancelled&) {
         std::cerr << "demlight: cancelled\n";
-        return 130;
+        return kExitCancelled;
     } catch (const FieldError& e) {
         std::cerr << "demlight: error: " << cli::flagForField(e.field()) << e.detail() << "\n";
-        return 1;
+        return kExitError;
     } catch (const Error& e) {
         std::cerr << "demlight: error: " << e.what() << "\n";
-        return 1;
+        return kExitError;
     } catch (const std::exception& e) {
         std::cerr << "demlight: internal error: " << e.what() << "\n";
-        return 2;
+        return kExitInternal;
     }
-    return 0;
+    return kExitOk;
 }

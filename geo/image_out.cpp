@@ -2,16 +2,19 @@
 #include "geo/image_out.h"
 
 #include "geo/oiio_loader.h"
+#include "geo/output_file.h"
 #include "geo/png_writer.h"
 #include "src/error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cctype>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <utility>
-#include <unistd.h>
 
 namespace demlight {
 namespace {
@@ -35,29 +38,54 @@ void checkFormat(const std::string& path, const std::string& ext) {
     if (oiioPlugin().check(ext.c_str(), err, sizeof err) != 0) throw Error(path + ": " + err);
 }
 
-/// A hidden temporary name beside `path`, so the rename stays on one file system.
-fs::path tempPathFor(const std::string& path) {
-    const fs::path p(path);
-    std::string name = ".";
-    name += p.filename().string();
-    name += ".tmp";
-    name += std::to_string(::getpid());
-    return p.parent_path() / name;
-}
-
-void commit(const fs::path& tmp, const std::string& path) {
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw Error(path + ": cannot write: rename failed");
+/// Walks a GIF's block structure (GIF89a specification, sections 17-27: header, logical screen
+/// descriptor and colour table, then extension and image blocks of sub-blocks, then the trailer)
+/// and counts its images. OpenImageIO's GIF writer does not report failed writes (a full disk
+/// gave a GIF cut off without its trailer, reported as written), so the finished file is read
+/// back: empty when it is whole with `frames` images, else what is wrong.
+std::string checkGif(const std::string& path, std::size_t frames) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return "cannot read it back";
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(f, &std::fclose);
+    const auto skip = [&](long n) { return std::fseek(f, n, SEEK_CUR) == 0; };
+    const auto byte = [&]() { return std::fgetc(f); };
+    const auto colourTableBytes = [](int packed) { return (packed & 0x80) ? 3L << ((packed & 7) + 1) : 0L; };
+    const auto cutOff = [&](std::size_t images) {
+        return "cut off after " + std::to_string(images) + (images == 1 ? " frame" : " frames");
+    };
+    const auto subBlocks = [&]() {
+        for (int n = byte(); n != 0; n = byte())
+            if (n == EOF || !skip(n)) return false;
+        return true;
+    };
+    char header[6];
+    if (std::fread(header, 1, 6, f) != 6 || std::memcmp(header, "GIF8", 4) != 0) return "no GIF header";
+    unsigned char screen[7];
+    if (std::fread(screen, 1, 7, f) != 7 || !skip(colourTableBytes(screen[4]))) return "cut off in its header";
+    std::size_t images = 0;
+    for (;;) {
+        const int block = byte();
+        if (block == 0x3B) break;  // trailer
+        if (block == 0x21) {        // extension: label, then sub-blocks
+            if (byte() == EOF || !subBlocks()) return cutOff(images);
+        } else if (block == 0x2C) {  // image: descriptor, local colour table, LZW code size, data
+            unsigned char desc[9];
+            if (std::fread(desc, 1, 9, f) != 9 || !skip(colourTableBytes(desc[8])) || byte() == EOF || !subBlocks())
+                return cutOff(images);
+            ++images;
+        } else {
+            return block == EOF ? cutOff(images) + " (no trailer)" : "corrupt after " + std::to_string(images) + " frames";
+        }
     }
+    if (byte() != EOF) return "data after its trailer";
+    if (images != frames) return std::to_string(images) + " frames instead of " + std::to_string(frames);
+    return {};
 }
 
-[[noreturn]] void fail(const char* why, const fs::path& tmp, const std::string& path) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw Error(path + ": cannot write image: " + why);
+[[noreturn]] void fail(const std::string& why, TemporaryFile& tmp, const std::string& path) {
+    const std::string message = writeFailureMessage("image '" + path + "'", tmp.path(), why);
+    tmp.discard();
+    throw Error(message);
 }
 
 }  // namespace
@@ -65,54 +93,52 @@ void commit(const fs::path& tmp, const std::string& path) {
 void checkImagePath(const std::string& path) { checkFormat(path, extensionOf(path)); }
 
 void writeImage(const std::string& path, const Image8& image) {
-    if (extensionOf(path) == "png") {
-        // PNG through libdeflate (geo/png_writer.h): ~3x faster than libpng for time-lapse frames.
-        const fs::path tmp = tempPathFor(path);
-        try {
-            writePngRgba(tmp.string(), image.rgba, image.width, image.height, image.text);
-        } catch (const Error& e) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw Error(path + ": cannot write image: " + e.what());
-        }
-        commit(tmp, path);
-        return;
-    }
+    checkOutputFile(path);
     const std::string ext = extensionOf(path);
     if (ext.empty()) checkFormat(path, ext);  // throws, naming the missing extension
-    const fs::path tmp = tempPathFor(path);
-    char err[512];
-    if (oiioPlugin().write(tmp.string().c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
-                           sizeof err) != 0)
-        fail(err, tmp, path);
-    commit(tmp, path);
+    TemporaryFile tmp(path, TemporaryNaming::Hidden);
+    if (ext == "png") {
+        // PNG through libdeflate (geo/png_writer.h): ~3x faster than libpng for time-lapse frames.
+        try {
+            writePngRgba(tmp.path(), image.rgba, image.width, image.height, image.text);
+        } catch (const Error& e) {
+            // Its message starts with the temporary name; the final one is what the user gave.
+            std::string why = e.what();
+            if (why.starts_with(tmp.path() + ": ")) why.erase(0, tmp.path().size() + 2);
+            fail(why, tmp, path);
+        }
+    } else {
+        char err[512];
+        if (oiioPlugin().write(tmp.path().c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
+                               sizeof err) != 0)
+            fail(err, tmp, path);
+    }
+    tmp.commit();
 }
 
 struct GifWriter::Impl {
     void* gif = nullptr;
-    fs::path tmp;
+    std::optional<TemporaryFile> tmp;
 };
 
 GifWriter::GifWriter(std::string path, int framesPerSecond)
     : path_(std::move(path)), fps_(framesPerSecond), impl_(std::make_unique<Impl>()) {
-    impl_->tmp = tempPathFor(path_);
+    checkOutputFile(path_);
+    impl_->tmp.emplace(path_, TemporaryNaming::Hidden);
     char err[512];
-    impl_->gif = oiioPlugin().gifOpen(impl_->tmp.string().c_str(), fps_, err, sizeof err);
+    impl_->gif = oiioPlugin().gifOpen(impl_->tmp->path().c_str(), fps_, err, sizeof err);
     if (!impl_->gif) throw Error(path_ + ": " + err);
 }
 
 GifWriter::~GifWriter() {
-    if (impl_ && impl_->gif) {
-        oiioPlugin().gifFree(impl_->gif);
-        std::error_code ec;
-        fs::remove(impl_->tmp, ec);
-    }
+    if (impl_ && impl_->gif) oiioPlugin().gifFree(impl_->gif);
+    // impl_->tmp, unless committed, removes the file
 }
 
 void GifWriter::add(const Image8& frame) {
     char err[512];
     if (oiioPlugin().gifAdd(impl_->gif, frame.rgba.data(), frame.width, frame.height, err, sizeof err) != 0)
-        fail(err, impl_->tmp, path_);
+        fail(err, *impl_->tmp, path_);
     ++frames_;
 }
 
@@ -122,8 +148,10 @@ void GifWriter::finish() {
     const int closed = oiioPlugin().gifClose(impl_->gif, err, sizeof err);
     oiioPlugin().gifFree(impl_->gif);
     impl_->gif = nullptr;
-    if (closed != 0) fail(err, impl_->tmp, path_);
-    commit(impl_->tmp, path_);
+    if (closed != 0) fail(err, *impl_->tmp, path_);
+    const std::string broken = checkGif(impl_->tmp->path(), frames_);
+    if (!broken.empty()) fail("the GIF written is " + broken, *impl_->tmp, path_);
+    impl_->tmp->commit();
 }
 
 Image8 downsample(const Image8& image, std::size_t maxSide) {

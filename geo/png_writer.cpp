@@ -7,6 +7,7 @@
 #include <libdeflate.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -30,15 +31,22 @@ void putU32(std::uint8_t* p, std::uint32_t v) {
 }
 
 struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
+    void operator()(std::FILE* f) const {
+        if (f) std::fclose(f);
+    }
 };
+
+/// The reason a stdio call on `path` failed, from errno ("No space left on device").
+std::string failure(const std::string& path, const char* what) {
+    return path + ": " + what + " (" + std::strerror(errno) + ")";
+}
 
 class ChunkWriter {
 public:
     ChunkWriter(std::FILE* f, const std::string& path) : f_(f), path_(path) {}
 
     void raw(const void* data, std::size_t n) {
-        if (n > 0 && std::fwrite(data, 1, n, f_) != n) throw Error(path_ + ": cannot write PNG (disk full?)");
+        if (n > 0 && std::fwrite(data, 1, n, f_) != n) throw Error(failure(path_, "cannot write PNG"));
     }
 
     void chunk(const char type[4], const std::uint8_t* data, std::size_t n) {
@@ -87,8 +95,8 @@ void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, s
                                                        zdata.data(), zdata.size());
     if (zsize == 0) throw Error(path + ": PNG compression failed");
 
-    const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-    if (!file) throw Error(path + ": cannot open for writing");
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
+    if (!file) throw Error(failure(path, "cannot open for writing"));
     ChunkWriter out(file.get(), path);
     static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     out.raw(kSignature, sizeof kSignature);
@@ -110,7 +118,10 @@ void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, s
     for (std::size_t at = 0; at < zsize; at += kIdatChunkBytes)
         out.chunk("IDAT", zdata.data() + at, std::min(kIdatChunkBytes, zsize - at));
     out.chunk("IEND", nullptr, 0);
-    if (std::fflush(file.get()) != 0) throw Error(path + ": cannot write PNG (disk full?)");
+    if (std::fflush(file.get()) != 0) throw Error(failure(path, "cannot write PNG"));
+    // fclose can still fail (a deferred write error on some file systems): a PNG is only
+    // written when it succeeds.
+    if (std::fclose(file.release()) != 0) throw Error(failure(path, "cannot write PNG"));
 }
 
 }  // namespace demlight

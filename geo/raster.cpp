@@ -1,6 +1,7 @@
 #include "geo/raster.h"
 
 #include "geo/gdal_session.h"
+#include "geo/output_file.h"
 #include "src/error.h"
 
 #include <cpl_string.h>
@@ -11,8 +12,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <strings.h>
 #include <unistd.h>
 
 namespace demlight {
@@ -192,6 +197,29 @@ std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary*
     return out;
 }
 
+std::vector<Grid<float>> readRasterOverview(const std::string& path, int level) {
+    DatasetPtr ds = openRaster(path);
+    std::vector<Grid<float>> out;
+    for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+        GDALRasterBand* full = ds->GetRasterBand(b);
+        GDALRasterBand* band = level >= 0 && level < full->GetOverviewCount() ? full->GetOverview(level) : nullptr;
+        if (!band) throw Error("'" + path + "' has no overview " + std::to_string(level) + " of band " + std::to_string(b));
+        const auto width = static_cast<std::size_t>(band->GetXSize());
+        const auto height = static_cast<std::size_t>(band->GetYSize());
+        Grid<float> g(width, height);
+        if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height), g.data(),
+                           static_cast<int>(width), static_cast<int>(height), GDT_Float32, 0, 0) != CE_None)
+            throw Error(withGdalReason("cannot read overview " + std::to_string(level) + " of '" + path + "'"));
+        int hasNodata = 0;
+        const auto nodata = static_cast<float>(full->GetNoDataValue(&hasNodata));
+        if (hasNodata)
+            for (float& v : g.values())
+                if (v == nodata) v = std::numeric_limits<float>::quiet_NaN();
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
 std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,
                                              std::size_t width, std::size_t height) {
     DatasetPtr src = openRaster(path);
@@ -250,6 +278,7 @@ RasterSummary inspectRaster(const std::string& path) {
     int hasNodata = 0;
     const double nodata = ds->GetRasterBand(1)->GetNoDataValue(&hasNodata);
     if (hasNodata) s.nodata = nodata;
+    s.overviews = static_cast<std::size_t>(ds->GetRasterBand(1)->GetOverviewCount());
     const auto readDomain = [&](const char* domain, std::map<std::string, std::string>& out) {
         CSLConstList items = ds->GetMetadata(domain);
         for (CSLConstList it = items; it && *it; ++it) {
@@ -264,6 +293,102 @@ RasterSummary inspectRaster(const std::string& path) {
     return s;
 }
 
+namespace {
+
+/// Forwards the writer's progress to WriteOptions::progress and remembers a request to stop;
+/// gdalCallback lets GDAL's long steps (overviews, the COG copy) ask it too.
+class WriteProgress {
+public:
+    explicit WriteProgress(const ProgressFn& fn) : fn_(fn) {}
+    /// False once the caller asked to stop.
+    bool report(double fraction) {
+        if (fn_ && !stopped_ && !fn_(std::clamp(fraction, 0.0, 1.0), "write")) stopped_ = true;
+        return !stopped_;
+    }
+    bool stopped() const { return stopped_; }
+    /// A GDALProgressFunc over [from, to] of the whole write; its data is a Span.
+    struct Span {
+        WriteProgress* progress;
+        double from, to;
+    };
+    static int CPL_STDCALL gdalCallback(double fraction, const char*, void* data) {
+        const auto* span = static_cast<const Span*>(data);
+        return span->progress->report(span->from + fraction * (span->to - span->from)) ? TRUE : FALSE;
+    }
+
+private:
+    const ProgressFn& fn_;
+    bool stopped_ = false;
+};
+
+/// A creation option's value (case-insensitive key), or null.
+const char* findOption(const std::vector<std::string>& options, const char* key) {
+    const std::size_t n = std::strlen(key);
+    for (const auto& kv : options)
+        if (kv.size() > n && kv[n] == '=' && strncasecmp(kv.c_str(), key, n) == 0) return kv.c_str() + n + 1;
+    return nullptr;
+}
+
+/// Whether the user's -co options choose the COG's overviews themselves (one method for every
+/// band, none, or a reprojection, which drops the source's overviews): then GDAL builds them.
+bool overviewsChosenByUser(const WriteOptions& options) {
+    for (const char* key : {"RESAMPLING", "OVERVIEW_RESAMPLING", "WARP_RESAMPLING", "TILING_SCHEME", "TARGET_SRS"})
+        if (findOption(options.creationOptions, key)) return true;
+    const char* overviews = findOption(options.creationOptions, "OVERVIEWS");
+    return overviews && (strcasecmp(overviews, "NONE") == 0 || strcasecmp(overviews, "IGNORE_EXISTING") == 0);
+}
+
+/// The overview factors GDAL's COG driver would make: halve until both sides fit in one tile
+/// (BLOCKSIZE, 512 by default), or OVERVIEW_COUNT levels when given.
+std::vector<int> cogOverviewFactors(std::size_t width, std::size_t height, const WriteOptions& options) {
+    const char* block = findOption(options.creationOptions, "BLOCKSIZE");
+    const std::size_t tile = block ? static_cast<std::size_t>(std::max(1, std::atoi(block))) : 512;
+    const char* countOption = findOption(options.creationOptions, "OVERVIEW_COUNT");
+    const int count = countOption ? std::atoi(countOption) : -1;
+    std::vector<int> factors;
+    std::size_t w = width, h = height;
+    for (int factor = 2;; factor *= 2) {
+        if (count < 0 ? (w <= tile && h <= tile) : (static_cast<int>(factors.size()) == count || (w == 1 && h == 1)))
+            break;
+        w = std::max<std::size_t>(1, w / 2);
+        h = std::max<std::size_t>(1, h / 2);
+        factors.push_back(factor);
+    }
+    return factors;
+}
+
+/// Builds the overviews of an in-memory dataset band by band, each with its own method: the
+/// levels are made empty for all bands at once (MEM builds only all bands alike), then each
+/// band's are computed from its full-resolution cells.
+CPLErr buildOverviewsPerBand(GDALDataset& ds, const std::vector<OutputBand>& bands, const std::vector<int>& factors,
+                             WriteProgress& progress, double from, double to) {
+    if (factors.empty()) return CE_None;
+    if (ds.BuildOverviews("NONE", static_cast<int>(factors.size()), factors.data(), 0, nullptr, nullptr, nullptr,
+                          nullptr) != CE_None)
+        return CE_Failure;
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        GDALRasterBand* band = ds.GetRasterBand(static_cast<int>(i) + 1);
+        std::vector<GDALRasterBandH> levels;
+        for (int k = 0; k < band->GetOverviewCount(); ++k) levels.push_back(GDALRasterBand::ToHandle(band->GetOverview(k)));
+        const double share = (to - from) / static_cast<double>(bands.size());
+        WriteProgress::Span span{&progress, from + share * static_cast<double>(i), from + share * static_cast<double>(i + 1)};
+        const char* method = bands[i].resampling == Resampling::Nearest ? "NEAREST" : "AVERAGE";
+        if (GDALRegenerateOverviews(GDALRasterBand::ToHandle(band), static_cast<int>(levels.size()), levels.data(),
+                                    method, WriteProgress::gdalCallback, &span) != CE_None)
+            return CE_Failure;
+    }
+    return CE_None;
+}
+
+}  // namespace
+
+void checkRasterPath(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    if (!ext.empty() && strcasecmp(ext.c_str(), ".tif") != 0 && strcasecmp(ext.c_str(), ".tiff") != 0)
+        throw Error("cannot write '" + path + "': its extension '" + ext +
+                    "' names another format, and this output is a GeoTIFF; name it .tif or .tiff");
+}
+
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath) {
@@ -271,15 +396,13 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     if (bands.empty()) throw Error("nothing to write to '" + path + "'");
     if (options.format != "GTiff" && options.format != "COG")
         throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
+    checkOutputFile(path);
+    checkRasterPath(path);
 
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) &&
         fs::equivalent(fs::path(path), fs::path(inputPath), ec))
         throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
-    const fs::path parent = fs::absolute(fs::path(path)).parent_path();
-    if (!fs::is_directory(parent, ec))
-        throw Error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
-    if (fs::is_directory(path, ec)) throw Error("cannot write '" + path + "': it is a directory");
 
     // Every band is stored in one data type (TIFF needs that): Byte only if all are masks.
     const bool allMasks = std::all_of(bands.begin(), bands.end(),
@@ -305,22 +428,41 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
     // Write under a temporary name in the same folder and rename on success, so a failed or
     // interrupted run never leaves a partial file at `path`.
-    fs::path tmpName = fs::path(path).filename();
-    tmpName += ".tmp" + std::to_string(::getpid());
-    const std::string tmp = (parent / tmpName).string();
+    TemporaryFile tmp(path, TemporaryNaming::Suffix);
+    const bool direct = options.format == "GTiff";
+    // The COG driver's own scratch files beside its output, when it builds overviews or
+    // reprojects itself (user options).
+    std::optional<TemporaryFile> cogOverviews, cogWarped;
+    if (!direct) {
+        cogOverviews.emplace(tmp.path() + ".ovr.tmp");
+        cogWarped.emplace(tmp.path() + ".warped.tif.tmp");
+    }
+    WriteProgress progress(options.progress);
     detail::takeGdalError();
+
+    DatasetPtr ds;
+    // Ends the write: the datasets closed, every temporary file removed; Cancelled when the
+    // caller asked to stop, else an Error naming the cause (thrown by std::rethrow_exception, so
+    // that a Cancelled keeps its type).
+    const auto fail = [&](const std::string& what) {
+        ds.reset();
+        const std::string reason = detail::takeGdalError();
+        if (progress.stopped()) {
+            tmp.discard();
+            return std::make_exception_ptr(Cancelled());
+        }
+        const std::string message =
+            writeFailureMessage((what.empty() ? "" : what + " of ") + "'" + path + "'", tmp.path(), reason);
+        tmp.discard();
+        return std::make_exception_ptr(Error(message));
+    };
 
     // GTiff is created directly and filled from the grids; COG can only be made by CreateCopy,
     // so it is staged in a MEM dataset first.
-    const bool direct = options.format == "GTiff";
-    DatasetPtr ds;
     if (direct) {
-        ds.reset(driver->Create(tmp.c_str(), static_cast<int>(width), static_cast<int>(height),
+        ds.reset(driver->Create(tmp.path().c_str(), static_cast<int>(width), static_cast<int>(height),
                                 static_cast<int>(bands.size()), type, coList.List()));
-        if (!ds) {
-            fs::remove(tmp, ec);
-            throw Error(withGdalReason("cannot write '" + path + "'"));
-        }
+        if (!ds) std::rethrow_exception(fail({}));
     } else {
         GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
         ds.reset(mem->Create("", static_cast<int>(width), static_cast<int>(height),
@@ -333,28 +475,49 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         ds->SetSpatialRef(&srs);
     for (const auto& [key, value] : options.metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
 
+    // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
+    // quick, its overviews and the compressed copy are most.
+    const double fillShare = direct ? 1.0 : 0.1;
+    const double overviewShare = direct ? 0.0 : 0.3;
+    const std::size_t strips = (height + kWriteStripRows - 1) / kWriteStripRows;
+    const auto fillProgress = [&](std::size_t band, std::size_t strip) {
+        return fillShare * static_cast<double>(band * strips + strip) / static_cast<double>(bands.size() * strips);
+    };
+
     const bool replaceNan = !std::isnan(options.nodata);
     const auto nodataF = static_cast<float>(options.nodata);
     std::vector<float> buffer;
+    // Every band's description, unit and nodata before any cells: the GTiff writes its
+    // directory with the first tile, and what comes later would rewrite it.
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
         GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
         out->SetDescription(b.description.c_str());
         if (!b.unit.empty()) out->SetUnitType(b.unit.c_str());
-        CPLErr err;
         if (type == GDT_Byte) {
             if (options.nodata >= 0 && options.nodata <= 255) out->SetNoDataValue(options.nodata);
-            err = out->RasterIO(GF_Write, 0, 0, static_cast<int>(width), static_cast<int>(height),
-                                const_cast<std::uint8_t*>(b.mask->data()), static_cast<int>(width),
-                                static_cast<int>(height), GDT_Byte, 0, 0);
         } else {
             out->SetNoDataValue(options.nodata);
-            // In strips of whole tile rows: a band that needs converting (a mask, or NaN to the
-            // nodata value) goes through a strip-sized buffer that stays in cache, not a copy of
-            // the whole band.
-            err = CE_None;
-            for (std::size_t r0 = 0; r0 < height && err == CE_None; r0 += kWriteStripRows) {
-                const std::size_t rows = std::min(kWriteStripRows, height - r0);
+        }
+    }
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        const OutputBand& b = bands[i];
+        GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
+        // In strips of whole tile rows, each flushed to the file before the next (the GTiff
+        // compresses and writes those tiles then, not all at the close): a full disk shows at
+        // the strip that meets it, and a request to stop is seen within a strip. A band that
+        // needs converting (a mask, or NaN to the nodata value) goes through a strip-sized
+        // buffer that stays in cache, not a copy of the whole band.
+        for (std::size_t s = 0; s < strips; ++s) {
+            if (!progress.report(fillProgress(i, s))) std::rethrow_exception(fail({}));
+            const std::size_t r0 = s * kWriteStripRows;
+            const std::size_t rows = std::min(kWriteStripRows, height - r0);
+            CPLErr err;
+            if (type == GDT_Byte) {
+                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
+                                    const_cast<std::uint8_t*>(b.mask->rowPtr(r0)), static_cast<int>(width),
+                                    static_cast<int>(rows), GDT_Byte, 0, 0);
+            } else {
                 const float* data = nullptr;
                 if (b.values && !replaceNan) {
                     data = b.values->rowPtr(r0);  // written as is: no copy
@@ -374,42 +537,45 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                                     const_cast<float*>(data), static_cast<int>(width), static_cast<int>(rows),
                                     GDT_Float32, 0, 0);
             }
-        }
-        if (err != CE_None) {
-            ds.reset();
-            if (direct) fs::remove(tmp, ec);
-            throw Error(withGdalReason(direct ? "cannot write band " + std::to_string(i + 1) + " of '" + path + "'"
-                                              : "cannot fill band " + std::to_string(i + 1)));
+            if (err == CE_None && direct) err = out->FlushCache(false);
+            if (err != CE_None)
+                std::rethrow_exception(fail("band " + std::to_string(i + 1)));
         }
     }
 
-    GDALDataset* written = direct ? ds.release()
-                                  : driver->CreateCopy(tmp.c_str(), ds.get(), FALSE, coList.List(), nullptr, nullptr);
-    if (!written) {
-        fs::remove(tmp, ec);
-        throw Error(withGdalReason("cannot write '" + path + "'"));
+    if (!direct) {
+        if (!overviewsChosenByUser(options) &&
+            buildOverviewsPerBand(*ds, bands, cogOverviewFactors(width, height, options), progress, fillShare,
+                                  fillShare + overviewShare) != CE_None)
+            std::rethrow_exception(fail("overviews"));
+        WriteProgress::Span span{&progress, fillShare + overviewShare, 1.0};
+        DatasetPtr cog(driver->CreateCopy(tmp.path().c_str(), ds.get(), FALSE, coList.List(),
+                                          WriteProgress::gdalCallback, &span));
+        if (!cog) std::rethrow_exception(fail({}));
+        ds = std::move(cog);
     }
-    GDALClose(GDALDataset::ToHandle(written));
+    GDALClose(GDALDataset::ToHandle(ds.release()));
     const std::string closeError = detail::takeGdalError();
     if (!closeError.empty()) {
-        fs::remove(tmp, ec);
-        throw Error("cannot write '" + path + "' (" + closeError + ")");
+        const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), closeError);
+        tmp.discard();
+        throw Error(message);
     }
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw Error("cannot write '" + path + "': rename failed (" + ec.message() + ")");
-    }
+    // A request to stop that comes now finds the file complete: it is kept.
+    tmp.commit();
 }
 
 struct RasterSink::State {
-    std::string path, tmp, staged;  // final name; the file written; the streamed GeoTIFF of a COG
+    std::string path;
     std::size_t width, height;
     GeoReference ref;
     WriteOptions options;
+    /// GTiff: the file written, renamed onto `path` at commit. COG: a scratch GeoTIFF the
+    /// windows stream into, copied to COG layout by writeRaster at commit.
+    std::optional<TemporaryFile> file;
     DatasetPtr ds;
-    std::size_t bands = 0;
-    bool committed = false;
+    std::vector<OutputBand> layout;  // the first window's bands: names, units, resampling
+    bool masks = false;
 };
 
 RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, GeoReference ref,
@@ -421,14 +587,13 @@ RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, 
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
         throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
-    const fs::path parent = fs::absolute(fs::path(path)).parent_path();
-    if (!fs::is_directory(parent, ec))
-        throw Error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
-    if (fs::is_directory(path, ec)) throw Error("cannot write '" + path + "': it is a directory");
+    checkOutputFile(path);
     State& st = *state_;
-    const std::string base = (parent / fs::path(path).filename()).string() + ".tmp" + std::to_string(::getpid());
-    st.tmp = base;
-    st.staged = options.format == "COG" ? base + ".stream.tif" : base;
+    if (options.format == "COG") {
+        st.file.emplace(path + ".tmp" + std::to_string(::getpid()) + ".stream.tif");
+    } else {
+        st.file.emplace(path, TemporaryNaming::Suffix);
+    }
     st.path = std::move(path);
     st.width = width;
     st.height = height;
@@ -437,11 +602,9 @@ RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, 
 }
 
 RasterSink::~RasterSink() {
-    if (!state_ || state_->committed) return;
+    if (!state_) return;
     state_->ds.reset();
-    std::error_code ec;
-    fs::remove(state_->staged, ec);
-    fs::remove(state_->tmp, ec);
+    state_->file.reset();  // removes the file unless committed
 }
 
 void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands) {
@@ -464,11 +627,11 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
         validateUserCreationOptions(gtiff, streamed);
         CPLStringList co;
         for (const auto& kv : creationOptions(streamed, type == GDT_Float32)) co.AddString(kv.c_str());
-        if (st.options.format == "COG") co.SetNameValue("COMPRESS", "ZSTD");
         detail::takeGdalError();
-        st.ds.reset(gtiff->Create(st.staged.c_str(), static_cast<int>(st.width), static_cast<int>(st.height),
+        st.ds.reset(gtiff->Create(st.file->path().c_str(), static_cast<int>(st.width), static_cast<int>(st.height),
                                   static_cast<int>(bands.size()), type, co.List()));
-        if (!st.ds) throw Error(withGdalReason("cannot write '" + st.path + "'"));
+        if (!st.ds)
+            throw Error(writeFailureMessage("'" + st.path + "'", st.file->path(), detail::takeGdalError()));
         std::array<double, 6> gt = st.ref.geoTransform;
         st.ds->SetGeoTransform(gt.data());
         OGRSpatialReference srs;
@@ -482,9 +645,10 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
             if (type == GDT_Float32 || (st.options.nodata >= 0 && st.options.nodata <= 255))
                 out->SetNoDataValue(st.options.nodata);
         }
-        st.bands = bands.size();
+        st.layout = bands;
+        st.masks = allMasks;
     }
-    if (bands.size() != st.bands) throw Error("internal: windows of '" + st.path + "' differ in bands");
+    if (bands.size() != st.layout.size()) throw Error("internal: windows of '" + st.path + "' differ in bands");
     const bool replaceNan = !std::isnan(st.options.nodata);
     const auto nodataF = static_cast<float>(st.options.nodata);
     std::vector<float> buffer;
@@ -510,34 +674,44 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
                                 static_cast<int>(rows), buffer.data(), static_cast<int>(cols), static_cast<int>(rows),
                                 GDT_Float32, 0, 0);
         }
-        if (err != CE_None) throw Error(withGdalReason("cannot write band " + std::to_string(i + 1) + " of '" + st.path + "'"));
+        if (err != CE_None)
+            throw Error(writeFailureMessage("band " + std::to_string(i + 1) + " of '" + st.path + "'", st.file->path(),
+                                            detail::takeGdalError()));
     }
 }
 
 void RasterSink::commit() {
     State& st = *state_;
     if (!st.ds) throw Error("internal: nothing was written to '" + st.path + "'");
-    std::error_code ec;
-    if (st.options.format == "COG") {
-        GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
-        if (!cog) throw Error("GDAL has no 'COG' driver");
-        validateUserCreationOptions(cog, st.options);
-        CPLStringList co;
-        const bool isFloat = st.ds->GetRasterBand(1)->GetRasterDataType() == GDT_Float32;
-        for (const auto& kv : creationOptions(st.options, isFloat)) co.AddString(kv.c_str());
-        detail::takeGdalError();
-        GDALDataset* copy = cog->CreateCopy(st.tmp.c_str(), st.ds.get(), FALSE, co.List(), nullptr, nullptr);
-        if (!copy) throw Error(withGdalReason("cannot write '" + st.path + "'"));
-        GDALClose(GDALDataset::ToHandle(copy));
-    }
     detail::takeGdalError();
     st.ds.reset();  // flushes the streamed file
     const std::string closeError = detail::takeGdalError();
-    if (!closeError.empty()) throw Error("cannot write '" + st.path + "' (" + closeError + ")");
-    if (st.staged != st.tmp) fs::remove(st.staged, ec);
-    fs::rename(st.tmp, st.path, ec);
-    if (ec) throw Error("cannot write '" + st.path + "': rename failed (" + ec.message() + ")");
-    st.committed = true;
+    if (!closeError.empty()) throw Error(writeFailureMessage("'" + st.path + "'", st.file->path(), closeError));
+    if (st.options.format != "COG") {
+        st.file->commit();
+        return;
+    }
+    // COG: the overviews and layout need the whole raster, read back from the streamed file and
+    // written by writeRaster (band-wise overview resampling, its own temporaries).
+    const std::vector<Grid<float>> values = readRasterBands(st.file->path());
+    std::vector<Grid<std::uint8_t>> masks;
+    std::vector<OutputBand> bands = st.layout;
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        if (st.masks) {
+            Grid<std::uint8_t> m(values[i].width(), values[i].height());
+            for (std::size_t k = 0; k < m.size(); ++k) {
+                const float v = values[i].data()[k];
+                m.data()[k] = static_cast<std::uint8_t>(std::isnan(v) ? st.options.nodata : v);
+            }
+            masks.push_back(std::move(m));
+        }
+    }
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        bands[i].values = st.masks ? nullptr : &values[i];
+        bands[i].mask = st.masks ? &masks[i] : nullptr;
+    }
+    writeRaster(st.path, bands, st.ref, st.options);
+    st.file.reset();
 }
 
 }  // namespace demlight

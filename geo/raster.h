@@ -2,6 +2,7 @@
 #pragma once
 
 #include "src/grid.h"
+#include "src/progress.h"
 
 #include <array>
 #include <cstdint>
@@ -50,10 +51,21 @@ struct RasterSummary;
 /// Reads every band of a raster as float (nodata and NaN become NaN), without resampling.
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary = nullptr);
 
+/// Reads every band of overview `level` (0 = the largest) of a raster as float (nodata and NaN
+/// become NaN), for checks of written files. Throws Error when there is no such overview.
+std::vector<Grid<float>> readRasterOverview(const std::string& path, int level);
+
 /// Reads all bands of a raster as float, resampled (bilinear) onto `target`'s grid of
 /// `width` x `height`. Used for albedo and colour rasters.
 std::vector<Grid<float>> readRasterResampled(const std::string& path, const GeoReference& target,
                                              std::size_t width, std::size_t height);
+
+/// How a band's overviews (COG) are computed from its cells, by what the band holds.
+enum class Resampling {
+    Average,  ///< mean of the cells (nodata left out): fractions, irradiance, angles, lengths
+    Nearest,  ///< one of the cells: flags, masks, and bands with marker values (-1 "never lit",
+              ///< -90 "no terrain") that a mean would blend into values that mean nothing
+};
 
 /// One output band: values with NaN for nodata, a description and a unit.
 struct OutputBand {
@@ -61,6 +73,7 @@ struct OutputBand {
     const Grid<std::uint8_t>* mask = nullptr;  // or Byte bands (used when values is null)
     std::string description;
     std::string unit;
+    Resampling resampling = Resampling::Average;
 };
 
 struct WriteOptions {
@@ -75,10 +88,23 @@ struct WriteOptions {
     /// Nodata value written for NaN cells of Float32 bands (NaN by default); Byte bands declare
     /// it as their nodata value when it is in 0..255 (their cells are written as given).
     double nodata = std::numeric_limits<double>::quiet_NaN();
+    /// Called while writing (stage "write"); returning false stops: the temporary file is removed
+    /// and Cancelled thrown. Empty: never stopped.
+    ProgressFn progress;
 };
 
-/// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success.
-/// All bands must be the same shape. Refuses to overwrite `inputPath` when given.
+/// Throws Error unless `path` names a GeoTIFF: its extension, if it has one, must be .tif or .tiff
+/// (any case). GTiff and COG both write GeoTIFF; a raster named .png or .jpg would be a TIFF that
+/// every reader mistakes for a picture.
+void checkRasterPath(const std::string& path);
+
+/// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success
+/// (geo/output_file.h); a failure or a cancel leaves neither `path` changed nor a temporary file.
+/// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path`
+/// that is not a regular file (checkOutputFile) or not named as a GeoTIFF (checkRasterPath). COG overviews are built per band with its
+/// Resampling, unless the creation options choose the overviews (RESAMPLING, OVERVIEW_RESAMPLING,
+/// OVERVIEWS, or a reprojection: TILING_SCHEME, TARGET_SRS); GDAL's COG driver would resample
+/// every band alike (cubic by default, which overshoots: a visibility of -0.24 or 1.19).
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath = {});
@@ -92,6 +118,7 @@ struct RasterSummary {
     std::vector<std::string> units;         // per band
     std::vector<std::string> dataTypes;     // per band, GDAL names ("Float32")
     std::optional<double> nodata;           // band 1
+    std::size_t overviews = 0;              // band 1's overview levels
     std::map<std::string, std::string> metadata;  // default domain
     std::map<std::string, std::string> imageStructure;  // COMPRESSION, LAYOUT, ...
 };

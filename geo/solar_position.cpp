@@ -1,7 +1,10 @@
 // NREL SPA (Reda & Andreas 2004/2008, NREL/TP-560-34302). Equation numbers refer to the report.
 #include "geo/solar_position.h"
 
+#include "src/error.h"
+
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -335,8 +338,16 @@ double deltaTFor(UtcInstant t, const SpaOptions& options) {
 
 }  // namespace
 
+void checkSpaValidity(UtcInstant t) {
+    const int year = static_cast<int>(std::chrono::year_month_day{std::chrono::floor<std::chrono::days>(t)}.year());
+    if (year < kSpaFirstYear || year > kSpaLastYear)
+        throw Error("time " + formatInstant(t, TimeZoneSpec{}) + ": outside the years " + std::to_string(kSpaFirstYear) +
+                    " to " + std::to_string(kSpaLastYear) + " the solar position algorithm (NREL SPA) is valid for");
+}
+
 SolarPosition solarPosition(const SolarSite& site, UtcInstant t, const SpaOptions& options,
                             SpaTrace* trace) {
+    checkSpaValidity(t);
     const double deltaT = deltaTFor(t, options);
     const double jd = julianDay(t);                      // Eq. 4 (from the Unix clock)
     const double jde = jd + deltaT / kSecondsPerDay;    // Eq. 5
@@ -406,6 +417,7 @@ SolarPosition solarPosition(const SolarSite& site, UtcInstant t, const SpaOption
 }
 
 SunEvents sunEvents(const SolarSite& site, UtcInstant dayStartUtc, const SpaOptions& options) {
+    checkSpaValidity(dayStartUtc);
     // SPA appendix A.2, with the day's origin at dayStartUtc instead of 0 h UT.
     const double deltaT = deltaTFor(dayStartUtc, options);
     const double jd0 = julianDay(dayStartUtc);

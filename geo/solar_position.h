@@ -69,8 +69,17 @@ struct SpaTrace {
     double rightAscensionParallaxDeg;    ///< Δα
 };
 
+/// The years SPA states its uncertainty for (Reda & Andreas, abstract and Table 1), inclusive.
+inline constexpr int kSpaFirstYear = -2000;
+inline constexpr int kSpaLastYear = 6000;
+
+/// Throws Error naming the instant unless its UTC year is in [kSpaFirstYear, kSpaLastYear]:
+/// outside them the periodic terms are not fitted and ΔT is a guess, so a position would look
+/// as exact as any other and be wrong by an unknown amount.
+void checkSpaValidity(UtcInstant t);
+
 /// Position of the sun seen from site at instant t (UTC). Cheap enough to call per frame
-/// (a few microseconds). Fills trace if non-null.
+/// (a few microseconds). Fills trace if non-null. Throws as checkSpaValidity.
 SolarPosition solarPosition(const SolarSite& site, UtcInstant t, const SpaOptions& options = {},
                             SpaTrace* trace = nullptr);
 

@@ -543,6 +543,13 @@ LocalDay localDayOf(UtcInstant t, const TimeZoneSpec& zone) {
     return localDay(chr::floor<chr::days>(local), zone);
 }
 
+TimeZoneSpec zoneOfDays(const std::string& tzName) {
+    if (tzName.empty())
+        throw FieldError("zone", " missing: a date is a day from midnight to midnight in some time zone (never "
+                                 "silently UTC); give one: an IANA name such as Europe/Zurich, or UTC");
+    return TimeZoneSpec::iana(tzName);
+}
+
 chr::sys_days parseDate(const std::string& text) {
     Scanner s(text, "date");
     int y = 0, m = 0, d = 0;

@@ -89,6 +89,12 @@ LocalDay localDay(std::chrono::sys_days date, const TimeZoneSpec& zone);
 /// The local day in zone that contains instant t.
 LocalDay localDayOf(UtcInstant t, const TimeZoneSpec& zone);
 
+/// The zone of local calendar days given as dates alone. A date has times too (where its day
+/// starts and ends, the clock times in it), so DESIGN.md §1's rule for a time without a zone holds:
+/// an empty name throws FieldError "zone" instead of meaning UTC. "UTC" names UTC; anything else
+/// is an IANA zone (TimeZoneSpec::iana).
+TimeZoneSpec zoneOfDays(const std::string& tzName);
+
 /// Parses a plain calendar date "YYYY-MM-DD". Throws Error naming the text on a bad format or
 /// an impossible date (2023-02-30).
 std::chrono::sys_days parseDate(const std::string& text);

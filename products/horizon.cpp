@@ -58,8 +58,11 @@ HorizonResult computeHorizons(const Dem& dem, const ScenePlan& plan, const Horiz
         for (std::size_t k = 0; k < map.truncated.size(); ++k)
             if (std::isnan(h[k])) flag[k] = kTruncationMaskNodata;
         const std::string name = formatNumber(wrapAzimuthDeg(az));
-        out.horizons.bands.push_back({"horizon_azimuth=" + name, "deg", std::move(map.angleDeg), {}});
-        out.truncation.bands.push_back({"truncated_azimuth=" + name, "", {}, std::move(map.truncated)});
+        // Nearest: a horizon angle band holds kNoHorizonDeg (-90, no terrain in range) beside real
+        // angles, and a mean of the two (-41) is a horizon no cell has; the mask is flags.
+        out.horizons.bands.push_back({"horizon_azimuth=" + name, "deg", std::move(map.angleDeg), {}, Resampling::Nearest});
+        out.truncation.bands.push_back(
+            {"truncated_azimuth=" + name, "", {}, std::move(map.truncated), Resampling::Nearest});
     }
     return out;
 }

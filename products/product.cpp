@@ -3,6 +3,7 @@
 #include "lighting/directions.h"
 #include "lighting/sky.h"
 #include "src/error.h"
+#include "src/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,9 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
         throw FieldError("refraction", " " + formatNumber(search.refraction) + ": must be in [0, 1)");
     if (!(search.toleranceDeg > 0) || !std::isfinite(search.toleranceDeg))
         throw FieldError("toleranceDeg", " " + formatNumber(search.toleranceDeg) + ": must be a number > 0");
-    if (search.threads < 0) throw FieldError("threads", " " + std::to_string(search.threads) + ": must be >= 0");
+    if (search.threads < 0 || search.threads > kMaxThreads)
+        throw FieldError("threads", " " + std::to_string(search.threads) + ": must be in [0, " +
+                                        std::to_string(kMaxThreads) + "] (0 = all cores)");
     QualityBudget budget;
     budget.toleranceDeg = search.toleranceDeg;
     budget.lowestElevationDeg = kDefaultLowestElevationDeg;

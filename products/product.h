@@ -30,6 +30,10 @@ struct ProductBand {
     std::string unit;         ///< what the values are, with their unit
     Grid<float> values;
     Grid<std::uint8_t> flags;  ///< Byte bands (masks); used when values is empty
+    /// How coarser versions (COG overviews) are made from the band: Average for quantities
+    /// (fractions, irradiance, angles, lengths), Nearest for flags and for bands with marker
+    /// values, which a mean would blend into numbers that mean nothing.
+    Resampling resampling = Resampling::Average;
 };
 
 /// Named bands on a georeference, plus the dataset metadata (DEMLIGHT_* keys) to write with them.

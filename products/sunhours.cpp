@@ -1,5 +1,6 @@
 #include "products/sunhours.h"
 
+#include "geo/solar_position.h"
 #include "geo/sun_field.h"
 #include "lighting/directions.h"
 #include "lighting/sunhours.h"
@@ -120,10 +121,12 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
          "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
          "(1 h of unit sky on open flat ground = 1)",
          std::move(skyIrr), {}},
+        // Nearest: kNeverLitClock (-1) sits beside clock hours, and a mean of the two (a cell
+        // "first lit" at 2 a.m.) is a time no cell has.
         {"first_lit", "local clock hours (" + zone + ") when half the sun first shows; -1 = never",
-         std::move(maps.firstLitClock), {}},
+         std::move(maps.firstLitClock), {}, Resampling::Nearest},
         {"last_lit", "local clock hours (" + zone + ") when half the sun last shows; -1 = never",
-         std::move(maps.lastLitClock), {}}};
+         std::move(maps.lastLitClock), {}, Resampling::Nearest}};
     return out;
 }
 
@@ -137,6 +140,8 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         throw FieldError("step", " " + formatNumber(std::chrono::duration<double>(request.step).count()) +
                     " s: must be from 6 s to 2 h");
     validateSun(request.sunDiameterDeg, Atmosphere{});
+    checkSpaValidity(localDay(request.firstDay, request.zone).startUtc);
+    checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
     const Terrain& whole = source.dem().terrain;

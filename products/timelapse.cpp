@@ -104,6 +104,8 @@ ProductResult fitResult(const Dem& dem, const ScenePlan& plan, const SequenceFit
 TimelapseInstants instantsBetween(const ZonedInstant& start, const ZonedInstant& end, std::chrono::milliseconds step,
                                   std::size_t maxFrames) {
     if (end.utc < start.utc) throw Error("the end instant is before the start");
+    checkSpaValidity(start.utc);
+    checkSpaValidity(end.utc);
     TimelapseInstants f;
     f.zone = start.zone;
     f.description = "start to end";

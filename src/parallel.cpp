@@ -1,6 +1,7 @@
 #include "src/parallel.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -17,8 +18,10 @@ int resolveThreadCount(int requested) {
 void parallelFor(std::size_t begin, std::size_t end, int threads,
                  const std::function<void(std::size_t)>& body, std::size_t grain) {
     if (begin >= end) return;
-    const int n = resolveThreadCount(threads);
-    if (n == 1) {
+    // More threads than the machine runs at once add nothing (results do not depend on the
+    // count), and TBB would print a warning of its own on stderr for the workers it cannot add.
+    const int n = std::min(resolveThreadCount(threads), tbb::info::default_concurrency());
+    if (n <= 1) {
         for (std::size_t i = begin; i < end; ++i) body(i);
         return;
     }

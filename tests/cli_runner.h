@@ -23,10 +23,12 @@ inline std::string readAll(std::FILE* f) {
 }
 
 /// Runs `demlight ARGS` through the shell (ARGS is shell text); captures stdout and stderr.
-inline RunResult runDemlight(const std::string& args) {
+/// `shellPrefix` runs first in the same shell, e.g. "ulimit -f 100; ". exitCode is -1 when the
+/// process was ended by a signal.
+inline RunResult runDemlight(const std::string& args, const std::string& shellPrefix = {}) {
     std::FILE* errFile = std::tmpfile();
     const std::string errPath = "/proc/self/fd/" + std::to_string(fileno(errFile));
-    const std::string cmd = std::string("'") + DEMLIGHT_CLI_PATH + "' " + args + " 2>" + errPath;
+    const std::string cmd = shellPrefix + "'" + DEMLIGHT_CLI_PATH + "' " + args + " 2>" + errPath;
     std::FILE* pipe = popen(cmd.c_str(), "r");
     RunResult r;
     if (!pipe) {

@@ -178,7 +178,7 @@ TEST(CliOutputs, TimelapseDateInAFarZoneRunsSunriseToSunset) {
     const fs::path dir = fs::temp_directory_path() / "demlight_cli_tlutc";
     fs::remove_all(dir);
     const auto r = runDemlight("timelapse " + kHelens + " -o " + dir.string() +
-                               " --date 2024-06-21 --step 2h --formats tif --threads 2");
+                               " --date 2024-06-21 --tz UTC --step 2h --formats tif --threads 2");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("frames: 8 (sunrise to sunset"), std::string::npos) << r.err;  // 12:17Z .. 04:04Z
     EXPECT_NE(r.err.find("2024-06-21T12:17"), std::string::npos) << r.err;

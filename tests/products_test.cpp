@@ -301,6 +301,17 @@ TEST(Products, AuxiliaryRastersAreCheckedForRangeAndCoverage) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("covers no cell"), std::string::npos) << e.what();
     }
+    // The cloud shadow too: heights as a cloud factor gave light up to 3705.
+    LightRequest light;
+    light.time = morning();
+    light.cloudShadow = kRocky;
+    try {
+        lightProduct(dem, dem.whole(), light);
+        FAIL() << "heights accepted as a cloud shadow";
+    } catch (const FieldError& e) {
+        EXPECT_EQ(e.field(), "cloudShadow");
+        EXPECT_NE(std::string(e.what()).find("expected values 0-1"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Products, RenderDrawsSquareGroundPixels) {
