@@ -55,8 +55,8 @@ const std::string kTime = "2024-06-21T17:00Z";
 /// An empty scratch folder named after the running test.
 fs::path scratch(const std::string& suffix = {}) {
     const fs::path dir = fs::temp_directory_path() /
-                         ("demlight_safety_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                          suffix);
+                         ("demlight_safety_" + std::to_string(::getpid()) + "_" +
+                          std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + suffix);
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
