@@ -37,11 +37,12 @@ constexpr double kSweepP99ErrorDeg = 6.8;
 constexpr const char* kSweepErrorSource =
     "sweep vs whole-DEM reference on real DEMs, docs/bench/whole_dem_errors.csv";
 /// Cells longer than wide (or wider than long) by this ratio or more have a larger sweep error:
-/// docs/stability.md row "78 N lat/lon cells (6.4 x 30.9 m) | sweep vs reference", median 0.19
-/// deg, p99 10.2 deg (the 4.8:1 cells of 1" lat/lon data at 78 deg N).
+/// the figures are those of the 4.8:1 cells of 1" lat/lon data at 78 deg N over 12 azimuths
+/// (docs/stability.md rows "78 N lat/lon cells", which tests/stability_test.cpp enforces at these
+/// values), rounded up with a margin.
 constexpr double kAnisotropicCellRatio = 3.0;
-constexpr double kAnisotropicMedianErrorDeg = 0.19;
-constexpr double kAnisotropicP99ErrorDeg = 10.2;
+constexpr double kAnisotropicMedianErrorDeg = 0.26;
+constexpr double kAnisotropicP99ErrorDeg = 10.0;
 constexpr const char* kAnisotropicErrorSource =
     "sweep vs reference on 4.8:1 lat/lon cells at 78 N, docs/stability.md";
 
