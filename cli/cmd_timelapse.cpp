@@ -14,13 +14,14 @@
 #include "products/timelapse.h"
 #include "src/error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -86,8 +87,14 @@ void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
 bool isTimelapseOutput(const std::string& name) {
     static const std::set<std::string> fixed = {"sky_k.tif", "frames.csv", "timelapse.gif", "timelapse.mp4",
                                                 "sequence_fit.tif"};
-    static const std::regex frame(R"(frame_[0-9]+\.(tif|png))");
-    return fixed.count(name) > 0 || std::regex_match(name, frame);
+    if (fixed.count(name)) return true;
+    // frame_<digits>.tif or .png
+    constexpr std::size_t kDigitsAt = 6;
+    const std::size_t dot = name.rfind('.');
+    if (!name.starts_with("frame_") || dot == std::string::npos || dot <= kDigitsAt) return false;
+    const std::string ext = name.substr(dot + 1);
+    return (ext == "tif" || ext == "png") && std::all_of(name.begin() + kDigitsAt, name.begin() + static_cast<std::ptrdiff_t>(dot),
+                                                         [](unsigned char c) { return std::isdigit(c); });
 }
 
 TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {

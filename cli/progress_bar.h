@@ -6,7 +6,7 @@
 //  - quiet: nothing.
 // A new stage label (the library passes one with every call: "sky", then "sunhours") starts the
 // bar, the line count and the time estimate afresh. In every mode the callback returns false
-// once requestCancel() was called (the SIGINT/SIGTERM handler in cli/main.cpp does), so the
+// once requestCancel() was called (on the first Ctrl-C: cli/main.cpp, geo/signals.h), so the
 // library throws demlight::Cancelled at its next safe point. Writing outputs checks
 // cancelRequested() between strips (cli/common.cpp writeResult); work that reports no progress
 // (reading the DEM) is not interrupted, and a command that reaches no further progress call after

@@ -100,11 +100,11 @@ void checkRasterPath(const std::string& path);
 
 /// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success
 /// (geo/output_file.h); a failure or a cancel leaves neither `path` changed nor a temporary file.
-/// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path`
-/// that is not a regular file (checkOutputFile) or not named as a GeoTIFF (checkRasterPath). COG overviews are built per band with its
-/// Resampling, unless the creation options choose the overviews (RESAMPLING, OVERVIEW_RESAMPLING,
-/// OVERVIEWS, or a reprojection: TILING_SCHEME, TARGET_SRS); GDAL's COG driver would resample
-/// every band alike (cubic by default, which overshoots: a visibility of -0.24 or 1.19).
+/// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path` that is not
+/// a regular file (checkOutputFile) or not named as a GeoTIFF (checkRasterPath). COG overviews are
+/// built per band with its Resampling, unless the creation options choose the overviews (RESAMPLING,
+/// OVERVIEW_RESAMPLING, OVERVIEWS, or a reprojection: TILING_SCHEME, TARGET_SRS); GDAL's COG driver
+/// would resample every band alike (cubic by default, which overshoots: a visibility of -0.24 or 1.19).
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath = {});

@@ -74,8 +74,8 @@ inline constexpr int kSpaFirstYear = -2000;
 inline constexpr int kSpaLastYear = 6000;
 
 /// Throws Error naming the instant unless its UTC year is in [kSpaFirstYear, kSpaLastYear]:
-/// outside them the periodic terms are not fitted and ΔT is a guess, so a position would look
-/// as exact as any other and be wrong by an unknown amount.
+/// SPA states no accuracy outside them, so a position there would look as exact as any other
+/// and be wrong by an unknown amount.
 void checkSpaValidity(UtcInstant t);
 
 /// Position of the sun seen from site at instant t (UTC). Cheap enough to call per frame
