@@ -11,7 +11,8 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights)
     return DemSource(loadDem(path, heights));
 }
 
-DemSource::DemSource(Dem dem) : dem_(std::make_shared<const Dem>(std::move(dem))) {}
+DemSource::DemSource(Dem dem)
+    : dem_(std::make_shared<const Dem>(std::move(dem))), frame_(frameOf(dem_->terrain)) {}
 
 bool DemSource::isWhole(const CellWindow& w) const {
     return w.col0 == 0 && w.row0 == 0 && w.col1 == width() && w.row1 == height();
@@ -46,7 +47,7 @@ Dem DemSource::read(const CellWindow& w) const {
     out.band.values = Grid<float>(cols, rows);
     for (std::size_t r = 0; r < rows; ++r)
         for (std::size_t c = 0; c < cols; ++c) out.band.values(c, r) = dem_->band.values(w.col0 + c, w.row0 + r);
-    out.terrain = tileOf(dem_->terrain, w);
+    out.terrain = tileOf(dem_->terrain, w, frame_);
     out.band.nodataCount = 0;
     for (float v : out.terrain.heightsM.values()) out.band.nodataCount += std::isnan(v) ? 1 : 0;
     return out;

@@ -35,6 +35,7 @@ public:
 
 private:
     std::shared_ptr<const Dem> dem_;
+    std::shared_ptr<const GridFrame> frame_;  ///< the whole DEM as the full grid of its windows
 };
 
 }  // namespace demlight

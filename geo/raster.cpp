@@ -39,6 +39,58 @@ std::string withGdalReason(std::string message) {
 /// GDAL virtual file systems (/vsizip/, /vsigzip/, /vsicurl/, ...): paths std::filesystem cannot see.
 bool isGdalVirtualPath(const std::string& path) { return path.starts_with("/vsi"); }
 
+/// A band (or overview) as float, NaN where it holds the nodata value `nodataFrom` declares.
+Grid<float> readFloatBand(GDALRasterBand* band, GDALRasterBand* nodataFrom, const std::string& what) {
+    const auto width = static_cast<std::size_t>(band->GetXSize());
+    const auto height = static_cast<std::size_t>(band->GetYSize());
+    Grid<float> g(width, height);
+    if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height), g.data(),
+                       static_cast<int>(width), static_cast<int>(height), GDT_Float32, 0, 0) != CE_None)
+        throw Error(withGdalReason("cannot read " + what));
+    int hasNodata = 0;
+    const auto nodata = static_cast<float>(nodataFrom->GetNoDataValue(&hasNodata));
+    if (hasNodata)
+        for (float& v : g.values())
+            if (v == nodata) v = std::numeric_limits<float>::quiet_NaN();
+    return g;
+}
+
+/// Georeference, metadata and every band's description, unit and nodata of a dataset being
+/// written, before any cells: the GTiff writes its directory with the first tile, and what
+/// comes later would rewrite it. Byte bands declare the nodata value only when it fits.
+void describeDataset(GDALDataset& ds, const GeoReference& ref, const WriteOptions& options,
+                     const std::vector<OutputBand>& bands, GDALDataType type) {
+    std::array<double, 6> gt = ref.geoTransform;
+    ds.SetGeoTransform(gt.data());
+    OGRSpatialReference srs;
+    if (!ref.crsWkt.empty() && srs.importFromWkt(ref.crsWkt.c_str()) == OGRERR_NONE) ds.SetSpatialRef(&srs);
+    for (const auto& [key, value] : options.metadata) ds.SetMetadataItem(key.c_str(), value.c_str());
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+        GDALRasterBand* out = ds.GetRasterBand(static_cast<int>(i) + 1);
+        out->SetDescription(bands[i].description.c_str());
+        if (!bands[i].unit.empty()) out->SetUnitType(bands[i].unit.c_str());
+        if (type == GDT_Float32 || (options.nodata >= 0 && options.nodata <= 255)) out->SetNoDataValue(options.nodata);
+    }
+}
+
+/// `count` cells of a band from cell `first` as Float32 to write: the band's own values when
+/// they need no change (no copy), else converted through `buffer` (a mask widened, NaN replaced
+/// by the nodata value).
+const float* floatCells(const OutputBand& b, std::size_t first, std::size_t count, bool replaceNan, float nodata,
+                        std::vector<float>& buffer) {
+    if (b.values && !replaceNan) return b.values->data() + first;
+    buffer.resize(count);
+    if (b.values) {
+        std::copy_n(b.values->data() + first, count, buffer.begin());
+    } else {
+        std::copy_n(b.mask->data() + first, count, buffer.begin());
+    }
+    if (replaceNan)
+        for (float& v : buffer)
+            if (std::isnan(v)) v = nodata;
+    return buffer.data();
+}
+
 DatasetPtr openRaster(const std::string& path) {
     detail::ensureGdal();
     std::error_code ec;
@@ -178,21 +230,10 @@ RasterBand readRasterBand(const std::string& path) {
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary) {
     if (summary) *summary = inspectRaster(path);
     DatasetPtr ds = openRaster(path);
-    const auto width = static_cast<std::size_t>(ds->GetRasterXSize());
-    const auto height = static_cast<std::size_t>(ds->GetRasterYSize());
     std::vector<Grid<float>> out;
     for (int b = 1; b <= ds->GetRasterCount(); ++b) {
         GDALRasterBand* band = ds->GetRasterBand(b);
-        Grid<float> g(width, height);
-        if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height), g.data(),
-                           static_cast<int>(width), static_cast<int>(height), GDT_Float32, 0, 0) != CE_None)
-            throw Error(withGdalReason("cannot read band " + std::to_string(b) + " of '" + path + "'"));
-        int hasNodata = 0;
-        const auto nodata = static_cast<float>(band->GetNoDataValue(&hasNodata));
-        if (hasNodata)
-            for (float& v : g.values())
-                if (v == nodata) v = std::numeric_limits<float>::quiet_NaN();
-        out.push_back(std::move(g));
+        out.push_back(readFloatBand(band, band, "band " + std::to_string(b) + " of '" + path + "'"));
     }
     return out;
 }
@@ -204,18 +245,7 @@ std::vector<Grid<float>> readRasterOverview(const std::string& path, int level) 
         GDALRasterBand* full = ds->GetRasterBand(b);
         GDALRasterBand* band = level >= 0 && level < full->GetOverviewCount() ? full->GetOverview(level) : nullptr;
         if (!band) throw Error("'" + path + "' has no overview " + std::to_string(level) + " of band " + std::to_string(b));
-        const auto width = static_cast<std::size_t>(band->GetXSize());
-        const auto height = static_cast<std::size_t>(band->GetYSize());
-        Grid<float> g(width, height);
-        if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height), g.data(),
-                           static_cast<int>(width), static_cast<int>(height), GDT_Float32, 0, 0) != CE_None)
-            throw Error(withGdalReason("cannot read overview " + std::to_string(level) + " of '" + path + "'"));
-        int hasNodata = 0;
-        const auto nodata = static_cast<float>(full->GetNoDataValue(&hasNodata));
-        if (hasNodata)
-            for (float& v : g.values())
-                if (v == nodata) v = std::numeric_limits<float>::quiet_NaN();
-        out.push_back(std::move(g));
+        out.push_back(readFloatBand(band, full, "overview " + std::to_string(level) + " of '" + path + "'"));
     }
     return out;
 }
@@ -468,12 +498,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         ds.reset(mem->Create("", static_cast<int>(width), static_cast<int>(height),
                              static_cast<int>(bands.size()), type, nullptr));
     }
-    std::array<double, 6> gt = ref.geoTransform;
-    ds->SetGeoTransform(gt.data());
-    OGRSpatialReference srs;
-    if (!ref.crsWkt.empty() && srs.importFromWkt(ref.crsWkt.c_str()) == OGRERR_NONE)
-        ds->SetSpatialRef(&srs);
-    for (const auto& [key, value] : options.metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
+    describeDataset(*ds, ref, options, bands, type);
 
     // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
     // quick, its overviews and the compressed copy are most.
@@ -487,19 +512,6 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     const bool replaceNan = !std::isnan(options.nodata);
     const auto nodataF = static_cast<float>(options.nodata);
     std::vector<float> buffer;
-    // Every band's description, unit and nodata before any cells: the GTiff writes its
-    // directory with the first tile, and what comes later would rewrite it.
-    for (std::size_t i = 0; i < bands.size(); ++i) {
-        const OutputBand& b = bands[i];
-        GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
-        out->SetDescription(b.description.c_str());
-        if (!b.unit.empty()) out->SetUnitType(b.unit.c_str());
-        if (type == GDT_Byte) {
-            if (options.nodata >= 0 && options.nodata <= 255) out->SetNoDataValue(options.nodata);
-        } else {
-            out->SetNoDataValue(options.nodata);
-        }
-    }
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
         GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
@@ -518,21 +530,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                                     const_cast<std::uint8_t*>(b.mask->rowPtr(r0)), static_cast<int>(width),
                                     static_cast<int>(rows), GDT_Byte, 0, 0);
             } else {
-                const float* data = nullptr;
-                if (b.values && !replaceNan) {
-                    data = b.values->rowPtr(r0);  // written as is: no copy
-                } else {
-                    buffer.resize(rows * width);
-                    if (b.values) {
-                        std::copy_n(b.values->rowPtr(r0), rows * width, buffer.begin());
-                    } else {
-                        std::copy_n(b.mask->rowPtr(r0), rows * width, buffer.begin());
-                    }
-                    if (replaceNan)
-                        for (float& v : buffer)
-                            if (std::isnan(v)) v = nodataF;
-                    data = buffer.data();
-                }
+                const float* data = floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
                 err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
                                     const_cast<float*>(data), static_cast<int>(width), static_cast<int>(rows),
                                     GDT_Float32, 0, 0);
@@ -632,19 +630,7 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
                                   static_cast<int>(bands.size()), type, co.List()));
         if (!st.ds)
             throw Error(writeFailureMessage("'" + st.path + "'", st.file->path(), detail::takeGdalError()));
-        std::array<double, 6> gt = st.ref.geoTransform;
-        st.ds->SetGeoTransform(gt.data());
-        OGRSpatialReference srs;
-        if (!st.ref.crsWkt.empty() && srs.importFromWkt(st.ref.crsWkt.c_str()) == OGRERR_NONE)
-            st.ds->SetSpatialRef(&srs);
-        for (const auto& [key, value] : st.options.metadata) st.ds->SetMetadataItem(key.c_str(), value.c_str());
-        for (std::size_t i = 0; i < bands.size(); ++i) {
-            GDALRasterBand* out = st.ds->GetRasterBand(static_cast<int>(i) + 1);
-            out->SetDescription(bands[i].description.c_str());
-            if (!bands[i].unit.empty()) out->SetUnitType(bands[i].unit.c_str());
-            if (type == GDT_Float32 || (st.options.nodata >= 0 && st.options.nodata <= 255))
-                out->SetNoDataValue(st.options.nodata);
-        }
+        describeDataset(*st.ds, st.ref, st.options, bands, type);
         st.layout = bands;
         st.masks = allMasks;
     }
@@ -661,18 +647,10 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
                                 static_cast<int>(rows), const_cast<std::uint8_t*>(b.mask->data()),
                                 static_cast<int>(cols), static_cast<int>(rows), GDT_Byte, 0, 0);
         } else {
-            buffer.resize(cols * rows);
-            if (b.values) {
-                std::copy_n(b.values->data(), cols * rows, buffer.begin());
-            } else {
-                std::copy_n(b.mask->data(), cols * rows, buffer.begin());
-            }
-            if (replaceNan)
-                for (float& v : buffer)
-                    if (std::isnan(v)) v = nodataF;
+            const float* data = floatCells(b, 0, cols * rows, replaceNan, nodataF, buffer);
             err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
-                                static_cast<int>(rows), buffer.data(), static_cast<int>(cols), static_cast<int>(rows),
-                                GDT_Float32, 0, 0);
+                                static_cast<int>(rows), const_cast<float*>(data), static_cast<int>(cols),
+                                static_cast<int>(rows), GDT_Float32, 0, 0);
         }
         if (err != CE_None)
             throw Error(writeFailureMessage("band " + std::to_string(i + 1) + " of '" + st.path + "'", st.file->path(),

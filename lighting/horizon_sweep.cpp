@@ -136,12 +136,6 @@ CellWindow outputWindow(const Terrain& t, const HorizonParams& p) {
     return {w.col0 + g.col0, w.row0 + g.row0, w.col1 + g.col0, w.row1 + g.row0};
 }
 
-/// The terrain's own cells on the full grid.
-CellWindow terrainWindow(const Terrain& t) {
-    const FullGridRef g = fullGrid(t);
-    return {g.col0, g.row0, g.col0 + t.width(), g.row0 + t.height()};
-}
-
 std::vector<SweepRegion> fullGridRegions(const Terrain& terrain, const HorizonParams& params) {
     validateHorizonParams(terrain, params);
     return sweepRegionsOnFullGrid(terrain, params, outputWindow(terrain, params));
@@ -205,7 +199,7 @@ struct LineState {
     HullPoint* buf;
     std::size_t lo;
     std::size_t hi;
-    double sigmaM;
+    double edgeArcM;  // arcAt() of the line at the far edge; unused with LineGeometry::sigmaAt
     long chunk;
     double nextChunkM;  // σ at which the chunk changes
     RangeLog* log;      // range-limited sweeps only
@@ -446,8 +440,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     LineState lines[kLinesPerBlock];
     const auto edge = static_cast<std::size_t>(geo.mEdge);
     for (std::size_t b = 0; b < nLines; ++b) {
-        // Without a distance table, sigmaM holds the line's arc coordinate at the far edge
-        // (arcAt), from which every sample's distance is taken.
+        // Without a distance table, every sample's distance is taken from the line's arc
+        // coordinate at the far edge.
         const long k = kBegin + static_cast<long>(b);
         const double edgeArc = sigmaTable ? 0.0 : arcAt(geo, static_cast<double>(k + geo.base[edge]) + geo.frac[edge]);
         lines[b] = {scratch.data() + b * lineCapacity, 0, 0, edgeArc, 0, maxDistanceM, limited ? &logs[b] : nullptr,
@@ -493,16 +487,16 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         bool allNodata = anyInside;
         for (long j = std::max(nLo, n0First); allNodata && j <= std::min(nHi - 1, n0Last + 1); ++j)
             allNodata = std::isnan(H[index(m, j)]);
-        if (allNodata || !anyInside) {
-            // Nothing to sample or serve (all nodata, or every line off the terrain's cells).
-        } else {
+        // Where every line is off the terrain's cells or every cell is nodata there is nothing
+        // to sample or serve (distances need no walking: they are a function of position).
+        if (anyInside && !allNodata) {
             for (std::size_t b = 0; b < nLines; ++b) {
                 LineState& line = lines[b];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 const long n1 = n0 + 1;
                 if (n0 < -1 || n0 > N - 1) continue;
                 const double sigma = sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(m)]
-                                                : lineDistance(geo, line.sigmaM, static_cast<double>(n0) + frac, m);
+                                                : lineDistance(geo, line.edgeArcM, static_cast<double>(n0) + frac, m);
 
                 // Line sample: linear across the line between the two bracketing cells; heights
                 // are known inside the hull of the cell centres only. Cells of the full grid
@@ -856,7 +850,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
                              SweepBuffers& buffers, ProgressCounter* progress) {
     const std::vector<SweepRegion> regions = fullGridRegions(terrain, params);
     const FullGridRef full = fullGrid(terrain);
-    const CellWindow cells = terrainWindow(terrain);
+    const CellWindow cells = cellsOnFullGrid(terrain);
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
 

@@ -33,8 +33,7 @@ LightRasters loadRasters(const Dem& dem, const LightRequest& r) {
 
 /// The whole DEM's rasters on a window of it (the cells `dem` covers).
 LightRasters rastersOnTile(const LightRasters& whole, const Dem& dem) {
-    const Terrain& t = dem.terrain;
-    const CellWindow w{t.frameCol0, t.frameRow0, t.frameCol0 + t.width(), t.frameRow0 + t.height()};
+    const CellWindow w = cellsOnFullGrid(dem.terrain);
     LightRasters out;
     out.albedo = cropGrid(whole.albedo, w);
     out.cloud = cropGrid(whole.cloud, w);

@@ -88,9 +88,7 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
                                                {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
     return onWindow<SkyResult>(source, window, halo, [&](const Dem& dem) {
         const Terrain& t = dem.terrain;
-        const Grid<float> cut =
-            t.frame ? cropGrid(albedo, {t.frameCol0, t.frameRow0, t.frameCol0 + t.width(), t.frameRow0 + t.height()})
-                    : Grid<float>();
+        const Grid<float> cut = t.frame ? cropGrid(albedo, cellsOnFullGrid(t)) : Grid<float>();
         const Grid<float>* a = albedo.empty() ? nullptr : t.frame ? &cut : &albedo;
         return hemi ? hemisphere(dem, request, a) : stewartLanger(dem, plan, request, a, progress);
     });

@@ -68,7 +68,10 @@ double diagonalM(const FullGridRef& g) {
     return std::hypot(widthM, heightM);
 }
 
-Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+namespace {
+
+/// Heights and per-row geometry of a window (no convergence).
+Terrain cutCells(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
     Terrain out;
     out.heightsM = Grid<float>(w, h);
     for (std::size_t r = 0; r < h; ++r)
@@ -80,6 +83,13 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
     out.cellWidthM = slice(t.cellWidthM, row0, h);
     out.cellHeightM = slice(t.cellHeightM, row0, h);
     out.rowLatitudeDeg = slice(t.rowLatitudeDeg, row0, h);
+    return out;
+}
+
+}  // namespace
+
+Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+    Terrain out = cutCells(t, col0, row0, w, h);
     if (!t.convergence.empty()) {
         constexpr std::size_t kStep = 16;
         out.convergence.stepCells = kStep;
@@ -93,18 +103,21 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
     return out;
 }
 
-Terrain tileOf(const Terrain& t, const CellWindow& w) {
-    Terrain out = cropTerrain(t, w.col0, w.row0, w.col1 - w.col0, w.row1 - w.row0);
+std::shared_ptr<const GridFrame> frameOf(const Terrain& t) {
+    if (t.frame) return t.frame;
+    const auto [lo, hi] = heightRangeM(t.heightsM);
+    return std::make_shared<const GridFrame>(
+        GridFrame{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, lo, hi});
+}
+
+Terrain tileOf(const Terrain& t, const CellWindow& w) { return tileOf(t, w, frameOf(t)); }
+
+Terrain tileOf(const Terrain& t, const CellWindow& w, std::shared_ptr<const GridFrame> frame) {
+    Terrain out = cutCells(t, w.col0, w.row0, w.col1 - w.col0, w.row1 - w.row0);
     out.convergence = t.convergence;
     out.convergence.colOffset += static_cast<double>(w.col0);
     out.convergence.rowOffset += static_cast<double>(w.row0);
-    if (t.frame) {
-        out.frame = t.frame;
-    } else {
-        const auto [lo, hi] = heightRangeM(t.heightsM);
-        out.frame = std::make_shared<const GridFrame>(
-            GridFrame{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, lo, hi});
-    }
+    out.frame = std::move(frame);
     out.frameCol0 = t.frameCol0 + w.col0;
     out.frameRow0 = t.frameRow0 + w.row0;
     return out;

@@ -92,6 +92,11 @@ struct FullGridRef {
 };
 FullGridRef fullGrid(const Terrain& terrain);
 
+/// The terrain's own cells on its full grid (all of it when it has no frame).
+inline CellWindow cellsOnFullGrid(const Terrain& t) {
+    return {t.frameCol0, t.frameRow0, t.frameCol0 + t.width(), t.frameRow0 + t.height()};
+}
+
 /// diagonalM of the full grid.
 double diagonalM(const FullGridRef& grid);
 
@@ -105,6 +110,11 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
 /// the full grid, so that kernels which anchor to the full grid give the tile the full terrain's
 /// bits on the cells they share (truncation, too, is at the full grid's edges).
 Terrain tileOf(const Terrain& t, const CellWindow& window);
+/// tileOf with the frame of `t` (frameOf) made once by the caller, for one who cuts many tiles:
+/// the frame's height range is a pass over every cell.
+Terrain tileOf(const Terrain& t, const CellWindow& window, std::shared_ptr<const GridFrame> frame);
+/// The frame a tile of `t` carries: t's own, or t as a full grid.
+std::shared_ptr<const GridFrame> frameOf(const Terrain& t);
 
 /// The centred window of at most w x h cells (sizes clamped to the terrain), as cropTerrain.
 Terrain cropTerrainCentre(const Terrain& t, std::size_t w, std::size_t h);

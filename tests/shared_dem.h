@@ -4,6 +4,7 @@
 #include "geo/dem.h"
 #include "src/terrain.h"
 
+#include <cctype>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -14,6 +15,15 @@ namespace demlight {
 /// Path of a DEM in the shared data folder (DEMLIGHT_SHARED_DEM_DIR).
 inline std::string sharedDemPath(const std::string& name) {
     return std::string(DEMLIGHT_SHARED_DEM_DIR) + "/" + name;
+}
+
+/// A GoogleTest parameter name for a DEM file: its stem with every other character than a
+/// letter or digit as '_' ("big_tujunga_srtm30m_utm11.tif" -> "big_tujunga_srtm30m_utm11").
+inline std::string demTestName(const std::string& file) {
+    std::string name = file.substr(0, file.find('.'));
+    for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    return name;
 }
 
 /// The terrain of a shared DEM, cropped to its centre cropW x cropH cells when both are > 0;

@@ -114,13 +114,8 @@ TEST_P(TiledCli, TilesAndMosaickedWindowsAreTheOnePieceBytes) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(RealDems, TiledCli, ::testing::ValuesIn(kDems), [](const auto& testInfo) {
-    std::string name = testInfo.param.name;
-    name = name.substr(0, name.find('.'));
-    for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-    return name;
-});
+INSTANTIATE_TEST_SUITE_P(RealDems, TiledCli, ::testing::ValuesIn(kDems),
+                         [](const auto& testInfo) { return demTestName(testInfo.param.name); });
 
 TEST(TilingCli, BadTileSizesAndWindowsAreRefusedNamingTheOption) {
     const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";

@@ -25,15 +25,6 @@
 namespace demlight {
 namespace {
 
-/// Cells of search distance (as products' haloCellsFor): distance over the smallest cell side,
-/// plus one.
-std::size_t haloCells(const Terrain& t, double distanceM) {
-    double minCell = 1e300;
-    for (std::size_t r = 0; r < t.height(); ++r) minCell = std::min({minCell, t.cellWidthM[r], t.cellHeightM[r]});
-    if (!std::isfinite(distanceM)) return std::max(t.width(), t.height());
-    return static_cast<std::size_t>(std::ceil(distanceM / minCell)) + 1;
-}
-
 /// Bitwise equal, NaN equal to NaN (memcmp of the float's bits).
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -41,7 +32,7 @@ bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 /// truncation flag differs from the whole DEM's in any bit.
 std::size_t tiledMismatches(const Terrain& whole, const HorizonParams& params, std::size_t tileSize) {
     const HorizonMap reference = sweepHorizon(whole, params);
-    const std::size_t halo = haloCells(whole, params.maxDistanceM);
+    const std::size_t halo = haloCellsFor(whole, params.maxDistanceM);
     std::size_t bad = 0;
     for (std::size_t r0 = 0; r0 < whole.height(); r0 += tileSize) {
         for (std::size_t c0 = 0; c0 < whole.width(); c0 += tileSize) {
@@ -115,12 +106,7 @@ TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledSweep, ::testing::ValuesIn(kCases),
-                         [](const auto& testInfo) {
-                             std::string name = testInfo.param.dem;
-                             name = name.substr(0, name.find('.'));
-                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
-                             return name;
-                         });
+                         [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
 
 // ---- Products: every raster product, window by window -----------------------------------------
 
@@ -244,12 +230,7 @@ TEST_P(TiledProducts, WindowsGiveTheWholeDemsBitsForEveryProduct) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledProducts, ::testing::ValuesIn(kCases),
-                         [](const auto& testInfo) {
-                             std::string name = testInfo.param.dem;
-                             name = name.substr(0, name.find('.'));
-                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
-                             return name;
-                         });
+                         [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
 
 TEST(TiledSweep, ATileKnowsTheFullGridItWasCutFrom) {
     Terrain whole = makeUniformTerrain(Grid<float>(50, 40, 1.0f), 10.0);
