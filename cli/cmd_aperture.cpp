@@ -22,7 +22,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     ApertureRequest request;
     request.directions = o.directions;
     request.search = o.search.request;
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
     const auto start = std::chrono::steady_clock::now();
     const ApertureResult result = runRaster<ApertureResult>(

@@ -37,7 +37,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     for (double az : evenAzimuthsDeg(static_cast<std::size_t>(o.directions))) request.azimuthsDeg.push_back(az);
     request.method = parseHorizonMethod(o.method);
     request.search = o.search.request;
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
 
     OutputOptions maskOut = o.out;  // the same format and creation options as the horizons
     maskOut.path = masks;
@@ -50,7 +50,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const double seconds = secondsSince(start);
 
     const std::size_t bands = request.azimuthsDeg.size();
-    const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.dem().terrain.heightsM.size() * bands);
+    const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.width() * dem.height() * bands);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands) + (bands == 1 ? " horizon band" : " horizon bands") +
                   ", degrees) and " + masks + " (truncation mask); max distance " +
                   formatDistance(result.maxDistanceM) + "; " + formatSeconds(seconds) + " compute, " +

@@ -85,11 +85,12 @@ void printText(const std::string& path, const Dem& dem, const DemInfo& d) {
 
 void runInfo(const InfoOptions& o) {
     const DemSource source = openDem(o.dem);
-    const DemInfo d = describeDem(source.dem());
+    const std::shared_ptr<const Dem> whole = source.readWhole();
+    const DemInfo d = describeDem(*whole);
     if (o.json)
-        printJson(o.dem.path, source.dem(), d);
+        printJson(o.dem.path, *whole, d);
     else
-        printText(o.dem.path, source.dem(), d);
+        printText(o.dem.path, *whole, d);
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     const LightRequest request = lightRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 3, ctx);
     const auto start = std::chrono::steady_clock::now();
     const LightResult result = runRaster<LightResult>(

@@ -30,7 +30,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
     checkOutputPath(o.outPath, o.dem.path);
     checkImagePath(o.outPath);
     const DemSource dem = openDem(o.dem);
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
     const auto start = std::chrono::steady_clock::now();
     ProgressBar bar(!ctx.quiet);
     const RenderResult r = renderProduct(dem, request, bar.callback());

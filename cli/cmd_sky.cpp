@@ -36,7 +36,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     const auto loadStart = std::chrono::steady_clock::now();
     const DemSource dem = openDem(o.dem);
     const double loadSeconds = secondsSince(loadStart);
-    if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.dem().terrain, ctx);
+    if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.geometry().terrain, ctx);
 
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4 + request.patches.patches.size(), ctx);
     const auto start = std::chrono::steady_clock::now();

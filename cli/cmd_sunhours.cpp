@@ -51,7 +51,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem);
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(

@@ -207,13 +207,13 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem);
-    const TimelapseRequest request = timelapseRequest(o, formats, dem.dem());
+    const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
     std::error_code ec;
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
     if (o.overwrite) removeEarlierOutputs(o.outDir, isTimelapseOutput);
-    notePlan(o.search, dem.dem().terrain, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
 
     const auto start = std::chrono::steady_clock::now();
     FrameWriter writer(o, formats, request.frames.instants.size(), ctx);

@@ -173,7 +173,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
         run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
     }
     std::size_t tile = 0;
-    const std::size_t halo = haloCellsFor(dem.dem().terrain, planFor(search, dem.dem().terrain).maxDistanceM);
+    const std::size_t halo = haloCellsFor(dem.geometry().terrain, planFor(search, dem.geometry().terrain).maxDistanceM);
     if (tiling.tileSize == "auto") {
         const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
         tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit);
@@ -189,7 +189,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
             throw Error("--tile-size '" + tiling.tileSize + "': expected auto or a whole number of cells from 16 to 1000000");
         tile = static_cast<std::size_t>(n);
     }
-    run.ref = dem.dem().band.ref;
+    run.ref = dem.geometry().band.ref;
     run.ref.geoTransform[0] += static_cast<double>(run.extent.col0) * run.ref.geoTransform[1];
     run.ref.geoTransform[3] += static_cast<double>(run.extent.row0) * run.ref.geoTransform[5];
     run.tiles = tilesOf(run.extent, tile);

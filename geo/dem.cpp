@@ -91,22 +91,26 @@ HeightTransform heightTransform(const RasterBand& band, const HeightOptions& o) 
     return tr;
 }
 
-/// The band's raw values as metres; NaN (nodata) stays NaN.
-Grid<float> heightsInMetres(const RasterBand& band, const HeightTransform& tr) {
-    Grid<float> heights = band.values;
+}  // namespace
+
+Grid<float> heightsInMetres(const RasterBand& band, const HeightTransform& tr) { return heightsInMetres(band.values, band.path, tr); }
+
+Grid<float> heightsInMetres(Grid<float> heights, const std::string& path, const HeightTransform& tr) {
     // The identity does no arithmetic at all, so metre DEMs keep their values bit for bit.
     if (tr.scale == 1 && tr.offset == 0 && tr.toMetres == 1) return heights;
     for (float& v : heights.values()) {
         if (std::isnan(v)) continue;
         const double metres = (static_cast<double>(v) * tr.scale + tr.offset) * tr.toMetres;
         if (!(std::abs(metres) <= std::numeric_limits<float>::max()))
-            throw Error("'" + band.path + "': value " + formatValue(v) + " becomes " + formatValue(metres) +
+            throw Error("'" + path + "': value " + formatValue(v) + " becomes " + formatValue(metres) +
                         " m after scale " + formatValue(tr.scale) + ", offset " + formatValue(tr.offset) +
                         " and x " + formatValue(tr.toMetres) + ", beyond what a height can hold");
         v = static_cast<float>(metres);
     }
     return heights;
 }
+
+namespace {
 
 /// Convergence lattice spacing (cells). Gamma varies smoothly (about dLambda * sin(phi)), so
 /// bilinear interpolation between nodes 64 cells apart is accurate to far below 0.001 deg.
@@ -220,20 +224,17 @@ std::optional<double> metresPerUnit(const std::string& unit) {
     return std::nullopt;
 }
 
-Dem loadDem(const std::string& path, const HeightOptions& heights) {
+Dem openDem(const std::string& path, const HeightOptions& heights) {
     checkHeightOptions(heights);
     Dem dem;
-    dem.band = readRasterBand(path);
-    const std::size_t width = dem.band.values.width();
-    const std::size_t height = dem.band.values.height();
-    if (dem.band.nodataCount == dem.band.values.size())
-        throw Error("'" + path + "' holds no heights: every cell is nodata");
+    dem.band = readRasterHeader(path);
+    const std::size_t width = dem.band.width;
+    const std::size_t height = dem.band.height;
     dem.crs = describeCrs(dem.band.ref.crsWkt, path);
 
     dem.heights = heightTransform(dem.band, heights);
 
     Terrain& t = dem.terrain;
-    t.heightsM = heightsInMetres(dem.band, dem.heights);
     t.cellWidthM.resize(height);
     t.cellHeightM.resize(height);
     t.rowLatitudeDeg.resize(height);
@@ -285,6 +286,18 @@ Dem loadDem(const std::string& path, const HeightOptions& heights) {
             t.convergence.gammaDeg(i, j) = static_cast<float>(-alphaDeg);
         }
     }
+    return dem;
+}
+
+Dem loadDem(const std::string& path, const HeightOptions& heights) {
+    checkHeightOptions(heights);
+    RasterBand band = readRasterBand(path);
+    if (band.nodataCount == band.values.size())
+        throw Error("'" + path + "' holds no heights: every cell is nodata");
+    Dem dem = openDem(path, heights);
+    dem.band.values = std::move(band.values);
+    dem.band.nodataCount = band.nodataCount;
+    dem.terrain.heightsM = heightsInMetres(dem.band, dem.heights);
     return dem;
 }
 

@@ -75,6 +75,17 @@ struct Dem {
 /// Throws Error on all bad input listed in DESIGN §6 and on invalid `heights`.
 Dem loadDem(const std::string& path, const HeightOptions& heights = {});
 
+/// loadDem without reading the heights: the band's header (band.values empty, band.width and
+/// band.height set), CRS, height transform, and the terrain's per-row cell sizes, latitudes and
+/// convergence for the whole grid (terrain.heightsM empty). What a streamed source keeps.
+Dem openDem(const std::string& path, const HeightOptions& heights = {});
+
+/// Raw band values as metres through `tr` (NaN stays NaN; the identity copies the bits); throws
+/// Error naming `path` for a value beyond what a float holds.
+Grid<float> heightsInMetres(Grid<float> raw, const std::string& path, const HeightTransform& tr);
+/// heightsInMetres of the band's values.
+Grid<float> heightsInMetres(const RasterBand& band, const HeightTransform& tr);
+
 /// Latitude and longitude (degrees, on the CRS's own datum) of a cell centre.
 std::pair<double, double> cellLatLon(const Dem& dem, double col, double row);
 

@@ -4,15 +4,120 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace demlight {
 
-DemSource DemSource::open(const std::string& path, const HeightOptions& heights) {
-    return DemSource(loadDem(path, heights));
+namespace {
+
+/// Cells per strip of the opening pass: ~64 MB of raw values and heights together.
+constexpr std::size_t kStripCells = std::size_t{8} << 20;
+
+/// The DEM without its heights, its terrain framed by `frame`.
+Dem geometryOf(Dem dem, const std::shared_ptr<const GridFrame>& frame) {
+    dem.band.values = Grid<float>();
+    dem.band.width = frame->width;
+    dem.band.height = frame->height;
+    dem.terrain.heightsM = Grid<float>();
+    dem.terrain.frame = frame;
+    dem.terrain.frameCol0 = dem.terrain.frameRow0 = 0;
+    return dem;
 }
 
-DemSource::DemSource(Dem dem)
-    : dem_(std::make_shared<const Dem>(std::move(dem))), frame_(frameOf(dem_->terrain)) {}
+/// Running extremes and mean of valid heights, in the order a whole-grid pass visits them.
+struct HeightStats {
+    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+    double sum = 0;
+    std::size_t valid = 0;
+    void add(const Grid<float>& heightsM) {
+        const auto [l, h] = heightRangeM(heightsM);
+        lo = std::min(lo, l), hi = std::max(hi, h);
+        for (float z : heightsM.values())
+            if (!std::isnan(z)) sum += z, ++valid;
+    }
+    double mean() const { return valid ? sum / static_cast<double>(valid) : 0.0; }
+};
+
+std::size_t nodeCount(std::size_t cells, std::size_t step) { return (cells - 1) / step + 2; }
+
+/// The node heights from a row reader (row -> heights of that row).
+template <class RowFn>
+NodeHeights nodeHeightsFromRows(std::size_t w, std::size_t h, std::size_t step, double meanM, const RowFn& rowOf) {
+    NodeHeights z;
+    z.meanM = meanM;
+    const std::size_t ni = nodeCount(w, step), nj = nodeCount(h, step);
+    z.nodesM = Grid<float>(ni, nj);
+    for (std::size_t j = 0; j < nj; ++j) {
+        const auto& row = rowOf(std::min(j * step, h - 1));
+        for (std::size_t i = 0; i < ni; ++i) z.nodesM(i, j) = row[std::min(i * step, w - 1)];
+    }
+    const auto centreCol = std::min(static_cast<std::size_t>(0.5 * static_cast<double>(w)), w - 1);
+    const auto centreRow = std::min(static_cast<std::size_t>(0.5 * static_cast<double>(h)), h - 1);
+    z.centreM = rowOf(centreRow)[centreCol];
+    return z;
+}
+
+}  // namespace
+
+NodeHeights nodeHeights(const Grid<float>& heightsM, std::size_t stepCells) {
+    HeightStats stats;
+    stats.add(heightsM);
+    return nodeHeightsFromRows(heightsM.width(), heightsM.height(), stepCells, stats.mean(),
+                               [&](std::size_t row) { return &heightsM(0, row); });
+}
+
+struct DemSource::NodeCache {
+    std::mutex mutex;
+    std::map<std::size_t, NodeHeights> byStep;
+};
+
+NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
+    std::lock_guard lock(nodeCache_->mutex);
+    auto [it, added] = nodeCache_->byStep.try_emplace(stepCells);
+    if (added) {
+        if (held_) {
+            const Grid<float>& z = held_->terrain.heightsM;
+            it->second = nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
+                                             [&](std::size_t row) { return &z(0, row); });
+        } else {
+            it->second = nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
+                                             [&](std::size_t row) { return rowHeightsM(row); });
+        }
+    }
+    return it->second;
+}
+
+DemSource DemSource::open(const std::string& path, const HeightOptions& heights) {
+    Dem dem = openDem(path, heights);
+    const std::size_t width = dem.band.width, height = dem.band.height;
+    HeightStats stats;
+    const std::size_t stripRows = std::max<std::size_t>(1, kStripCells / width);
+    for (std::size_t row0 = 0; row0 < height; row0 += stripRows) {
+        const CellWindow strip{0, row0, width, std::min(height, row0 + stripRows)};
+        stats.add(heightsInMetres(readRasterWindow(path, strip), path, dem.heights));
+    }
+    if (stats.valid == 0) throw Error("'" + path + "' holds no heights: every cell is nodata");
+    DemSource s;
+    s.nodeCache_ = std::make_shared<NodeCache>();
+    const Terrain& t = dem.terrain;
+    s.frame_ = std::make_shared<const GridFrame>(
+        GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence, stats.lo, stats.hi});
+    s.meanHeightM_ = stats.mean();
+    s.geometry_ = geometryOf(std::move(dem), s.frame_);
+    return s;
+}
+
+DemSource::DemSource(Dem dem) : nodeCache_(std::make_shared<NodeCache>()) {
+    // The DEM given is the whole grid, even when it was cut from a larger one.
+    dem.terrain.frame.reset();
+    dem.terrain.frameCol0 = dem.terrain.frameRow0 = 0;
+    frame_ = frameOf(dem.terrain);
+    HeightStats stats;
+    stats.add(dem.terrain.heightsM);
+    meanHeightM_ = stats.mean();
+    held_ = std::make_shared<const Dem>(dem);
+    geometry_ = geometryOf(std::move(dem), frame_);
+}
 
 bool DemSource::isWhole(const CellWindow& w) const {
     return w.col0 == 0 && w.row0 == 0 && w.col1 == width() && w.row1 == height();
@@ -31,26 +136,50 @@ CellWindow DemSource::withHalo(const CellWindow& w, std::size_t haloCells) const
             std::min(height(), w.row1 + std::min(haloCells, height()))};
 }
 
+void DemSource::readCells(const CellWindow& w, Grid<float>& raw, Grid<float>& heightsM, std::size_t& nodata) const {
+    if (held_) {
+        raw = cropGrid(held_->band.values, w);
+        heightsM = cropGrid(held_->terrain.heightsM, w);
+        nodata = 0;
+        for (float v : heightsM.values()) nodata += std::isnan(v) ? 1 : 0;
+        return;
+    }
+    raw = readRasterWindow(path(), w, &nodata);
+    heightsM = heightsInMetres(raw, path(), geometry_.heights);
+}
+
 Dem DemSource::read(const CellWindow& w) const {
     checkWindow(w);
-    if (isWhole(w)) return *dem_;
-    const std::size_t cols = w.col1 - w.col0, rows = w.row1 - w.row0;
+    if (held_ && isWhole(w)) return *held_;
     Dem out;
-    out.crs = dem_->crs;
-    out.toLatLon = dem_->toLatLon;
-    out.band.nodata = dem_->band.nodata;
-    out.band.path = dem_->band.path;
-    out.band.ref = dem_->band.ref;
+    out.crs = geometry_.crs;
+    out.heights = geometry_.heights;
+    out.toLatLon = geometry_.toLatLon;
+    out.band = geometry_.band;  // header: nodata, scale, offset, unit, path, georeference
+    Grid<float> heightsM;
+    readCells(w, out.band.values, heightsM, out.band.nodataCount);
+    if (isWhole(w)) {
+        out.terrain = geometry_.terrain;
+        out.terrain.heightsM = std::move(heightsM);
+        out.terrain.frame.reset();
+        return out;
+    }
     auto& gt = out.band.ref.geoTransform;
     gt[0] += static_cast<double>(w.col0) * gt[1];
     gt[3] += static_cast<double>(w.row0) * gt[5];
-    out.band.values = Grid<float>(cols, rows);
-    for (std::size_t r = 0; r < rows; ++r)
-        for (std::size_t c = 0; c < cols; ++c) out.band.values(c, r) = dem_->band.values(w.col0 + c, w.row0 + r);
-    out.terrain = tileOf(dem_->terrain, w, frame_);
-    out.band.nodataCount = 0;
-    for (float v : out.terrain.heightsM.values()) out.band.nodataCount += std::isnan(v) ? 1 : 0;
+    out.band.width = w.col1 - w.col0;
+    out.band.height = w.row1 - w.row0;
+    out.terrain = tileOf(geometry_.terrain, w, frame_, std::move(heightsM));
     return out;
+}
+
+std::shared_ptr<const Dem> DemSource::readWhole() const {
+    return held_ ? held_ : std::make_shared<const Dem>(read(whole()));
+}
+
+std::vector<float> DemSource::rowHeightsM(std::size_t row) const {
+    const Dem strip = read({0, row, width(), row + 1});
+    return strip.terrain.heightsM.values();
 }
 
 }  // namespace demlight

@@ -1,27 +1,54 @@
-// A DEM as products read it: opened once, read by window. Today the whole DEM is held in
-// memory and a window is cut from it; the interface is the one a streamed source will keep.
+// A DEM as products read it: opened once, read by window. A source opened from a file holds
+// the DEM's geometry only (georeference, CRS, per-row cell sizes, convergence, height range) and
+// reads each window's heights from the file when asked, so no product holds more of the DEM
+// than its window and halo; a source made from a Dem in memory cuts windows from it.
 #pragma once
 
 #include "geo/dem.h"
 #include "src/grid.h"
 
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace demlight {
 
+/// What the sun's lattice needs of a DEM's heights (computeSunField): the heights at the nodes
+/// of a lattice every `stepCells` cells (node (i, j) at cell (min(i * step, w - 1),
+/// min(j * step, h - 1))), at the centre cell (w / 2, h / 2), and the mean valid height.
+struct NodeHeights {
+    Grid<float> nodesM;
+    float centreM = 0;
+    double meanM = 0;
+};
+/// NodeHeights of heights in memory.
+NodeHeights nodeHeights(const Grid<float>& heightsM, std::size_t stepCells);
+
 class DemSource {
 public:
-    /// Opens any path GDAL opens (band 1) and reads its heights in metres (loadDem).
+    /// Opens any path GDAL opens (band 1) for windowed reading: its header and geometry
+    /// (openDem), then one pass over its heights in strips of rows for their range, valid count
+    /// and mean. Throws what loadDem throws (a DEM with no valid cell included).
     static DemSource open(const std::string& path, const HeightOptions& heights = {});
     /// A DEM already in memory (tests, bindings).
     explicit DemSource(Dem dem);
 
-    /// The whole DEM.
-    const Dem& dem() const { return *dem_; }
-    const std::string& path() const { return dem_->band.path; }
-    std::size_t width() const { return dem_->terrain.width(); }
-    std::size_t height() const { return dem_->terrain.height(); }
+    /// The whole DEM without its heights: band header, CRS, height transform, and the terrain's
+    /// per-row cell sizes, latitudes and convergence, with terrain.frame the full grid
+    /// (terrain.heightsM and band.values are empty). Planning, halos and the sun's lattice are
+    /// sized from it (fullGrid).
+    const Dem& geometry() const { return geometry_; }
+    /// The full grid every window's terrain is cut from (heights range included).
+    const std::shared_ptr<const GridFrame>& frame() const { return frame_; }
+    /// The whole DEM when the source holds it in memory (made from a Dem), else null.
+    const Dem* held() const { return held_.get(); }
+    const std::string& path() const { return geometry_.band.path; }
+    std::size_t width() const { return frame_->width; }
+    std::size_t height() const { return frame_->height; }
+    /// Mean of the valid heights (metres), summed in row order as a whole-DEM pass sums them.
+    double meanHeightM() const { return meanHeightM_; }
     /// The window of every cell.
     CellWindow whole() const { return {0, 0, width(), height()}; }
     bool isWhole(const CellWindow& w) const;
@@ -29,13 +56,29 @@ public:
     void checkWindow(const CellWindow& w) const;
     /// `w` grown by haloCells on every side, clipped to the DEM.
     CellWindow withHalo(const CellWindow& w, std::size_t haloCells) const;
-    /// The window as a DEM of its own: heights, per-row geometry (cropTerrain), and the
-    /// georeference of the window's corner.
+    /// The window as a DEM of its own: heights in metres, raw band values, the georeference of
+    /// the window's corner, and a terrain that is a tile of the full grid (tileOf); the whole
+    /// window is the DEM as loadDem reads it (no frame).
     Dem read(const CellWindow& w) const;
+    /// The whole DEM: the one held, or read (read(whole())).
+    std::shared_ptr<const Dem> readWhole() const;
+    /// Heights (metres, NaN for nodata) of one row.
+    std::vector<float> rowHeightsM(std::size_t row) const;
+    /// NodeHeights of the whole DEM, read from the rows the nodes lie on (remembered per step:
+    /// every instant of a period asks for the same).
+    NodeHeights nodeHeights(std::size_t stepCells) const;
 
 private:
-    std::shared_ptr<const Dem> dem_;
-    std::shared_ptr<const GridFrame> frame_;  ///< the whole DEM as the full grid of its windows
+    DemSource() = default;
+    /// Raw values and heights in metres of a window, from the file or the held DEM.
+    void readCells(const CellWindow& w, Grid<float>& raw, Grid<float>& heightsM, std::size_t& nodata) const;
+
+    Dem geometry_;
+    std::shared_ptr<const Dem> held_;
+    std::shared_ptr<const GridFrame> frame_;
+    double meanHeightM_ = 0;
+    struct NodeCache;
+    std::shared_ptr<NodeCache> nodeCache_;
 };
 
 }  // namespace demlight

@@ -189,42 +189,76 @@ void validateUserCreationOptions(GDALDriver* driver, const WriteOptions& options
 
 }  // namespace
 
-RasterBand readRasterBand(const std::string& path) {
-    DatasetPtr ds = openRaster(path);
+namespace {
+
+/// Band 1 of an open dataset: everything but the values.
+RasterBand bandHeader(GDALDataset& ds, const std::string& path) {
     RasterBand out;
     out.path = path;
-    out.ref = readGeoReference(*ds, path);
-
-    GDALRasterBand* band = ds->GetRasterBand(1);
-    const auto width = static_cast<std::size_t>(ds->GetRasterXSize());
-    const auto height = static_cast<std::size_t>(ds->GetRasterYSize());
-    out.values = Grid<float>(width, height);
-    if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(width), static_cast<int>(height),
-                       out.values.data(), static_cast<int>(width), static_cast<int>(height),
-                       GDT_Float32, 0, 0) != CE_None)
-        throw Error(withGdalReason("cannot read the heights of '" + path + "'"));
-
+    out.ref = readGeoReference(ds, path);
+    GDALRasterBand* band = ds.GetRasterBand(1);
+    out.width = static_cast<std::size_t>(ds.GetRasterXSize());
+    out.height = static_cast<std::size_t>(ds.GetRasterYSize());
     out.scale = band->GetScale();
     out.offset = band->GetOffset();
     if (const char* unit = band->GetUnitType()) out.unit = unit;
-
     int hasNodata = 0;
     const double nodata = band->GetNoDataValue(&hasNodata);
     if (hasNodata) out.nodata = nodata;
+    return out;
+}
+
+/// Band 1's values in `w`, nodata (and +-inf) as NaN; returns how many cells are nodata.
+std::size_t readBandWindow(GDALDataset& ds, const RasterBand& header, const CellWindow& w, Grid<float>& values) {
+    const std::size_t cols = w.col1 - w.col0, rows = w.row1 - w.row0;
+    values = Grid<float>(cols, rows);
+    if (ds.GetRasterBand(1)->RasterIO(GF_Read, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
+                                      static_cast<int>(rows), values.data(), static_cast<int>(cols),
+                                      static_cast<int>(rows), GDT_Float32, 0, 0) != CE_None)
+        throw Error(withGdalReason("cannot read the heights of '" + header.path + "'"));
     // Compare in float: integer nodata (-32768, 65535) converts exactly; a Float32 nodata such
     // as -3.4e38 must be compared after the same rounding the values went through.
-    const float nodataF = hasNodata ? static_cast<float>(nodata) : 0.0f;
-    const bool nodataIsNan = hasNodata && std::isnan(nodata);
-    for (float& v : out.values.values()) {
+    const bool hasNodata = header.nodata.has_value();
+    const float nodataF = hasNodata ? static_cast<float>(*header.nodata) : 0.0f;
+    const bool nodataIsNan = hasNodata && std::isnan(*header.nodata);
+    std::size_t count = 0;
+    for (float& v : values.values()) {
         if (std::isnan(v) || (hasNodata && !nodataIsNan && v == nodataF)) {
             v = std::numeric_limits<float>::quiet_NaN();
-            ++out.nodataCount;
+            ++count;
         } else if (!std::isfinite(v)) {
             v = std::numeric_limits<float>::quiet_NaN();  // +-inf heights are treated as nodata
-            ++out.nodataCount;
+            ++count;
         }
     }
+    return count;
+}
+
+}  // namespace
+
+RasterBand readRasterBand(const std::string& path) {
+    DatasetPtr ds = openRaster(path);
+    RasterBand out = bandHeader(*ds, path);
+    out.nodataCount = readBandWindow(*ds, out, {0, 0, out.width, out.height}, out.values);
     return out;
+}
+
+RasterBand readRasterHeader(const std::string& path) {
+    DatasetPtr ds = openRaster(path);
+    return bandHeader(*ds, path);
+}
+
+Grid<float> readRasterWindow(const std::string& path, const CellWindow& window, std::size_t* nodataCount) {
+    DatasetPtr ds = openRaster(path);
+    const RasterBand header = bandHeader(*ds, path);
+    if (!(window.col0 < window.col1 && window.row0 < window.row1 && window.col1 <= header.width &&
+          window.row1 <= header.height))
+        throw Error("window outside the " + std::to_string(header.width) + " x " + std::to_string(header.height) +
+                    " raster '" + path + "'");
+    Grid<float> values;
+    const std::size_t count = readBandWindow(*ds, header, window, values);
+    if (nodataCount) *nodataCount = count;
+    return values;
 }
 
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary) {

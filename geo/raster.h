@@ -28,6 +28,8 @@ struct GeoReference {
 /// converted to metres.
 struct RasterBand {
     Grid<float> values;
+    /// The raster's size in cells (values may hold a window of it, or nothing: readRasterHeader).
+    std::size_t width = 0, height = 0;
     /// The source's nodata value, if it declared one (raw, as declared; kept so outputs can carry
     /// it over).
     std::optional<double> nodata;
@@ -45,6 +47,14 @@ struct RasterBand {
 /// /vsicurl/, ...). Throws Error for missing or unreadable files, rasters without a CRS, and
 /// rotated or sheared geotransforms.
 RasterBand readRasterBand(const std::string& path);
+
+/// Band 1's georeference, nodata, scale, offset, unit and size, without its values (empty);
+/// the checks of readRasterBand.
+RasterBand readRasterHeader(const std::string& path);
+
+/// Band 1's values in `window` (cells of the raster, inside it) as readRasterBand converts them
+/// (NaN for nodata and +-inf). Counts the window's nodata cells into *nodataCount when given.
+Grid<float> readRasterWindow(const std::string& path, const CellWindow& window, std::size_t* nodataCount = nullptr);
 
 struct RasterSummary;
 

@@ -4,29 +4,22 @@
 #include <cmath>
 
 namespace demlight {
-SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
-                         const SpaOptions& options, std::size_t stepCells) {
-    const Terrain& terrain = dem.terrain;
-    const std::size_t w = terrain.width(), h = terrain.height();
-    double sum = 0;
-    std::size_t n = 0;
-    for (float z : terrain.heightsM.values())
-        if (!std::isnan(z)) sum += z, ++n;
-    const double meanHeight = n ? sum / static_cast<double>(n) : 0.0;
 
-    const auto positionAt = [&](double col, double row) {
+namespace {
+
+/// The field on a w x h grid; `dem` places the nodes (cellLatLon), `z` gives their heights.
+SunField sunFieldAtNodes(const Dem& dem, std::size_t w, std::size_t h, const NodeHeights& z, UtcInstant t,
+                         const SolarSite& site, const SpaOptions& options, std::size_t stepCells) {
+    const auto positionAt = [&](double col, double row, float zM) {
         SolarSite s = site;
         std::tie(s.latitudeDeg, s.longitudeDeg) = cellLatLon(dem, col, row);
-        const auto c = std::min(static_cast<std::size_t>(col), w - 1);
-        const auto r = std::min(static_cast<std::size_t>(row), h - 1);
-        const float z = terrain.heightsM(c, r);
-        s.elevationM = std::isnan(z) ? meanHeight : z;
+        s.elevationM = std::isnan(zM) ? z.meanM : zM;
         return solarPosition(s, t, options);
     };
 
     SunField f;
     f.stepCells = stepCells;
-    const SolarPosition centre = positionAt(0.5 * static_cast<double>(w), 0.5 * static_cast<double>(h));
+    const SolarPosition centre = positionAt(0.5 * static_cast<double>(w), 0.5 * static_cast<double>(h), z.centreM);
     f.centreAzimuthDeg = centre.azimuthDeg;
     f.centreElevationDeg = centre.elevationDeg;
     const std::size_t ni = (w - 1) / stepCells + 2, nj = (h - 1) / stepCells + 2;
@@ -36,7 +29,7 @@ SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
         for (std::size_t i = 0; i < ni; ++i) {
             const double col = static_cast<double>(std::min(i * stepCells, w - 1)) + 0.5;
             const double row = static_cast<double>(std::min(j * stepCells, h - 1)) + 0.5;
-            const SolarPosition p = positionAt(col, row);
+            const SolarPosition p = positionAt(col, row, z.nodesM(i, j));
             // Unwrap around the centre azimuth.
             double az = p.azimuthDeg;
             while (az - f.centreAzimuthDeg > 180.0) az -= 360.0;
@@ -46,6 +39,20 @@ SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
         }
     }
     return f;
+}
+
+}  // namespace
+
+SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
+                         const SpaOptions& options, std::size_t stepCells) {
+    return sunFieldAtNodes(dem, dem.terrain.width(), dem.terrain.height(), nodeHeights(dem.terrain.heightsM, stepCells),
+                           t, site, options, stepCells);
+}
+
+SunField computeSunField(const DemSource& source, UtcInstant t, const SolarSite& site,
+                         const SpaOptions& options, std::size_t stepCells) {
+    return sunFieldAtNodes(source.geometry(), source.width(), source.height(), source.nodeHeights(stepCells), t, site,
+                           options, stepCells);
 }
 
 }  // namespace demlight

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "geo/dem.h"
+#include "geo/dem_source.h"
 #include "geo/solar_position.h"
 #include "src/sun_field.h"
 
@@ -11,6 +12,11 @@ namespace demlight {
 /// temperature; latitude, longitude and elevation come from each node (the height from the DEM,
 /// the DEM's mean where a node is nodata).
 SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
+                         const SpaOptions& options, std::size_t stepCells = 64);
+
+/// computeSunField of the source's whole DEM, with the same bits, from the heights at the
+/// lattice's nodes alone (DemSource::nodeHeights).
+SunField computeSunField(const DemSource& source, UtcInstant t, const SolarSite& site,
                          const SpaOptions& options, std::size_t stepCells = 64);
 
 }  // namespace demlight

@@ -817,7 +817,7 @@ ReliefSearch reliefSearch(const Terrain& terrain, double elevationDeg) {
 
 double defaultMaxDistanceM(const Terrain& terrain) {
     const auto [lo, hi] = fullGrid(terrain).heightRangeM();
-    if (terrain.heightsM.empty() || lo > hi) throw Error("horizon: the DEM has no valid heights");
+    if (lo > hi) throw Error("horizon: the DEM has no valid heights");
     return reliefSearch(terrain, kDefaultLowestElevationDeg).distanceM;
 }
 

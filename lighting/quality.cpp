@@ -57,11 +57,12 @@ std::string describe(const std::string& name, double value, const std::string& w
     return name + "=" + describeNumber(value) + " (" + why + ")";
 }
 
-/// Largest ratio of the longer to the shorter cell side over the rows.
+/// Largest ratio of the longer to the shorter cell side over the rows of the full grid.
 double cellAspectRatio(const Terrain& t) {
+    const FullGridRef g = fullGrid(t);
     double ratio = 1;
-    for (std::size_t r = 0; r < t.height(); ++r) {
-        const double w = t.cellWidthM[r], h = t.cellHeightM[r];
+    for (std::size_t r = 0; r < g.height; ++r) {
+        const double w = g.cellWidthM[r], h = g.cellHeightM[r];
         if (w > 0 && h > 0) ratio = std::max(ratio, std::max(w / h, h / w));
     }
     return ratio;
@@ -89,8 +90,9 @@ std::string describeExpectedError(const ExpectedError& e) {
 }
 
 double resolvedElevationDeg(const Terrain& terrain, double maxDistanceM) {
-    if (maxDistanceM >= diagonalM(terrain)) return -90;
-    const auto [lo, hi] = heightRangeM(terrain.heightsM);
+    const FullGridRef g = fullGrid(terrain);
+    if (maxDistanceM >= diagonalM(g)) return -90;
+    const auto [lo, hi] = g.heightRangeM();
     const double relief = std::isfinite(lo) ? static_cast<double>(hi - lo) : 0.0;
     return std::atan(relief / maxDistanceM) * kRadToDeg;
 }
@@ -137,8 +139,10 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
         throw Error("the lowest relevant elevation must be in (0, 90) degrees");
     ScenePlan plan;
     plan.quality = quality;
-    const double diagonal = diagonalM(terrain);
-    const double minCell = std::min(terrain.cellWidthM[terrain.height() / 2], terrain.cellHeightM[terrain.height() / 2]);
+    // Of the full grid: the plan of a DEM is the same whichever window of it is at hand.
+    const FullGridRef g = fullGrid(terrain);
+    const double diagonal = diagonalM(g);
+    const double minCell = std::min(g.cellWidthM[g.height / 2], g.cellHeightM[g.height / 2]);
     const double rEff = kEarthRadiusM / (1.0 - budget.refraction);
 
     if (quality == Quality::Full) {

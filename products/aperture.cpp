@@ -11,7 +11,7 @@ ApertureResult apertureProduct(const DemSource& source, const CellWindow& window
                                const ProgressFn& progress) {
     if (request.directions && *request.directions < 1)
         throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
-    const Terrain& whole = source.dem().terrain;
+    const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t halo = haloCellsFor(whole, integralParams(request.search, plan, whole, directions).maxDistanceM);

@@ -25,8 +25,8 @@ std::vector<double> evenAzimuthsDeg(std::size_t directions) {
 }
 
 std::size_t horizonHaloCells(const DemSource& source, const HorizonRequest& request) {
-    const ScenePlan plan = planFor(request.search, source.dem().terrain);
-    return haloCellsFor(source.dem().terrain, horizonParams(request.search, plan).maxDistanceM);
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    return haloCellsFor(source.geometry().terrain, horizonParams(request.search, plan).maxDistanceM);
 }
 
 namespace {
@@ -74,8 +74,8 @@ HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, 
     if (request.azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
     for (double az : request.azimuthsDeg)
         if (!std::isfinite(az)) throw FieldError("azimuthsDeg", ": " + formatNumber(az) + " is not a finite number");
-    const ScenePlan plan = planFor(request.search, source.dem().terrain);
-    const std::size_t halo = haloCellsFor(source.dem().terrain, horizonParams(request.search, plan).maxDistanceM);
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    const std::size_t halo = haloCellsFor(source.geometry().terrain, horizonParams(request.search, plan).maxDistanceM);
     return onWindow<HorizonResult>(source, window, halo,
                                    [&](const Dem& dem) { return computeHorizons(dem, plan, request, progress); });
 }

@@ -20,7 +20,7 @@ struct LightRasters {
     std::vector<Grid<float>> color;
 };
 
-LightRasters loadRasters(const Dem& dem, const LightRequest& r) {
+LightRasters loadRasters(const DemSource& dem, const LightRequest& r) {
     LightRasters out;
     if (!r.albedoRaster.empty())
         out.albedo = std::move(loadAuxiliaryRaster(r.albedoRaster, dem, {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
@@ -190,12 +190,12 @@ std::vector<Grid<float>> combineLight(const LightTerms& terms) {
 LightResult lightProduct(const DemSource& source, const CellWindow& window, const LightRequest& request,
                          const ProgressFn& progress) {
     validateLight(request);
-    const Dem& whole = source.dem();
+    const Dem& whole = source.geometry();
     const ScenePlan plan = planFor(request.search, whole.terrain);
     // The sun and the rasters of the whole DEM, read by each window: the same bits on its cells
     // (resampling onto a window's own georeference would round its coordinates differently).
-    const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
-    const LightRasters rasters = loadRasters(whole, request);
+    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+    const LightRasters rasters = loadRasters(source, request);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         const double sunDistance = request.search.maxDistanceM.value_or(

@@ -73,11 +73,10 @@ Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_
 }
 
 std::size_t haloCellsFor(const Terrain& terrain, double maxDistanceM) {
-    const std::size_t whole = std::max(terrain.width(), terrain.height());
+    const FullGridRef g = fullGrid(terrain);
+    const std::size_t whole = std::max(g.width, g.height);
     if (!std::isfinite(maxDistanceM)) return whole;
-    double cell = std::numeric_limits<double>::infinity();
-    for (double w : terrain.cellWidthM) cell = std::min(cell, w);
-    for (double h : terrain.cellHeightM) cell = std::min(cell, h);
+    const double cell = g.minCellM();
     if (!(cell > 0) || !std::isfinite(cell)) return whole;
     const double cells = std::ceil(maxDistanceM / cell) + 1;
     return cells >= static_cast<double>(whole) ? whole : static_cast<std::size_t>(cells);
@@ -91,7 +90,7 @@ std::string formatNumber(double value) {
 }
 
 std::string metadataDistanceM(const Terrain& terrain, double metres) {
-    return formatNumber(std::round(std::isfinite(metres) ? metres : diagonalM(terrain)));
+    return formatNumber(std::round(std::isfinite(metres) ? metres : diagonalM(fullGrid(terrain))));
 }
 
 std::map<std::string, std::string> planMetadata(const ScenePlan& plan) {
@@ -148,11 +147,11 @@ ColorEncoding parseColorEncoding(const std::string& name, const std::string& fie
     throw FieldError(field, " '" + name + "': expected auto, srgb or linear");
 }
 
-std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem& dem, const AuxiliarySpec& spec) {
+std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const DemSource& source, const AuxiliarySpec& spec) {
     const std::string what = " " + path;
     std::vector<Grid<float>> bands;
     try {
-        bands = readRasterResampled(path, dem.band.ref, dem.terrain.width(), dem.terrain.height());
+        bands = readRasterResampled(path, source.geometry().band.ref, source.width(), source.height());
     } catch (const Error& e) {
         throw FieldError(spec.field, what + ": " + e.what());
     }
@@ -165,9 +164,11 @@ std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem&
 
     // Coverage: a raster that misses every valid cell of the DEM is a wrong file, not "no data".
     bool covers = false;
-    const float* h = dem.terrain.heightsM.data();
-    for (std::size_t k = 0; k < bands[0].size() && !covers; ++k)
-        covers = !std::isnan(h[k]) && !std::isnan(bands[0].data()[k]);
+    for (std::size_t row = 0; row < source.height() && !covers; ++row) {
+        const std::vector<float> h = source.rowHeightsM(row);
+        for (std::size_t col = 0; col < h.size() && !covers; ++col)
+            covers = !std::isnan(h[col]) && !std::isnan(bands[0](col, row));
+    }
     if (!covers) throw FieldError(spec.field, what + ": covers no cell of the DEM (check its extent and CRS against the DEM's)");
 
     if (spec.color) {

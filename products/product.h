@@ -126,7 +126,7 @@ template <class Result>
 Result onWindow(const DemSource& source, const CellWindow& window, std::size_t haloCells,
                 const std::function<Result(const Dem&)>& compute) {
     source.checkWindow(window);
-    if (source.isWhole(window)) return compute(source.dem());
+    if (source.isWhole(window)) return compute(*source.readWhole());
     const CellWindow read = source.withHalo(window, haloCells);
     Result result = compute(source.read(read));
     cropResult(result, read, window);
@@ -158,6 +158,6 @@ struct AuxiliarySpec {
 /// DEM's grid (NaN where the file has no data), band count, range and coverage checked. Throws
 /// Error naming spec.field and the file: unreadable, too few bands, a value outside the range
 /// (after decoding colour), or no cell of the DEM covered.
-std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const Dem& dem, const AuxiliarySpec& spec);
+std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const DemSource& source, const AuxiliarySpec& spec);
 
 }  // namespace demlight

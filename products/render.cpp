@@ -17,21 +17,22 @@ void validatePicture(const PictureRequest& p) {
         throw FieldError("exposure", " " + formatNumber(p.exposure) + ": must be in [0, 1000]");
 }
 
-std::vector<Grid<float>> loadPictureAlbedo(const Dem& dem, const PictureRequest& p) {
+std::vector<Grid<float>> loadPictureAlbedo(const DemSource& source, const PictureRequest& p) {
     if (p.colorRaster.empty()) return {};
-    return loadAuxiliaryRaster(p.colorRaster, dem, {"colorRaster", 3, true, 0, 1, true, p.colorEncoding});
+    return loadAuxiliaryRaster(p.colorRaster, source, {"colorRaster", 3, true, 0, 1, true, p.colorEncoding});
 }
 
 RenderResult renderProduct(const DemSource& source, const RenderRequest& request, const ProgressFn& progress) {
     validatePicture(request.picture);
     validateSun(request.sunDiameterDeg, Atmosphere{});
-    const Dem& dem = source.dem();
+    const std::shared_ptr<const Dem> whole = source.readWhole();
+    const Dem& dem = *whole;
     const Terrain& t = dem.terrain;
-    const std::vector<Grid<float>> albedo = loadPictureAlbedo(dem, request.picture);
+    const std::vector<Grid<float>> albedo = loadPictureAlbedo(source, request.picture);
     const ScenePlan plan = planFor(request.search, t);
     const std::size_t skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const HorizonParams skyParams = integralParams(request.search, plan, t, skyDirections);
-    const SunField field = sunFieldFor(dem, request.time.utc, Atmosphere{}, plan);
+    const SunField field = sunFieldFor(source, request.time.utc, Atmosphere{}, plan);
     const Normals normals = computeNormals(t, request.search.threads);
     ProgressCounter counter(progress, "render", t.heightsM.size() * (skyDirections + 1));
     const SunFrame frame =

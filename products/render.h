@@ -29,7 +29,7 @@ struct PictureRequest {
 /// Throws Error naming the field of a bad picture request.
 void validatePicture(const PictureRequest& picture);
 /// The colour raster of a picture request on the DEM grid (three linear albedo grids), or none.
-std::vector<Grid<float>> loadPictureAlbedo(const Dem& dem, const PictureRequest& picture);
+std::vector<Grid<float>> loadPictureAlbedo(const DemSource& source, const PictureRequest& picture);
 
 struct RenderRequest {
     ZonedInstant time;

@@ -73,7 +73,7 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
     if (request.directions && (*request.directions < 1))
         throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
-    const Terrain& whole = source.dem().terrain;
+    const Terrain& whole = source.geometry().terrain;
     const bool hemi = request.model == SkyModel::Hemisphere;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t halo =
@@ -84,7 +84,7 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
     // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
     Grid<float> albedo;
     if (!request.albedoRaster.empty())
-        albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source.dem(),
+        albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source,
                                                {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
     return onWindow<SkyResult>(source, window, halo, [&](const Dem& dem) {
         const Terrain& t = dem.terrain;

@@ -102,11 +102,11 @@ SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource&
     return whole.onTile(tile.terrain.frameCol0, tile.terrain.frameRow0, source.width());
 }
 
-SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan) {
+SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan) {
     SolarSite site;
     site.pressureHpa = atmosphere.pressureHpa;
     site.temperatureC = atmosphere.temperatureC;
-    return computeSunField(dem, time, site, SpaOptions{}, plan.sunLatticeStepCells);
+    return computeSunField(source, time, site, SpaOptions{}, plan.sunLatticeStepCells);
 }
 
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
@@ -114,10 +114,10 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
     validateSun(request.sunDiameterDeg, request.atmosphere);
     if (request.directions && *request.directions < 1)
         throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
-    const Dem& whole = source.dem();
+    const Dem& whole = source.geometry();
     const ScenePlan plan = planFor(request.search, whole.terrain);
     // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
-    const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
+    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // The longest search any sun of this instant needs on the whole DEM.

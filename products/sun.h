@@ -42,7 +42,7 @@ struct SunResult : ProductResult {
 };
 
 /// The sun of `time` on the DEM's lattice (every plan.sunLatticeStepCells cells).
-SunField sunFieldFor(const Dem& dem, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan);
+SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere& atmosphere, const ScenePlan& plan);
 /// The whole DEM's field as a window of it (read from `source`) sees it: SunField::onTile at the
 /// window's corner, so the window's cells get the whole DEM's sun bit for bit.
 SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source);

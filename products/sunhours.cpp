@@ -44,7 +44,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     const Terrain& t = dem.terrain;
     // Each instant's sun on the whole DEM, read by this window (the same bits on its cells).
     const auto fieldAt = [&](UtcInstant when, const SolarSite& site) {
-        const SunField field = computeSunField(source.dem(), when, site, SpaOptions{}, plan.sunLatticeStepCells);
+        const SunField field = computeSunField(source, when, site, SpaOptions{}, plan.sunLatticeStepCells);
         return t.frame ? sunFieldOnTile(field, dem, source) : field;
     };
     const Sequence seq = makeSequence(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.zone, r.step);
@@ -144,7 +144,7 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
-    const Terrain& whole = source.dem().terrain;
+    const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {

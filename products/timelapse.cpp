@@ -119,7 +119,7 @@ TimelapseInstants instantsOfDay(const Dem& dem, std::chrono::sys_days date, cons
     f.zone = zone;
     const LocalDay day = localDay(date, zone);
     // Sunrise to sunset at the DEM centre (SPA A.2); the whole day on polar day.
-    const auto [lat, lon] = cellLatLon(dem, dem.terrain.width() / 2.0, dem.terrain.height() / 2.0);
+    const auto [lat, lon] = cellLatLon(dem, static_cast<double>(dem.band.width) / 2.0, static_cast<double>(dem.band.height) / 2.0);
     SolarSite site;
     site.latitudeDeg = lat;
     site.longitudeDeg = lon;
@@ -171,9 +171,10 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
         throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
     validatePicture(request.picture);
     validateSun(request.sunDiameterDeg, Atmosphere{});
-    const Dem& dem = source.dem();
+    const std::shared_ptr<const Dem> whole = source.readWhole();
+    const Dem& dem = *whole;
     const Terrain& t = dem.terrain;
-    const std::vector<Grid<float>> albedo = loadPictureAlbedo(dem, request.picture);
+    const std::vector<Grid<float>> albedo = loadPictureAlbedo(source, request.picture);
 
     const auto tStart = Clock::now();
     const ScenePlan plan = planFor(request.search, t);
@@ -217,7 +218,7 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
         request.stackDirections > 0 ? "sweep, interpolated:" + std::to_string(request.stackDirections) : "sweep";
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = instants[i];
-        const SunField field = sunFieldFor(dem, when, Atmosphere{}, plan);
+        const SunField field = sunFieldFor(source, when, Atmosphere{}, plan);
         SunFrame frame;
         TimelapseFrame out;
         if (request.stackDirections > 0) {

@@ -70,12 +70,9 @@ double diagonalM(const FullGridRef& g) {
 
 namespace {
 
-/// Heights and per-row geometry of a window (no convergence).
-Terrain cutCells(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+/// Per-row geometry of a window (no heights, no convergence).
+Terrain cutRows(const Terrain& t, std::size_t row0, std::size_t h) {
     Terrain out;
-    out.heightsM = Grid<float>(w, h);
-    for (std::size_t r = 0; r < h; ++r)
-        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
     const auto slice = [](const std::vector<double>& v, std::size_t from, std::size_t n) {
         return v.empty() ? std::vector<double>{} : std::vector<double>(v.begin() + static_cast<long>(from),
                                                                       v.begin() + static_cast<long>(from + n));
@@ -84,6 +81,25 @@ Terrain cutCells(const Terrain& t, std::size_t col0, std::size_t row0, std::size
     out.cellHeightM = slice(t.cellHeightM, row0, h);
     out.rowLatitudeDeg = slice(t.rowLatitudeDeg, row0, h);
     return out;
+}
+
+/// Heights and per-row geometry of a window (no convergence).
+Terrain cutCells(const Terrain& t, std::size_t col0, std::size_t row0, std::size_t w, std::size_t h) {
+    Terrain out = cutRows(t, row0, h);
+    out.heightsM = Grid<float>(w, h);
+    for (std::size_t r = 0; r < h; ++r)
+        for (std::size_t c = 0; c < w; ++c) out.heightsM(c, r) = t.heightsM(col0 + c, row0 + r);
+    return out;
+}
+
+/// A tile's convergence (the same lattice, offset) and frame.
+void placeTile(const Terrain& t, const CellWindow& w, std::shared_ptr<const GridFrame> frame, Terrain& out) {
+    out.convergence = t.convergence;
+    out.convergence.colOffset += static_cast<double>(w.col0);
+    out.convergence.rowOffset += static_cast<double>(w.row0);
+    out.frame = std::move(frame);
+    out.frameCol0 = t.frameCol0 + w.col0;
+    out.frameRow0 = t.frameRow0 + w.row0;
 }
 
 }  // namespace
@@ -114,12 +130,15 @@ Terrain tileOf(const Terrain& t, const CellWindow& w) { return tileOf(t, w, fram
 
 Terrain tileOf(const Terrain& t, const CellWindow& w, std::shared_ptr<const GridFrame> frame) {
     Terrain out = cutCells(t, w.col0, w.row0, w.col1 - w.col0, w.row1 - w.row0);
-    out.convergence = t.convergence;
-    out.convergence.colOffset += static_cast<double>(w.col0);
-    out.convergence.rowOffset += static_cast<double>(w.row0);
-    out.frame = std::move(frame);
-    out.frameCol0 = t.frameCol0 + w.col0;
-    out.frameRow0 = t.frameRow0 + w.row0;
+    placeTile(t, w, std::move(frame), out);
+    return out;
+}
+
+Terrain tileOf(const Terrain& geometry, const CellWindow& w, std::shared_ptr<const GridFrame> frame,
+               Grid<float> heightsM) {
+    Terrain out = cutRows(geometry, w.row0, w.row1 - w.row0);
+    out.heightsM = std::move(heightsM);
+    placeTile(geometry, w, std::move(frame), out);
     return out;
 }
 

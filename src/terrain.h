@@ -113,6 +113,11 @@ Terrain tileOf(const Terrain& t, const CellWindow& window);
 /// tileOf with the frame of `t` (frameOf) made once by the caller, for one who cuts many tiles:
 /// the frame's height range is a pass over every cell.
 Terrain tileOf(const Terrain& t, const CellWindow& window, std::shared_ptr<const GridFrame> frame);
+/// tileOf with the heights given: `geometry` supplies the per-row cell sizes, latitudes and
+/// convergence of the grid the window is on (its heights are not read and may be empty), so a
+/// source that reads windows from disk makes the tiles tileOf cuts from a terrain in memory.
+Terrain tileOf(const Terrain& geometry, const CellWindow& window, std::shared_ptr<const GridFrame> frame,
+               Grid<float> heightsM);
 /// The frame a tile of `t` carries: t's own, or t as a full grid.
 std::shared_ptr<const GridFrame> frameOf(const Terrain& t);
 

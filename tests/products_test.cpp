@@ -71,8 +71,8 @@ TEST(Products, EveryRasterProductKeepsTheDemGeoreferenceAndNamesItsBands) {
     EXPECT_EQ(apertureProduct(dem, dem.whole(), ap).bands.size(), 5u);
 
     for (const ProductResult* r : std::initializer_list<const ProductResult*>{&hr.horizons, &sr, &su}) {
-        EXPECT_EQ(r->ref.geoTransform, dem.dem().band.ref.geoTransform);
-        EXPECT_EQ(r->ref.crsWkt, dem.dem().band.ref.crsWkt);
+        EXPECT_EQ(r->ref.geoTransform, dem.geometry().band.ref.geoTransform);
+        EXPECT_EQ(r->ref.crsWkt, dem.geometry().band.ref.crsWkt);
         EXPECT_EQ(r->metadata.at("DEMLIGHT_INPUT"), kRocky);
         for (const auto& b : r->bands) {
             EXPECT_EQ(b.values.width(), dem.width()) << b.name;
@@ -237,7 +237,7 @@ TEST(Products, AWindowIsTheWholeDemsAnswerOnItsCells) {
     const CellWindow w{40, 50, 100, 130};
     const HorizonResult whole = horizonProduct(dem, dem.whole(), r);
     const HorizonResult part = horizonProduct(dem, w, r);
-    const auto& gt = dem.dem().band.ref.geoTransform;
+    const auto& gt = dem.geometry().band.ref.geoTransform;
     EXPECT_DOUBLE_EQ(part.horizons.ref.geoTransform[0], gt[0] + 40 * gt[1]);
     EXPECT_DOUBLE_EQ(part.horizons.ref.geoTransform[3], gt[3] + 50 * gt[5]);
     const Grid<float>& p = part.horizons.bands[0].values;
@@ -327,7 +327,7 @@ TEST(Products, RenderDrawsSquareGroundPixels) {
     EXPECT_EQ(cell.image.width, dem.width());
     EXPECT_EQ(cell.image.height, dem.height());
     const std::size_t mid = dem.height() / 2;
-    const double aspect = dem.dem().terrain.cellWidthM[mid] / dem.dem().terrain.cellHeightM[mid];
+    const double aspect = dem.geometry().terrain.cellWidthM[mid] / dem.geometry().terrain.cellHeightM[mid];
     EXPECT_EQ(ground.image.height, dem.height());
     EXPECT_EQ(ground.image.width, static_cast<std::size_t>(std::lround(static_cast<double>(dem.width()) * aspect)));
     EXPECT_LT(ground.image.width, dem.width());
@@ -335,7 +335,7 @@ TEST(Products, RenderDrawsSquareGroundPixels) {
 }
 
 TEST(Products, DescribeDemReportsTheGrid) {
-    const DemInfo d = describeDem(rocky().dem());
+    const DemInfo d = describeDem(*rocky().readWhole());
     EXPECT_EQ(d.width, 152u);
     EXPECT_EQ(d.height, 187u);
     EXPECT_NEAR(d.elevationMinM, 2281, 1);  // the sample's provenance table: 2281 / 4261 m
