@@ -5,7 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace demlight::cli {
 
@@ -27,5 +29,18 @@ void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);
+
+/// Makes `app` demlight's root command: --version, -q, every command above, and argument errors
+/// in demlight's one-line form (cli/command_line.cpp). main() parses with it, and so does the
+/// command-line fuzzer (fuzz/cli_args_fuzz.cpp) with the commands' callbacks replaced.
+void registerCommands(CLI::App& app, CliContext& ctx);
+
+/// The arguments (argv without the program name) as the root command parses them: GDAL's
+/// one-dash -of and -co accepted as --of and --co, and reversed, as CLI11 takes them.
+std::vector<std::string> parserArguments(std::vector<std::string> args);
+
+/// The error for a first word that names no command (a mistyped command, not a missing one);
+/// nothing when the first word is a command or an option.
+std::optional<std::string> unknownCommandMessage(const CLI::App& app, const std::vector<std::string>& reversedArgs);
 
 }  // namespace demlight::cli

@@ -9,7 +9,6 @@
 #include <malloc.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -27,9 +26,6 @@ enum ExitCode : int {
     kExitInternal = 3,      ///< a bug: any other exception
     kExitCancelled = 130,   ///< stopped by SIGINT (Ctrl-C), SIGTERM or SIGHUP at a safe point (128 + SIGINT)
 };
-constexpr const char* kExitCodesHelp =
-    "Exit codes: 0 done, 1 error (input, options, output), 2 bad command line, 3 internal error, "
-    "130 cancelled (Ctrl-C, SIGTERM); a second Ctrl-C ends it at once, killed by SIGINT.";
 
 /// The first Ctrl-C (SIGTERM, SIGHUP): stop at the next safe point, and say so. Runs in the
 /// signal handler (geo/signals.h): async-signal-safe calls only.
@@ -37,20 +33,6 @@ void onFirstInterrupt() noexcept {
     demlight::cli::requestCancel();
     static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";
     [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
-}
-
-/// An unknown first word is a mistyped command, not a missing one: its message, or empty. The
-/// global flags before it (-q, --quiet) take no value, so it is the first argument that is not a
-/// flag. `reversed` is the command line as CLI11 takes it.
-std::string unknownCommand(const CLI::App& app, const std::vector<std::string>& reversed) {
-    const auto word = std::find_if(reversed.rbegin(), reversed.rend(), [](const std::string& a) { return !a.starts_with('-'); });
-    if (word == reversed.rend() || word->empty()) return {};
-    std::string names;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-        if (sub->get_name() == *word) return {};
-        names += (names.empty() ? "" : ", ") + sub->get_name();
-    }
-    return "unknown command '" + *word + "' (commands: " + names + ")";
 }
 
 }  // namespace
@@ -69,39 +51,11 @@ int main(int argc, char** argv) {
         ctx.commandLine += argv[i];
     }
 
-    CLI::App app{"demlight " DEMLIGHT_VERSION ": light real terrain from a georeferenced DEM"};
-    app.set_version_flag("--version", "demlight " DEMLIGHT_VERSION);
-    app.add_flag("-q,--quiet", ctx.quiet, "No progress output");
-    app.require_subcommand(1);
-    app.footer(kExitCodesHelp);
-    app.fallthrough();  // subcommands inherit it: -q also works after the subcommand
-    cli::registerInfo(app, ctx);
-    cli::registerSunpos(app, ctx);
-    cli::registerHorizon(app, ctx);
-    cli::registerSun(app, ctx);
-    cli::registerSky(app, ctx);
-    cli::registerAperture(app, ctx);
-    cli::registerLight(app, ctx);
-    cli::registerRender(app, ctx);
-    cli::registerTimelapse(app, ctx);
-    cli::registerSunhours(app, ctx);
-    cli::registerSequence(app, ctx);
-    for (CLI::App* sub : app.get_subcommands({})) sub->footer(kExitCodesHelp);
-
-    // GDAL spells these with one dash (-of COG, -co KEY=VALUE); accept both spellings.
-    std::vector<std::string> args(argv + 1, argv + argc);
-    for (auto& a : args)
-        if (a == "-of" || a == "-co") a = "-" + a;
-    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
-
-    // Argument errors in the same form as the others, naming the command's own help.
-    app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
-        std::string help = "demlight";
-        if (failed && !failed->get_subcommands().empty()) help += " " + failed->get_subcommands().front()->get_name();
-        return std::string("demlight: error: ") + e.what() + "\nRun '" + help + " --help' for the options.\n";
-    });
-    if (const std::string unknown = unknownCommand(app, args); !unknown.empty()) {
-        std::cerr << "demlight: error: " << unknown << "\n";
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    std::vector<std::string> args = cli::parserArguments({argv + 1, argv + argc});
+    if (const auto unknown = cli::unknownCommandMessage(app, args)) {
+        std::cerr << *unknown << "\n";
         return kExitUsage;
     }
 

@@ -167,6 +167,11 @@ ParsedFields scanInstant(const std::string& text) {
     if (f.hour > 23) s.fail("hour " + std::to_string(f.hour) + " is not 00-23");
     if (f.minute > 59) s.fail("minute " + std::to_string(f.minute) + " is not 00-59");
     if (f.second > 59) s.fail("second " + std::to_string(f.second) + " is not 00-59 (no leap seconds)");
+    // Rounding to the millisecond must not carry past the last time a four-digit year can
+    // write: demlight could not read its own output of 10000-01-01T00:00:00.
+    if (f.millis == 1000 && f.year == 9999 && f.month == 12 && f.day == 31 && f.hour == 23 && f.minute == 59 &&
+        f.second == 59)
+        s.fail("rounds to the millisecond past 9999-12-31T23:59:59.999, the last time the format can write");
     return f;
 }
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages demlight needs, only those that are missing.
+# Installs the Debian 12 packages demlight needs, only those that are missing (clang and its
+# runtime libraries: the asan preset and the libFuzzer targets).
 # Runs apt-get as root, or through sudo when not root.
 set -euo pipefail
 
@@ -8,6 +9,7 @@ packages=(
   libgdal-dev gdal-bin libgeographiclib-dev libopenimageio-dev openimageio-tools libglm-dev
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
   nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox python3
+  clang libclang-rt-dev
 )
 
 missing=()

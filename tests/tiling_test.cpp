@@ -19,6 +19,8 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -60,7 +62,23 @@ std::size_t tiledMismatches(const Terrain& whole, const HorizonParams& params, s
 struct Case {
     const char* dem;
     std::size_t cropW, cropH;
+    bool bundled = false;  ///< a sample of the repository (samples/), not of ../shared
+    std::size_t sweepTiles[3] = {61, 256, 777};
+    std::size_t productTiles[2] = {173, 300};
+    std::size_t productCropW = 520, productCropH = 430;  ///< centre window the products run on
 };
+
+std::string casePath(const Case& c) {
+    return c.bundled ? std::string(DEMLIGHT_SAMPLES_DIR) + "/" + c.dem : sharedDemPath(c.dem);
+}
+
+/// The case's DEM cropped to its centre (cropW x cropH when both > 0); nullopt when absent.
+std::optional<Terrain> caseTerrain(const Case& c) {
+    if (!std::filesystem::exists(casePath(c))) return std::nullopt;
+    Terrain t = loadDem(casePath(c)).terrain;
+    if (c.cropW > 0 && c.cropH > 0) t = cropTerrainCentre(t, c.cropW, c.cropH);
+    return t;
+}
 
 // One geographic DEM (per-row cell widths), one UTM (convergence), one at 78° N (UTM 33N:
 // strong convergence, regions split in both axes).
@@ -70,11 +88,18 @@ const Case kCases[] = {
     {"svalbard_longyearbyen_npi_dtm20.tif", 800, 700},
 };
 
+// The bundled samples, small enough for the sanitizer run (the real DEMs above run in Release
+// only): one geographic, one projected (NAD27 UTM, with convergence) with its edges' nodata.
+const Case kSamples[] = {
+    {"rocky_mountain_np_dem.tif", 0, 0, true, {23, 61, 100}, {90, 90}, 152, 120},
+    {"mount_st_helens_1980_usgs.dem", 0, 0, true, {53, 120, 400}, {70, 70}, 140, 120},
+};
+
 class TiledSweep : public ::testing::TestWithParam<Case> {};
 
 TEST_P(TiledSweep, TilesWithHalosAreTheWholeDemsBits) {
     const Case c = GetParam();
-    const auto t = sharedTerrain(c.dem, c.cropW, c.cropH);
+    const auto t = caseTerrain(c);
     if (!t) GTEST_SKIP() << c.dem << " absent";
     for (const double azimuth : {0.0, 37.0, 90.0, 143.5, 225.0, 301.0}) {
         for (const double distance : {3000.0, std::numeric_limits<double>::infinity()}) {
@@ -83,7 +108,7 @@ TEST_P(TiledSweep, TilesWithHalosAreTheWholeDemsBits) {
             p.maxDistanceM = distance;
             p.threads = 2;
             // Tiles smaller than the halo, an odd size, and one larger than the DEM's side.
-            for (const std::size_t tile : {std::size_t{61}, std::size_t{256}, std::size_t{777}}) {
+            for (const std::size_t tile : c.sweepTiles) {
                 EXPECT_EQ(tiledMismatches(*t, p, tile), 0u)
                     << c.dem << " azimuth " << azimuth << " distance " << distance << " tile " << tile;
             }
@@ -93,7 +118,7 @@ TEST_P(TiledSweep, TilesWithHalosAreTheWholeDemsBits) {
 
 TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
     const Case c = GetParam();
-    const auto t = sharedTerrain(c.dem, c.cropW, c.cropH);
+    const auto t = caseTerrain(c);
     if (!t) GTEST_SKIP() << c.dem << " absent";
     for (const double azimuth : {11.25, 191.25}) {
         HorizonParams p;
@@ -101,18 +126,20 @@ TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
         p.maxDistanceM = 2500;
         p.nearestLine = true;
         p.threads = 2;
-        EXPECT_EQ(tiledMismatches(*t, p, 200), 0u) << c.dem << " azimuth " << azimuth;
+        EXPECT_EQ(tiledMismatches(*t, p, c.sweepTiles[1]), 0u) << c.dem << " azimuth " << azimuth;
     }
 }
 
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledSweep, ::testing::ValuesIn(kCases),
                          [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
+INSTANTIATE_TEST_SUITE_P(Samples, TiledSweep, ::testing::ValuesIn(kSamples),
+                         [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
 
 // ---- Products: every raster product, window by window -----------------------------------------
 
 /// The centre window of a shared DEM as a DEM of its own (no frame: it is the whole DEM here).
-std::optional<DemSource> sharedSource(const std::string& name, std::size_t cols, std::size_t rows) {
-    const std::string path = sharedDemPath(name);
+std::optional<DemSource> caseSource(const Case& c, std::size_t cols, std::size_t rows) {
+    const std::string path = casePath(c);
     if (!std::filesystem::exists(path)) return std::nullopt;
     const DemSource full = DemSource::open(path);
     cols = std::min(cols, full.width()), rows = std::min(rows, full.height());
@@ -220,16 +247,18 @@ class TiledProducts : public ::testing::TestWithParam<Case> {};
 
 TEST_P(TiledProducts, WindowsGiveTheWholeDemsBitsForEveryProduct) {
     const Case c = GetParam();
-    const auto source = sharedSource(c.dem, 520, 430);
+    const auto source = caseSource(c, c.productCropW, c.productCropH);
     if (!source) GTEST_SKIP() << c.dem << " absent";
     for (const ProductCase& p : productCases()) {
-        for (const std::size_t tile : {std::size_t{173}, std::size_t{300}}) {
+        for (const std::size_t tile : std::set<std::size_t>(std::begin(c.productTiles), std::end(c.productTiles))) {
             EXPECT_EQ(windowMismatches(*source, p.run, tile), 0u) << c.dem << " " << p.name << " tile " << tile;
         }
     }
 }
 
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledProducts, ::testing::ValuesIn(kCases),
+                         [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
+INSTANTIATE_TEST_SUITE_P(Samples, TiledProducts, ::testing::ValuesIn(kSamples),
                          [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
 
 TEST(TiledSweep, ATileKnowsTheFullGridItWasCutFrom) {
