@@ -18,7 +18,7 @@ struct ApertureOptions {
 
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     ApertureRequest request;
     request.directions = o.directions;
     request.search = o.search.request;

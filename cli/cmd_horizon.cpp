@@ -31,7 +31,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const std::string masks = truncationPath(o.out.path);
     checkOutputPath(masks, o.dem.path);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     HorizonRequest request;
     request.azimuthsDeg = o.azimuthsDeg;
     for (double az : evenAzimuthsDeg(static_cast<std::size_t>(o.directions))) request.azimuthsDeg.push_back(az);

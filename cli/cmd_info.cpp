@@ -83,25 +83,24 @@ void printText(const std::string& path, const Dem& dem, const DemInfo& d) {
                 kInfoLowSunDeg, kInfoLowSunDeg);
 }
 
-void runInfo(const InfoOptions& o) {
-    const DemSource source = openDem(o.dem);
-    const std::shared_ptr<const Dem> whole = source.readWhole();
-    const DemInfo d = describeDem(*whole);
+void runInfo(const InfoOptions& o, const CliContext& ctx) {
+    const DemSource source = openDem(o.dem, ctx);
+    const DemInfo d = describeDem(source);
     if (o.json)
-        printJson(o.dem.path, *whole, d);
+        printJson(o.dem.path, source.geometry(), d);
     else
-        printText(o.dem.path, *whole, d);
+        printText(o.dem.path, source.geometry(), d);
 }
 
 }  // namespace
 
-void registerInfo(CLI::App& app, CliContext&) {
+void registerInfo(CLI::App& app, CliContext& ctx) {
     auto opts = std::make_shared<InfoOptions>();
     CLI::App* cmd = app.add_subcommand("info", "Describe a DEM: size, CRS, extent, metric cell size, "
                                                "elevations, nodata, convergence");
     addDemArgument(cmd, opts->dem);
     cmd->add_flag("--json", opts->json, "Print one JSON object instead of text");
-    cmd->callback([opts] { runInfo(*opts); });
+    cmd->callback([opts, &ctx] { runInfo(*opts, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -49,7 +49,7 @@ LightRequest lightRequest(const LightOptions& o) {
 void runLight(const LightOptions& o, const CliContext& ctx) {
     const LightRequest request = lightRequest(o);
     checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 3, ctx);
     const auto start = std::chrono::steady_clock::now();

@@ -29,7 +29,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
     request.search = o.search.request;
     checkOutputPath(o.outPath, o.dem.path);
     checkImagePath(o.outPath);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
     const auto start = std::chrono::steady_clock::now();
     ProgressBar bar(!ctx.quiet);

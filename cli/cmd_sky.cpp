@@ -34,7 +34,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     request.albedoRaster = o.albedoRaster;
     request.search = o.search.request;
     const auto loadStart = std::chrono::steady_clock::now();
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     const double loadSeconds = secondsSince(loadStart);
     if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.geometry().terrain, ctx);
 

@@ -32,7 +32,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     if (request.model == SunModel::Horizon && o.directions)
         note(ctx, "note: --sky-directions is used by the aperture models only; --model horizon sweeps the sun's azimuth");
     checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2, ctx);
     const auto start = std::chrono::steady_clock::now();

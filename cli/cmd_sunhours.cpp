@@ -50,7 +50,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o);
     checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
     const auto start = std::chrono::steady_clock::now();

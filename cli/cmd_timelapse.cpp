@@ -206,7 +206,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
     checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
-    const DemSource dem = openDem(o.dem);
+    const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
     std::error_code ec;
     fs::create_directories(o.outDir, ec);

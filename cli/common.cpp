@@ -69,9 +69,12 @@ void addDemArgument(CLI::App* cmd, DemOptions& o) {
     zUnit->excludes(zFactor);
 }
 
-DemSource openDem(const DemOptions& o) {
+DemSource openDem(const DemOptions& o, const CliContext& ctx) {
     try {
-        return DemSource::open(o.path, o.heights);
+        ProgressBar bar(!ctx.quiet);
+        DemSource source = DemSource::open(o.path, o.heights, bar.callback());
+        bar.finish();
+        return source;
     } catch (const Cancelled&) {
         throw;
     } catch (const Error& e) {

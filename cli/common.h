@@ -36,7 +36,7 @@ struct DemOptions {
     HeightOptions heights;  ///< --z-unit, --z-factor
 };
 void addDemArgument(CLI::App* cmd, DemOptions& o);
-DemSource openDem(const DemOptions& o);
+DemSource openDem(const DemOptions& o, const CliContext& ctx);
 
 /// --max-distance, --refraction, --threads, --quality, --tolerance and -v into a SearchRequest.
 struct SearchOptions {

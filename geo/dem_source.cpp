@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 namespace demlight {
 
@@ -66,28 +68,38 @@ NodeHeights nodeHeights(const Grid<float>& heightsM, std::size_t stepCells) {
                                [&](std::size_t row) { return &heightsM(0, row); });
 }
 
-struct DemSource::NodeCache {
+struct DemSource::Derived {
     std::mutex mutex;
-    std::map<std::size_t, NodeHeights> byStep;
+    std::map<std::string, std::shared_ptr<const void>> values;
+    std::size_t bytes = 0;
 };
 
-NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
-    std::lock_guard lock(nodeCache_->mutex);
-    auto [it, added] = nodeCache_->byStep.try_emplace(stepCells);
-    if (added) {
-        if (held_) {
-            const Grid<float>& z = held_->terrain.heightsM;
-            it->second = nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
-                                             [&](std::size_t row) { return &z(0, row); });
-        } else {
-            it->second = nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
-                                             [&](std::size_t row) { return rowHeightsM(row); });
-        }
-    }
-    return it->second;
+std::shared_ptr<const void> DemSource::findDerived(const std::string& key) const {
+    std::lock_guard lock(derived_->mutex);
+    const auto it = derived_->values.find(key);
+    return it == derived_->values.end() ? nullptr : it->second;
 }
 
-DemSource DemSource::open(const std::string& path, const HeightOptions& heights) {
+void DemSource::keepDerived(const std::string& key, std::size_t bytes, std::shared_ptr<const void> value) const {
+    std::lock_guard lock(derived_->mutex);
+    if (derived_->bytes + bytes > kDerivedBytes) return;
+    if (derived_->values.try_emplace(key, std::move(value)).second) derived_->bytes += bytes;
+}
+
+NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
+    const std::size_t nodes = nodeCount(width(), stepCells) * nodeCount(height(), stepCells);
+    return *derived<NodeHeights>("node heights every " + std::to_string(stepCells), nodes * sizeof(float), [&] {
+        if (held_) {
+            const Grid<float>& z = held_->terrain.heightsM;
+            return nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
+                                       [&](std::size_t row) { return &z(0, row); });
+        }
+        return nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
+                                   [&](std::size_t row) { return rowHeightsM(row); });
+    });
+}
+
+DemSource DemSource::open(const std::string& path, const HeightOptions& heights, const ProgressFn& progress) {
     Dem dem = openDem(path, heights);
     const std::size_t width = dem.band.width, height = dem.band.height;
     HeightStats stats;
@@ -95,19 +107,24 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights)
     for (std::size_t row0 = 0; row0 < height; row0 += stripRows) {
         const CellWindow strip{0, row0, width, std::min(height, row0 + stripRows)};
         stats.add(heightsInMetres(readRasterWindow(path, strip), path, dem.heights));
+        if (progress && stripRows < height &&
+            !progress(static_cast<double>(strip.row1) / static_cast<double>(height), "reading DEM"))
+            throw Cancelled();
     }
     if (stats.valid == 0) throw Error("'" + path + "' holds no heights: every cell is nodata");
     DemSource s;
-    s.nodeCache_ = std::make_shared<NodeCache>();
+    s.derived_ = std::make_shared<Derived>();
     const Terrain& t = dem.terrain;
     s.frame_ = std::make_shared<const GridFrame>(
         GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence, stats.lo, stats.hi});
     s.meanHeightM_ = stats.mean();
+    s.validCells_ = stats.valid;
+    dem.band.nodataCount = width * height - stats.valid;
     s.geometry_ = geometryOf(std::move(dem), s.frame_);
     return s;
 }
 
-DemSource::DemSource(Dem dem) : nodeCache_(std::make_shared<NodeCache>()) {
+DemSource::DemSource(Dem dem) : derived_(std::make_shared<Derived>()) {
     // The DEM given is the whole grid, even when it was cut from a larger one.
     dem.terrain.frame.reset();
     dem.terrain.frameCol0 = dem.terrain.frameRow0 = 0;
@@ -115,6 +132,7 @@ DemSource::DemSource(Dem dem) : nodeCache_(std::make_shared<NodeCache>()) {
     HeightStats stats;
     stats.add(dem.terrain.heightsM);
     meanHeightM_ = stats.mean();
+    validCells_ = stats.valid;
     held_ = std::make_shared<const Dem>(dem);
     geometry_ = geometryOf(std::move(dem), frame_);
 }

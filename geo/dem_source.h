@@ -6,10 +6,9 @@
 
 #include "geo/dem.h"
 #include "src/grid.h"
+#include "src/progress.h"
 
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -30,8 +29,10 @@ class DemSource {
 public:
     /// Opens any path GDAL opens (band 1) for windowed reading: its header and geometry
     /// (openDem), then one pass over its heights in strips of rows for their range, valid count
-    /// and mean. Throws what loadDem throws (a DEM with no valid cell included).
-    static DemSource open(const std::string& path, const HeightOptions& heights = {});
+    /// and mean. Throws what loadDem throws (a DEM with no valid cell included). `progress`
+    /// hears of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and
+    /// stops it (Cancelled) by returning false.
+    static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});
     /// A DEM already in memory (tests, bindings).
     explicit DemSource(Dem dem);
 
@@ -49,6 +50,8 @@ public:
     std::size_t height() const { return frame_->height; }
     /// Mean of the valid heights (metres), summed in row order as a whole-DEM pass sums them.
     double meanHeightM() const { return meanHeightM_; }
+    /// Cells with a height (not nodata).
+    std::size_t validCells() const { return validCells_; }
     /// The window of every cell.
     CellWindow whole() const { return {0, 0, width(), height()}; }
     bool isWhole(const CellWindow& w) const;
@@ -68,6 +71,20 @@ public:
     /// every instant of a period asks for the same).
     NodeHeights nodeHeights(std::size_t stepCells) const;
 
+    /// A value derived from the whole DEM that every window of a job needs again (the sun's
+    /// lattice at an instant, node heights, auxiliary rasters resampled onto the grid): `make`
+    /// runs on the first call for `key`, later calls (from any window, any thread) return the
+    /// same value. Values are kept while the source lives, up to kDerivedBytes in all (`bytes`
+    /// is the value's size); past that a value is made and not kept.
+    template <class T, class Make>
+    std::shared_ptr<const T> derived(const std::string& key, std::size_t bytes, const Make& make) const {
+        if (auto kept = findDerived(key)) return std::static_pointer_cast<const T>(kept);
+        auto value = std::make_shared<const T>(make());
+        keepDerived(key, bytes, value);
+        return value;
+    }
+    static constexpr std::size_t kDerivedBytes = std::size_t{512} << 20;
+
 private:
     DemSource() = default;
     /// Raw values and heights in metres of a window, from the file or the held DEM.
@@ -77,8 +94,11 @@ private:
     std::shared_ptr<const Dem> held_;
     std::shared_ptr<const GridFrame> frame_;
     double meanHeightM_ = 0;
-    struct NodeCache;
-    std::shared_ptr<NodeCache> nodeCache_;
+    std::size_t validCells_ = 0;
+    std::shared_ptr<const void> findDerived(const std::string& key) const;
+    void keepDerived(const std::string& key, std::size_t bytes, std::shared_ptr<const void> value) const;
+    struct Derived;
+    std::shared_ptr<Derived> derived_;  ///< shared by copies of the source
 };
 
 }  // namespace demlight

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 namespace demlight {
 
@@ -51,8 +53,18 @@ SunField computeSunField(const Dem& dem, UtcInstant t, const SolarSite& site,
 
 SunField computeSunField(const DemSource& source, UtcInstant t, const SolarSite& site,
                          const SpaOptions& options, std::size_t stepCells) {
-    return sunFieldAtNodes(source.geometry(), source.width(), source.height(), source.nodeHeights(stepCells), t, site,
-                           options, stepCells);
+    // Every window of a job asks for the same instant's field: made once per source.
+    std::ostringstream key;
+    key.precision(17);
+    key << "sun field " << t.time_since_epoch().count() << " " << site.pressureHpa << " " << site.temperatureC << " "
+        << site.latitudeDeg << " " << site.longitudeDeg << " " << site.elevationM << " "
+        << options.deltaTSec.value_or(std::numeric_limits<double>::quiet_NaN()) << " " << options.sunRadiusDeg << " "
+        << options.horizonRefractionDeg << " " << stepCells;
+    const std::size_t nodes = ((source.width() - 1) / stepCells + 2) * ((source.height() - 1) / stepCells + 2);
+    return *source.derived<SunField>(key.str(), 2 * nodes * sizeof(float), [&] {
+        return sunFieldAtNodes(source.geometry(), source.width(), source.height(), source.nodeHeights(stepCells), t, site,
+                               options, stepCells);
+    });
 }
 
 }  // namespace demlight

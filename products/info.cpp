@@ -9,18 +9,18 @@ namespace {
 /// Points per DEM edge when finding the lat/lon extent of a projected DEM.
 constexpr int kEdgeSamples = 16;
 
-}  // namespace
-
-DemInfo describeDem(const Dem& dem) {
+/// `dem` for its georeference and per-row geometry (its heights are not read).
+DemInfo describeGrid(const Dem& dem, std::size_t width, std::size_t height, std::pair<float, float> range,
+                     std::size_t nodataCount) {
     const Terrain& t = dem.terrain;
     DemInfo d;
-    d.width = t.width();
-    d.height = t.height();
-    const auto [zMin, zMax] = heightRangeM(t.heightsM);
+    d.width = width;
+    d.height = height;
+    const auto [zMin, zMax] = range;
     d.elevationMinM = zMin;
     d.elevationMaxM = zMax;
     d.reliefM = static_cast<double>(zMax) - static_cast<double>(zMin);
-    d.nodataFraction = static_cast<double>(dem.band.nodataCount) / static_cast<double>(d.width * d.height);
+    d.nodataFraction = static_cast<double>(nodataCount) / static_cast<double>(d.width * d.height);
     const double cols = static_cast<double>(d.width), rows = static_cast<double>(d.height);
     for (int k = 0; k <= kEdgeSamples; ++k) {
         const double f = static_cast<double>(k) / kEdgeSamples;
@@ -40,6 +40,18 @@ DemInfo describeDem(const Dem& dem) {
     if (!dem.crs.geographic) d.convergenceDeg = t.convergence.range();
     d.longestShadowM = d.reliefM / std::tan(kInfoLowSunDeg * M_PI / 180.0);
     return d;
+}
+
+}  // namespace
+
+DemInfo describeDem(const Dem& dem) {
+    return describeGrid(dem, dem.terrain.width(), dem.terrain.height(), heightRangeM(dem.terrain.heightsM),
+                        dem.band.nodataCount);
+}
+
+DemInfo describeDem(const DemSource& source) {
+    return describeGrid(source.geometry(), source.width(), source.height(), {source.frame()->lowM, source.frame()->highM},
+                        source.width() * source.height() - source.validCells());
 }
 
 }  // namespace demlight

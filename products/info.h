@@ -3,6 +3,7 @@
 #pragma once
 
 #include "geo/dem.h"
+#include "geo/dem_source.h"
 
 #include <array>
 #include <optional>
@@ -33,5 +34,7 @@ struct DemInfo {
 /// Describes a DEM (latitude/longitude extent from points along its outline: a projected grid's
 /// edges are curves in latitude/longitude).
 DemInfo describeDem(const Dem& dem);
+/// describeDem of a source's whole DEM, from its geometry and opening pass (no heights read).
+DemInfo describeDem(const DemSource& source);
 
 }  // namespace demlight

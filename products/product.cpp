@@ -147,7 +147,9 @@ ColorEncoding parseColorEncoding(const std::string& name, const std::string& fie
     throw FieldError(field, " '" + name + "': expected auto, srgb or linear");
 }
 
-std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const DemSource& source, const AuxiliarySpec& spec) {
+namespace {
+
+std::vector<Grid<float>> readAuxiliaryRaster(const std::string& path, const DemSource& source, const AuxiliarySpec& spec) {
     const std::string what = " " + path;
     std::vector<Grid<float>> bands;
     try {
@@ -196,6 +198,19 @@ std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const DemS
                             formatNumber(spec.maxValue) +
                             (spec.color ? " (an 8-bit picture is decoded with encoding srgb or auto)" : ""));
     return bands;
+}
+
+}  // namespace
+
+std::vector<Grid<float>> loadAuxiliaryRaster(const std::string& path, const DemSource& source, const AuxiliarySpec& spec) {
+    // Every window of a job reads the same raster: resampled once per source while it fits.
+    std::ostringstream key;
+    key.precision(17);
+    key << "auxiliary " << spec.field << " " << spec.bands << " " << spec.greyToRgb << " " << spec.minValue << " "
+        << spec.maxValue << " " << spec.color << " " << static_cast<int>(spec.encoding) << " " << path;
+    const std::size_t bytes = spec.bands * source.width() * source.height() * sizeof(float);
+    return *source.derived<std::vector<Grid<float>>>(key.str(), bytes,
+                                                     [&] { return readAuxiliaryRaster(path, source, spec); });
 }
 
 }  // namespace demlight
