@@ -256,8 +256,10 @@ std::string flagForField(const std::string& field) {
     // One meaning per option name across commands, so one table for all of them.
     static const std::map<std::string, std::string> flags = {
         {"albedo", "--albedo"},           {"albedoRaster", "--albedo-raster"},   {"azimuthsDeg", "--azimuth"},
-        {"cloudShadow", "--cloud-shadow"}, {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"},
+        {"cloudShadow", "--cloud-shadow"}, {"coeffBh", "--coeff-bh"},                {"coeffDh", "--coeff-dh"},
+        {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"}, {"diffuseModel", "--diffuse-model"},
         {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
+        {"linke", "--linke"},             {"solarConstantWm2", "--solar-constant"},
         {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
         {"patches", "--patches"},         {"quality", "--quality"},
         {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},

@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
     cli::registerSky(app, ctx);
     cli::registerAperture(app, ctx);
     cli::registerLight(app, ctx);
+    cli::registerIrradiance(app, ctx);
     cli::registerRender(app, ctx);
     cli::registerTimelapse(app, ctx);
     cli::registerSunhours(app, ctx);

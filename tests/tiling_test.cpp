@@ -5,6 +5,7 @@
 #include "lighting/horizon.h"
 #include "products/aperture.h"
 #include "products/horizon.h"
+#include "products/irradiance.h"
 #include "products/light.h"
 #include "products/sky.h"
 #include "products/sun.h"
@@ -204,6 +205,21 @@ std::vector<ProductCase> productCases() {
              r.time = morning;
              r.search = search;
              return static_cast<ProductResult>(lightProduct(s, w, r));
+         }},
+        {"irradiance",
+         [=](const DemSource& s, const CellWindow& w) {
+             IrradianceRequest r;
+             r.time = morning;
+             r.search = search;
+             return static_cast<ProductResult>(irradianceProduct(s, w, r));
+         }},
+        {"irradiance_rsun",
+         [=](const DemSource& s, const CellWindow& w) {
+             IrradianceRequest r;
+             r.time = evening;
+             r.diffuseModel = DiffuseModel::RSun;
+             r.search = search;
+             return static_cast<ProductResult>(irradianceProduct(s, w, r));
          }},
         {"sunhours",
          [=](const DemSource& s, const CellWindow& w) {
