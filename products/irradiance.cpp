@@ -149,10 +149,7 @@ IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& wi
     const SunField field = sunFieldFor(whole, request.time.utc, request.atmosphere, plan);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
-        double distance = request.search.maxDistanceM.value_or(
-            plan.quality == Quality::Full
-                ? plan.maxDistanceM
-                : sunSearchDistanceM(whole.terrain, field.elevationRange().first, request.sunDiameterDeg));
+        double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
         if (request.diffuseModel == DiffuseModel::VisibleSky)
             distance = std::max(distance, integralParams(request.search, plan, whole.terrain,
                                                          request.skyDirections.value_or(
