@@ -14,12 +14,21 @@
 #   --build     demlight build folder (default build/release)
 #   --golden    instead: r.sun's own sun and irradiance for the cases of tests/irradiance_test.cpp
 #               (kRsun), as CSV, for checking demlight's formulas against r.sun's at r.sun's sun
+#   --terrain DEM  instead: both tools on a real projected DEM (a centre crop of --crop cells) at
+#               each of --local-times in --tz, cell by cell: r.sun with r.slope.aspect -e slopes
+#               and its own shadows against `demlight irradiance --diffuse-model rsun` and
+#               `visible-sky` (statistics of demlight minus r.sun per band, shadow agreement)
+#   --crop N    with --terrain: centre crop (default 400; 0 = the whole DEM)
+#   --local-times T,T  with --terrain: local clock times (default 2024-12-21T09:00,2024-06-21T13:00)
+#   --tz ZONE   with --terrain: zone of the DEM (default America/Los_Angeles)
 # Needs: grass (8.x, Debian package grass-core), gdal_create, gdallocationinfo, python3.
 #
 # r.sun runs with civil_time=0 and a longitude raster, so its time= is UTC read as civil time at
 # longitude 0; r.sun then finds the solar time from its own equation-of-time approximation. A
 # 3 x 3 DEM of 1e-5 degree cells keeps one sun over the DEM, so r.info's solar altitude (r.sun
-# reports the last cell's) is the sun of the compared cell.
+# reports the last cell's) is the sun of the compared cell. r.sun 8.2.1 reads a single
+# aspect_value clockwise from north (270 faced west in the --golden runs), unlike its manual;
+# aspect rasters from r.slope.aspect (counterclockwise from east) it converts itself.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -29,6 +38,10 @@ height=500
 linke=3
 build="$root/build/release"
 golden=0
+terrain=""
+crop=400
+local_times="2024-12-21T09:00,2024-06-21T13:00"
+tz="America/Los_Angeles"
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --lats) lats=$2; shift 2 ;;
@@ -37,6 +50,10 @@ while [[ $# -gt 0 ]]; do
         --linke) linke=$2; shift 2 ;;
         --build) build=$2; shift 2 ;;
         --golden) golden=1; shift ;;
+        --terrain) terrain=$2; shift 2 ;;
+        --crop) crop=$2; shift 2 ;;
+        --local-times) local_times=$2; shift 2 ;;
+        --tz) tz=$2; shift 2 ;;
         -h|--help) sed -n '2,/^# Needs/p' "$0"; exit 0 ;;
         *) echo "compare_grass_irradiance.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
     esac
@@ -106,6 +123,67 @@ fi
 demlight="$build/cli/demlight"
 [[ -x "$demlight" ]] || { echo "compare_grass_irradiance.sh: build demlight first ($demlight)" >&2; exit 1; }
 grass_version=$(grass --version 2>&1 | awk '/GRASS GIS/ && !found { print; found = 1 }')
+
+if [[ -n "$terrain" ]]; then
+    if [[ "$crop" -gt 0 ]]; then
+        read -r w h < <(gdalinfo "$terrain" | sed -n 's/^Size is \([0-9]*\), \([0-9]*\)/\1 \2/p')
+        cw=$((crop < w ? crop : w)); ch=$((crop < h ? crop : h))
+        gdal_translate -q -srcwin $(((w - cw) / 2)) $(((h - ch) / 2)) "$cw" "$ch" "$terrain" "$work/dem.tif"
+    else
+        gdal_translate -q "$terrain" "$work/dem.tif"
+    fi
+    IFS=, read -r -a lt_list <<<"$local_times"
+    {
+        echo 'set -e'
+        echo 'export GRASS_VERBOSE=0'
+        echo "r.in.gdal --q input=$work/dem.tif output=dem"
+        echo 'g.region raster=dem'
+        echo 'r.slope.aspect --q -e elevation=dem slope=slope aspect=aspect'
+        echo 'r.latlong --q -l input=dem output=lon'
+        for lt in "${lt_list[@]}"; do
+            tag=${lt//[-:T]/}
+            doy=$(date -d "${lt/T/ }" +%-j)
+            hours=$(date -d "${lt/T/ }" +%H:%M | awk -F: '{ printf "%.6f", $1 + $2 / 60 }')
+            offset=$(TZ="$tz" date -d "${lt/T/ }" +%z |
+                awk '{ printf "%g", (substr($1, 1, 1) == "-" ? -1 : 1) * (substr($1, 2, 2) + substr($1, 4, 2) / 60) }')
+            echo "r.sun --q elevation=dem slope=slope aspect=aspect long=lon civil_time=$offset day=$doy time=$hours linke_value=$linke albedo_value=0.2 beam_rad=b$tag diff_rad=d$tag refl_rad=r$tag glob_rad=g$tag"
+            for m in b d r g; do echo "r.out.gdal --q -f input=$m$tag output=$work/rsun_$m$tag.tif type=Float32 nodata=-9999"; done
+        done
+    } >"$work/terrain_job.sh"
+    grass --tmp-location "$work/dem.tif" --exec bash "$work/terrain_job.sh" >"$work/grass.log" 2>&1 ||
+        { cat "$work/grass.log" >&2; exit 1; }
+    for lt in "${lt_list[@]}"; do
+        tag=${lt//[-:T]/}
+        for model in rsun visible-sky; do
+            "$demlight" -q irradiance "$work/dem.tif" -o "$work/dl_${model}_$tag.tif" --time "$lt" --tz "$tz" \
+                --linke "$linke" --albedo 0.2 --diffuse-model "$model" --threads 2
+        done
+    done
+    python3 - "$work" "$local_times" "$tz" "$terrain" "$crop" "$grass_version" "$linke" "$root/scripts" <<'EOF'
+import math, sys
+work, times, tz, dem, crop, grass, linke, scripts = sys.argv[1:9]
+sys.path.insert(0, scripts)
+from compare_grass_report import compare, read_band, row
+where = f"centre crop {crop} x {crop}" if crop != "0" else "whole"
+print(f"demlight irradiance vs {grass} r.sun mode 1 on {dem.split('/')[-1]} ({where}), Linke {linke},"
+      f" albedo 0.2, {tz}; W/m2, demlight minus r.sun over cells valid in both. r.sun: r.slope.aspect -e"
+      " slopes, its own shadows and sun; demlight: its normals, sun-disk visibility and SPA sun.")
+for lt in times.split(","):
+    tag = lt.replace("-", "").replace(":", "").replace("T", "")
+    theirs = [read_band(f"{work}/rsun_{m}{tag}.tif") for m in "bdrg"]
+    for model in ("rsun", "visible-sky"):
+        ours = [read_band(f"{work}/dl_{model}_{tag}.tif", band=b) for b in (1, 2, 3, 4)]
+        print(f"\n{lt} {tz}, demlight --diffuse-model {model}:\n")
+        print("| band | unit | demlight mean | r.sun mean | mean diff. | median diff. | MAE | p99 abs. | max abs. | r |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
+        for name, o, t in zip(("beam", "diffuse", "reflected", "global"), ours, theirs):
+            print(row(name, "W/m2", compare(o, t)))
+        both = [(a > 0, c > 0) for a, c in zip(ours[0], theirs[0]) if math.isfinite(a) and math.isfinite(c)]
+        differ = sum(1 for a, c in both if a != c)
+        print(f"\nsunlit (beam > 0) in one tool only: {differ} of {len(both)} cells ({100 * differ / len(both):.2f} %)")
+EOF
+    exit 0
+fi
 IFS=, read -r -a lat_list <<<"$lats"
 IFS=, read -r -a time_list <<<"$times"
 rows="$work/rows.txt"
