@@ -259,6 +259,7 @@ std::string flagForField(const std::string& field) {
         {"cloudShadow", "--cloud-shadow"}, {"coeffBh", "--coeff-bh"},                {"coeffDh", "--coeff-dh"},
         {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"}, {"diffuseModel", "--diffuse-model"},
         {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
+        {"elevationBandDeg", "--elevation-band"}, {"firstDay", "--start"},
         {"linke", "--linke"},             {"solarConstantWm2", "--solar-constant"},
         {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
         {"patches", "--patches"},         {"quality", "--quality"},

@@ -83,6 +83,7 @@ int main(int argc, char** argv) {
     cli::registerAperture(app, ctx);
     cli::registerLight(app, ctx);
     cli::registerIrradiance(app, ctx);
+    cli::registerInsolation(app, ctx);
     cli::registerRender(app, ctx);
     cli::registerTimelapse(app, ctx);
     cli::registerSunhours(app, ctx);

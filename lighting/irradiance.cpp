@@ -22,6 +22,11 @@ std::string_view diffuseModelName(DiffuseModel model) {
     return model == DiffuseModel::RSun ? "rsun" : "visible-sky";
 }
 
+void raiseToHorizontal(const Grid<float>& horizonDeg, Grid<float>& raised) {
+    raised = horizonDeg;
+    for (float& v : raised.values()) v = std::max(v, 0.0f);  // NaN stays NaN
+}
+
 CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params) {
     CellIrradiance out;
     if (!(sky.beamNormal > 0 || sky.diffuseHorizontal > 0)) return out;  // the sun is down

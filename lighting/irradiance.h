@@ -48,6 +48,9 @@ struct CellView {
     double skyK0 = 1;          ///< visible sky above the horizontal (visible-sky model)
 };
 
+/// The horizons of the visible-sky split: max(h, 0) per cell, NaN kept (K0 is sky K on these).
+void raiseToHorizontal(const Grid<float>& horizonDeg, Grid<float>& raised);
+
 /// The three components of one cell (W m-2); global is their sum.
 struct CellIrradiance {
     double beam = 0, diffuse = 0, reflected = 0;

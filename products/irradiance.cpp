@@ -20,24 +20,9 @@ constexpr double kMinLinke = 1, kMaxLinke = 10;
 /// Solar constants accepted (W m-2): the measured values lie near 1361-1367.
 constexpr double kMinSolarConstantWm2 = 1000, kMaxSolarConstantWm2 = 1500;
 
-std::string numberList(const std::vector<double>& values) {
-    std::string out;
-    for (double v : values) {
-        if (!out.empty()) out += ',';
-        out += formatNumber(v);
-    }
-    return out;
-}
-
 void validateIrradiance(const IrradianceRequest& r) {
-    validateSun(r.sunDiameterDeg, r.atmosphere);
+    validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
     linkeFor(r);
-    for (const auto& [field, value] : {std::pair<const char*, double>{"albedo", r.albedo},
-                                       {"coeffBh", r.coeffBh},
-                                       {"coeffDh", r.coeffDh}})
-        if (!(value >= 0 && value <= 1)) throw FieldError(field, " " + formatNumber(value) + ": must be in [0, 1]");
-    if (!(r.solarConstantWm2 >= kMinSolarConstantWm2 && r.solarConstantWm2 <= kMaxSolarConstantWm2))
-        throw FieldError("solarConstantWm2", " " + formatNumber(r.solarConstantWm2) + ": must be in [1000, 1500]");
     if (r.skyDirections && *r.skyDirections < 1)
         throw FieldError("skyDirections", " " + std::to_string(*r.skyDirections) + ": must be >= 1");
 }
@@ -48,8 +33,7 @@ Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::si
     SkyAccumulator sky(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
     Grid<float> raised;
     sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) {
-        raised = h.angleDeg;
-        for (float& v : raised.values()) v = std::max(v, 0.0f);  // NaN stays NaN
+        raiseToHorizontal(h.angleDeg, raised);
         sky.addDirection(i, raised);
     }, &counter);
     return std::move(sky).finish(0.0).skyK;
@@ -98,7 +82,7 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
         {"DEMLIGHT_MODEL", "esra"},
         {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
         {"DEMLIGHT_LINKE", formatNumber(linke)},
-        {"DEMLIGHT_LINKE_MONTHLY", r.linke.size() == 12 ? numberList(r.linke) : std::string()},
+        {"DEMLIGHT_LINKE_MONTHLY", r.linke.size() == 12 ? formatNumberList(r.linke) : std::string()},
         {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
         {"DEMLIGHT_COEFF_BH", formatNumber(r.coeffBh)},
         {"DEMLIGHT_COEFF_DH", formatNumber(r.coeffDh)},
@@ -124,16 +108,36 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
 
 }  // namespace
 
-double linkeFor(const IrradianceRequest& r) {
-    if (r.linke.size() != 1 && r.linke.size() != 12)
-        throw FieldError("linke", " " + numberList(r.linke) + ": expected one value or 12 monthly values");
-    for (double v : r.linke)
-        if (!(v >= kMinLinke && v <= kMaxLinke))
-            throw FieldError("linke", " " + formatNumber(v) + ": must be in [1, 10]");
-    if (r.linke.size() == 1) return r.linke[0];
-    const std::chrono::year_month_day date{localDayOf(r.time.utc, r.time.zone).date};
-    return r.linke[static_cast<unsigned>(date.month()) - 1];
+void validateClearSky(double albedo, double coeffBh, double coeffDh, double solarConstantWm2, double sunDiameterDeg,
+                      const Atmosphere& atmosphere) {
+    validateSun(sunDiameterDeg, atmosphere);
+    for (const auto& [field, value] :
+         {std::pair<const char*, double>{"albedo", albedo}, {"coeffBh", coeffBh}, {"coeffDh", coeffDh}})
+        if (!(value >= 0 && value <= 1)) throw FieldError(field, " " + formatNumber(value) + ": must be in [0, 1]");
+    if (!(solarConstantWm2 >= kMinSolarConstantWm2 && solarConstantWm2 <= kMaxSolarConstantWm2))
+        throw FieldError("solarConstantWm2", " " + formatNumber(solarConstantWm2) + ": must be in [1000, 1500]");
 }
+
+std::string formatNumberList(const std::vector<double>& values) {
+    std::string out;
+    for (double v : values) {
+        if (!out.empty()) out += ',';
+        out += formatNumber(v);
+    }
+    return out;
+}
+
+double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpec& zone) {
+    if (linke.size() != 1 && linke.size() != 12)
+        throw FieldError("linke", " " + formatNumberList(linke) + ": expected one value or 12 monthly values");
+    for (double v : linke)
+        if (!(v >= kMinLinke && v <= kMaxLinke)) throw FieldError("linke", " " + formatNumber(v) + ": must be in [1, 10]");
+    if (linke.size() == 1) return linke[0];
+    const std::chrono::year_month_day date{localDayOf(t, zone).date};
+    return linke[static_cast<unsigned>(date.month()) - 1];
+}
+
+double linkeFor(const IrradianceRequest& r) { return linkeAt(r.linke, r.time.utc, r.time.zone); }
 
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window, const IrradianceRequest& request,
                                    const ProgressFn& progress) {

@@ -42,9 +42,18 @@ struct IrradianceResult : ProductResult {
     double extraterrestrialWm2 = 0;   ///< G0 at the instant
 };
 
-/// The Linke factor of `request` at its instant (the month's value of 12); throws FieldError
-/// "linke" unless there are 1 or 12 values, each in [1, 10].
+/// The Linke factor of `linke` (one value, or 12 monthly) at instant `t`: the value of the
+/// month on the clocks of `zone`. Throws FieldError "linke" unless there are 1 or 12 values,
+/// each in [1, 10].
+double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpec& zone);
+/// Numbers as formatNumber writes them, comma-separated ("1.5,1.6").
+std::string formatNumberList(const std::vector<double>& values);
+/// linkeAt for the request's instant and zone.
 double linkeFor(const IrradianceRequest& request);
+/// Checks the fields irradiance and insolation share (albedo, coeffBh, coeffDh, solarConstantWm2,
+/// sunDiameterDeg, the atmosphere); throws FieldError naming them.
+void validateClearSky(double albedo, double coeffBh, double coeffDh, double solarConstantWm2,
+                      double sunDiameterDeg, const Atmosphere& atmosphere);
 
 /// Bands (W m-2, Float32): beam, diffuse, reflected, global.
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window,

@@ -105,5 +105,34 @@ TEST_F(IrradianceCli, BadOptionsFailWithAMessageNamingTheFlag) {
     EXPECT_NE(noZone.err.find("--tz"), std::string::npos) << noZone.err;
 }
 
+TEST_F(IrradianceCli, InsolationWritesKilowattHoursAndItsWindowsAreTheOnePieceBits) {
+    const std::string whole = path("ins.tif"), window = path("ins_window.tif");
+    const std::string args = " --date 2024-06-21 --tz America/Denver --step 30m --sky-directions 16 --threads 2";
+    const testing::RunResult r = runDemlight("-q insolation '" + kRocky + "' -o '" + whole + "'" + args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const RasterSummary s = inspectRaster(whole);
+    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"beam", "diffuse", "reflected", "global"}));
+    EXPECT_EQ(s.units, std::vector<std::string>(4, "kWh m-2"));
+    EXPECT_EQ(s.dataTypes, std::vector<std::string>(4, "Float32"));
+    EXPECT_EQ(s.ref.geoTransform, inspectRaster(kRocky).ref.geoTransform);
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_PRODUCT"), "insolation");
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_DIRECTIONS"), "16");
+    const testing::RunResult w =
+        runDemlight("-q insolation '" + kRocky + "' -o '" + window + "'" + args + " --srcwin 20 30 60 50");
+    ASSERT_EQ(w.exitCode, 0) << w.err;
+    const std::vector<Grid<float>> a = readRasterBands(whole), c = readRasterBands(window);
+    ASSERT_EQ(c.size(), 4u);
+    for (std::size_t band = 0; band < 4; ++band)
+        for (std::size_t row = 0; row < 50; ++row)
+            for (std::size_t col = 0; col < 60; ++col) {
+                const float x = a[band](col + 20, row + 30), y = c[band](col, row);
+                ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << "band " << band << " cell " << col << "," << row;
+            }
+    const testing::RunResult bad =
+        runDemlight("insolation '" + kRocky + "' -o '" + path("bad.tif") + "' --start 2024-06-21 --end 2024-06-20 --tz UTC");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("--end"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace demlight

@@ -5,6 +5,7 @@
 #include "lighting/horizon.h"
 #include "products/aperture.h"
 #include "products/horizon.h"
+#include "products/insolation.h"
 #include "products/irradiance.h"
 #include "products/light.h"
 #include "products/sky.h"
@@ -220,6 +221,16 @@ std::vector<ProductCase> productCases() {
              r.diffuseModel = DiffuseModel::RSun;
              r.search = search;
              return static_cast<ProductResult>(irradianceProduct(s, w, r));
+         }},
+        {"insolation",
+         [=](const DemSource& s, const CellWindow& w) {
+             InsolationRequest r;
+             r.firstDay = r.lastDay = parseDate("2024-06-21");
+             r.zone = TimeZoneSpec::iana("America/Los_Angeles");
+             r.step = std::chrono::minutes(60);
+             r.directions = 16;
+             r.search = search;
+             return static_cast<ProductResult>(insolationProduct(s, w, r));
          }},
         {"sunhours",
          [=](const DemSource& s, const CellWindow& w) {
