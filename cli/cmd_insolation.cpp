@@ -18,7 +18,7 @@ struct InsolationOptions {
     TilingOptions tiling;
     SearchOptions search;
     ClearSkyOptions sky;
-    std::string date, startDate, endDate, tz;
+    DayOptions days;
     std::string step = "10m";
     std::optional<std::size_t> directions;
     double elevationBandDeg = kDefaultInsolationBandDeg;
@@ -27,17 +27,10 @@ struct InsolationOptions {
 
 InsolationRequest insolationRequest(const InsolationOptions& o) {
     InsolationRequest r;
-    r.zone = zoneOfDays(o.tz);
-    if (!o.date.empty()) {
-        if (!o.startDate.empty() || !o.endDate.empty())
-            throw Error("insolation: give either --date or --start/--end, not both");
-        r.firstDay = r.lastDay = parseDate(o.date);
-    } else {
-        if (o.startDate.empty() || o.endDate.empty())
-            throw Error("insolation: give --date D, or both --start D and --end D");
-        r.firstDay = parseDate(o.startDate);
-        r.lastDay = parseDate(o.endDate);
-    }
+    const LocalDays days = parseDayOptions(o.days, "insolation");
+    r.zone = days.zone;
+    r.firstDay = days.first;
+    r.lastDay = days.last;
     r.step = parseStepOption(o.step, std::chrono::minutes(1));
     r.linke = parseLinkeOption(o.sky.linke);
     r.albedo = o.sky.albedo;
@@ -77,10 +70,7 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
         "insolation", "Clear-sky solar irradiation (kWh/m2) over local days: beam, diffuse, reflected, global");
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
-    cmd->add_option("--date", o->date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
-    cmd->add_option("--start", o->startDate, "First local day YYYY-MM-DD of a range");
-    cmd->add_option("--end", o->endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
-    cmd->add_option("--tz", o->tz, "IANA time zone of the days (required; UTC for universal time)");
+    addDayOptions(cmd, o->days, "IANA time zone of the days (required; UTC for universal time)");
     cmd->add_option("--step", o->step,
                     "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
                     "minutes); they are binned, so a finer step costs little")

@@ -353,6 +353,28 @@ void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
     cmd->add_option("--tz", tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
 }
 
+void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp) {
+    cmd->add_option("--date", o.date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
+    cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
+    cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    cmd->add_option("--tz", o.tz, tzHelp);
+}
+
+LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
+    LocalDays days{{}, {}, zoneOfDays(o.tz)};
+    if (!o.date.empty()) {
+        if (!o.startDate.empty() || !o.endDate.empty())
+            throw Error(command + ": give either --date or --start/--end, not both");
+        days.first = days.last = parseDate(o.date);
+        return days;
+    }
+    if (o.startDate.empty() || o.endDate.empty()) throw Error(command + ": give --date D, or both --start D and --end D");
+    days.first = parseDate(o.startDate);
+    days.last = parseDate(o.endDate);
+    if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
+    return days;
+}
+
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg) {
     cmd->add_option("--sun-diameter", diameterDeg, "Angular diameter of the sun disk (degrees); larger = softer shadows")
         ->check(finiteRange(0.0, 20.0))

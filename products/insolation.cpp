@@ -114,11 +114,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
     out.instants = instants;
     out.bins = bins.size();
     out.directions = directions;
-    const std::string unit = "kWh m-2";
-    out.bands = {{"beam", unit, std::move(maps.beam), {}},
-                 {"diffuse", unit, std::move(maps.diffuse), {}},
-                 {"reflected", unit, std::move(maps.reflected), {}},
-                 {"global", unit, std::move(maps.global), {}}};
+    out.bands = irradianceBands(std::move(maps), "kWh m-2");
     return out;
 }
 

@@ -98,15 +98,18 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     out.centreElevationDeg = field.centreElevationDeg;
     out.linke = linke;
     out.extraterrestrialWm2 = g0;
-    const std::string unit = "W m-2";
-    out.bands = {{"beam", unit, std::move(maps.beam), {}},
-                 {"diffuse", unit, std::move(maps.diffuse), {}},
-                 {"reflected", unit, std::move(maps.reflected), {}},
-                 {"global", unit, std::move(maps.global), {}}};
+    out.bands = irradianceBands(std::move(maps), "W m-2");
     return out;
 }
 
 }  // namespace
+
+std::vector<ProductBand> irradianceBands(IrradianceMaps maps, const std::string& unit) {
+    return {{"beam", unit, std::move(maps.beam), {}},
+            {"diffuse", unit, std::move(maps.diffuse), {}},
+            {"reflected", unit, std::move(maps.reflected), {}},
+            {"global", unit, std::move(maps.global), {}}};
+}
 
 void validateClearSky(double albedo, double coeffBh, double coeffDh, double solarConstantWm2, double sunDiameterDeg,
                       const Atmosphere& atmosphere) {

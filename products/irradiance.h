@@ -55,6 +55,9 @@ double linkeFor(const IrradianceRequest& request);
 void validateClearSky(double albedo, double coeffBh, double coeffDh, double solarConstantWm2,
                       double sunDiameterDeg, const Atmosphere& atmosphere);
 
+/// The four bands of irradiance and insolation, in their order: beam, diffuse, reflected, global.
+std::vector<ProductBand> irradianceBands(IrradianceMaps maps, const std::string& unit);
+
 /// Bands (W m-2, Float32): beam, diffuse, reflected, global.
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window,
                                    const IrradianceRequest& request, const ProgressFn& progress = {});
