@@ -16,8 +16,7 @@ struct SunhoursOptions {
     OutputOptions out;
     TilingOptions tiling;
     SearchOptions search;
-    std::string date, startDate, endDate;
-    std::string tz;
+    DayOptions days;
     std::string step = "10m";
     double sunDiameterDeg = kSunDiameterDeg;
     double albedo = kDefaultAlbedo;
@@ -26,17 +25,10 @@ struct SunhoursOptions {
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     SunhoursRequest r;
-    r.zone = zoneOfDays(o.tz);
-    if (!o.date.empty()) {
-        if (!o.startDate.empty() || !o.endDate.empty())
-            throw Error("sunhours: give either --date or --start/--end, not both");
-        r.firstDay = r.lastDay = parseDate(o.date);
-    } else {
-        if (o.startDate.empty() || o.endDate.empty()) throw Error("sunhours: give --date D, or both --start D and --end D");
-        r.firstDay = parseDate(o.startDate);
-        r.lastDay = parseDate(o.endDate);
-        if (r.lastDay < r.firstDay) throw Error("sunhours: --end " + o.endDate + " is before --start " + o.startDate);
-    }
+    const LocalDays days = parseDayOptions(o.days, "sunhours");
+    r.zone = days.zone;
+    r.firstDay = days.first;
+    r.lastDay = days.last;
     r.step = parseStepOption(o.step, std::chrono::minutes(1));
     if (r.step < std::chrono::seconds(6) || r.step > std::chrono::hours(2))
         throw Error("--step " + o.step + ": must be from 6 s to 2 h");
@@ -72,10 +64,7 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
         "sunhours", "Hours of direct sun, sun and sky irradiation and first/last lit time over local days");
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
-    cmd->add_option("--date", o->date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
-    cmd->add_option("--start", o->startDate, "First local day YYYY-MM-DD of a range");
-    cmd->add_option("--end", o->endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
-    cmd->add_option("--tz", o->tz, "IANA time zone of the days and clock times (required; UTC for universal time)");
+    addDayOptions(cmd, o->days, "IANA time zone of the days and clock times (required; UTC for universal time)");
     cmd->add_option("--step", o->step,
                     "Integration step (trapezoid rule), 6 s to 2 h: 10m, 90s, 1h (a bare number = minutes)")
         ->capture_default_str();

@@ -25,6 +25,8 @@ void registerCommands(CLI::App& app, CliContext& ctx) {
     registerSky(app, ctx);
     registerAperture(app, ctx);
     registerLight(app, ctx);
+    registerIrradiance(app, ctx);
+    registerInsolation(app, ctx);
     registerRender(app, ctx);
     registerTimelapse(app, ctx);
     registerSunhours(app, ctx);

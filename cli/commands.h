@@ -25,6 +25,8 @@ void registerSun(CLI::App& app, CliContext& ctx);
 void registerSky(CLI::App& app, CliContext& ctx);
 void registerAperture(CLI::App& app, CliContext& ctx);
 void registerLight(CLI::App& app, CliContext& ctx);
+void registerIrradiance(CLI::App& app, CliContext& ctx);
+void registerInsolation(CLI::App& app, CliContext& ctx);
 void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);

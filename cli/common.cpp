@@ -259,8 +259,11 @@ std::string flagForField(const std::string& field) {
     // One meaning per option name across commands, so one table for all of them.
     static const std::map<std::string, std::string> flags = {
         {"albedo", "--albedo"},           {"albedoRaster", "--albedo-raster"},   {"azimuthsDeg", "--azimuth"},
-        {"cloudShadow", "--cloud-shadow"}, {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"},
+        {"cloudShadow", "--cloud-shadow"}, {"coeffBh", "--coeff-bh"},                {"coeffDh", "--coeff-dh"},
+        {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"}, {"diffuseModel", "--diffuse-model"},
         {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
+        {"elevationBandDeg", "--elevation-band"}, {"firstDay", "--start"},
+        {"linke", "--linke"},             {"solarConstantWm2", "--solar-constant"},
         {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
         {"patches", "--patches"},         {"quality", "--quality"},
         {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
@@ -351,6 +354,28 @@ void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
                     "Instant: ISO 8601 with offset or Z (2024-06-21T05:30:00+02:00), or local time with --tz")
         ->required();
     cmd->add_option("--tz", tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
+}
+
+void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp) {
+    cmd->add_option("--date", o.date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
+    cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
+    cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    cmd->add_option("--tz", o.tz, tzHelp);
+}
+
+LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
+    LocalDays days{{}, {}, zoneOfDays(o.tz)};
+    if (!o.date.empty()) {
+        if (!o.startDate.empty() || !o.endDate.empty())
+            throw Error(command + ": give either --date or --start/--end, not both");
+        days.first = days.last = parseDate(o.date);
+        return days;
+    }
+    if (o.startDate.empty() || o.endDate.empty()) throw Error(command + ": give --date D, or both --start D and --end D");
+    days.first = parseDate(o.startDate);
+    days.last = parseDate(o.endDate);
+    if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
+    return days;
 }
 
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg) {

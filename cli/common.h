@@ -135,6 +135,19 @@ inline constexpr double kMaxPressureHpa = 5000;
 ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
+/// --date D, or --start D --end D, and --tz of the commands over local days.
+struct DayOptions {
+    std::string date, startDate, endDate, tz;
+};
+/// Adds them; `tzHelp` says what --tz is the zone of.
+void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp);
+/// The local days (inclusive) of the options; `command` names the command in errors.
+struct LocalDays {
+    std::chrono::sys_days first, last;
+    TimeZoneSpec zone;
+};
+LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
+
 /// --sun-diameter (degrees).
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg);
 

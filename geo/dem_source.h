@@ -29,7 +29,8 @@ class DemSource {
 public:
     /// Opens any path GDAL opens (band 1) for windowed reading: its header and geometry
     /// (openDem), then one pass over its heights in strips of rows for their range, valid count
-    /// and mean. Throws what loadDem throws (a DEM with no valid cell included). `progress`
+    /// and mean; the file must stay readable while the source is used. Throws what loadDem
+    /// throws (a DEM with no valid cell included). `progress`
     /// hears of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and
     /// stops it (Cancelled) by returning false.
     static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});

@@ -367,12 +367,14 @@ double snapSlope(double slope) {
 /// ridge r > 0 keeps the cell from inheriting its lower neighbours' horizon. (Querying with the
 /// cell's own height instead is wrong on slopes: the line lies off the cell by up to a cell, and
 /// the cross-line height offset divided by a near distance gives a large error.)
+/// [nLo, nHi) is the minor range the terrain holds: at its edges (the full grid's, or a tile's,
+/// whose edge cells are halo) a neighbour is missing and the line's sample is used.
 template <class Index>
-inline double observerHeight(const float* H, const Index& index, long m, long j, long N, double frac,
+inline double observerHeight(const float* H, const Index& index, long m, long j, long nLo, long nHi, double frac,
                              float cellHeight, float lineSample) {
     if (frac == 0.0) return cellHeight;  // the line runs through the cell centre
     if (std::isnan(lineSample)) return cellHeight;
-    if (j < 1 || j + 1 >= N) return lineSample;
+    if (j <= nLo || j + 1 >= nHi) return lineSample;
     const float hm = H[index(m, j - 1)], hp = H[index(m, j + 1)];
     if (std::isnan(hm) || std::isnan(hp)) return lineSample;
     return lineSample + frac * (1.0 - frac) * (2.0 * cellHeight - hm - hp);
@@ -566,7 +568,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         const std::size_t idx = index(m, j);
                         const float hc = H[idx];
                         if (std::isnan(hc)) continue;
-                        const double hQuery = observerHeight(H, index, m, j, N, frac, hc, sample);
+                        const double hQuery = observerHeight(H, index, m, j, nLo, nHi, frac, hc, sample);
                         const double gCell = hQuery - drop;
                         float value = -std::numeric_limits<float>::infinity();
                         if (line.lo < line.hi) {

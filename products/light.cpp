@@ -198,10 +198,8 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
     const LightRasters rasters = loadRasters(source, request);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
-        const double sunDistance = request.search.maxDistanceM.value_or(
-            plan.quality == Quality::Full
-                ? plan.maxDistanceM
-                : sunSearchDistanceM(whole.terrain, field.elevationRange().first, request.sunDiameterDeg));
+        const double sunDistance =
+            sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
         const double skyDistance =
             integralParams(request.search, plan, whole.terrain,
                            request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))

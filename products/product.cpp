@@ -64,6 +64,13 @@ SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg
     return p;
 }
 
+double sunFrameDistanceM(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan,
+                         const Terrain& terrain, const SunField& field) {
+    const SunFrameParams p = sunFrameParams(search, sunDiameterDeg, plan);
+    return p.maxDistanceM > 0 ? p.maxDistanceM
+                              : sunSearchDistanceM(terrain, field.elevationRange().first, sunDiameterDeg);
+}
+
 Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_t directions,
                       const HorizonParams& params, ProgressCounter* progress) {
     SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);

@@ -74,6 +74,10 @@ HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan,
 /// SunFrameParams of the plan: the request's maxDistanceM when given; with Quality::Full the
 /// plan's (the DEM diagonal); with Auto 0, the distance each sun needs (sunSearchDistanceM).
 SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan);
+/// The search distance (metres) computeSunFrame takes with sunFrameParams for the sun `field` on
+/// `terrain`: the longest any sun of the instant needs, so the halo of a window's sun terms.
+double sunFrameDistanceM(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan,
+                         const Terrain& terrain, const SunField& field);
 
 /// Sky light K (Lambert-weighted visible sky in the normal hemisphere) from `directions` evenly
 /// spaced sweeps with `params`; NaN at nodata. The sky fill of pictures and time-lapses.

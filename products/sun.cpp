@@ -121,10 +121,7 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // The longest search any sun of this instant needs on the whole DEM.
-        double distance = request.search.maxDistanceM.value_or(
-            plan.quality == Quality::Full ? plan.maxDistanceM
-                                          : sunSearchDistanceM(whole.terrain, field.elevationRange().first,
-                                                               request.sunDiameterDeg));
+        double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
         if (request.model != SunModel::Horizon)
             distance = integralParams(request.search, plan, whole.terrain,
                                       request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))

@@ -5,6 +5,8 @@
 #include "lighting/horizon.h"
 #include "products/aperture.h"
 #include "products/horizon.h"
+#include "products/insolation.h"
+#include "products/irradiance.h"
 #include "products/light.h"
 #include "products/sky.h"
 #include "products/sun.h"
@@ -64,7 +66,7 @@ struct Case {
     std::size_t cropW, cropH;
     bool bundled = false;  ///< a sample of the repository (samples/), not of ../shared
     std::size_t sweepTiles[3] = {61, 256, 777};
-    std::size_t productTiles[2] = {173, 300};
+    std::size_t productTiles[2] = {173, 173};  // one size on the real DEMs: ten products each take minutes
     std::size_t productCropW = 520, productCropH = 430;  ///< centre window the products run on
 };
 
@@ -231,6 +233,31 @@ std::vector<ProductCase> productCases() {
              r.time = morning;
              r.search = search;
              return static_cast<ProductResult>(lightProduct(s, w, r));
+         }},
+        {"irradiance",
+         [=](const DemSource& s, const CellWindow& w) {
+             IrradianceRequest r;
+             r.time = morning;
+             r.search = search;
+             return static_cast<ProductResult>(irradianceProduct(s, w, r));
+         }},
+        {"irradiance_rsun",
+         [=](const DemSource& s, const CellWindow& w) {
+             IrradianceRequest r;
+             r.time = evening;
+             r.diffuseModel = DiffuseModel::RSun;
+             r.search = search;
+             return static_cast<ProductResult>(irradianceProduct(s, w, r));
+         }},
+        {"insolation",
+         [=](const DemSource& s, const CellWindow& w) {
+             InsolationRequest r;
+             r.firstDay = r.lastDay = parseDate("2024-06-21");
+             r.zone = TimeZoneSpec::iana("America/Los_Angeles");
+             r.step = std::chrono::minutes(60);
+             r.directions = 16;
+             r.search = search;
+             return static_cast<ProductResult>(insolationProduct(s, w, r));
          }},
         {"sunhours",
          [=](const DemSource& s, const CellWindow& w) {

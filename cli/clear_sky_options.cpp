@@ -1,0 +1,61 @@
+#include "cli/clear_sky_options.h"
+
+#include "cli/common.h"
+#include "src/error.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace demlight::cli {
+
+void addClearSkyOptions(CLI::App* cmd, ClearSkyOptions& o, const std::string& monthOf) {
+    cmd->add_option("--linke", o.linke,
+                    "Linke turbidity factor (air mass 2, 1-10): one value, or 12 comma-separated monthly values "
+                    "(January first) of which the month of " + monthOf + " is used")
+        ->capture_default_str();
+    cmd->add_option("--albedo", o.albedo, "Ground albedo of the reflected component (0-1)")
+        ->check(finiteRange(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--coeff-bh", o.coeffBh,
+                    "Real-sky beam index: fraction of the clear-sky beam that reaches the ground (0-1, r.sun coeff_bh)")
+        ->check(finiteRange(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--coeff-dh", o.coeffDh,
+                    "Real-sky diffuse index: fraction of the clear-sky diffuse that reaches the ground (0-1, r.sun "
+                    "coeff_dh)")
+        ->check(finiteRange(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--diffuse-model", o.diffuseModel,
+                    "visible-sky: diffuse horizontal x the sky the horizons leave above the horizontal, reflected "
+                    "from the rest of the view; rsun: r.sun's Muneer tilted-surface diffuse and (1 - cos slope)/2 "
+                    "reflected")
+        ->check(CLI::IsMember({"visible-sky", "rsun"}))
+        ->capture_default_str();
+    cmd->add_option("--solar-constant", o.solarConstantWm2,
+                    "Solar constant (W/m2); the extraterrestrial irradiance is this / R^2 at the sun-earth distance R")
+        ->check(finiteRange(1000, 1500))
+        ->capture_default_str();
+}
+
+std::vector<double> parseLinkeOption(const std::string& text) {
+    std::vector<double> values;
+    std::stringstream ss(text);
+    std::string part;
+    while (std::getline(ss, part, ',')) {
+        std::size_t used = 0;
+        double v = 0;
+        try {
+            v = std::stod(part, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        while (used < part.size() && part[used] == ' ') ++used;
+        if (used == 0 || used != part.size() || !std::isfinite(v))
+            throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
+        values.push_back(v);
+    }
+    if (values.empty()) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers");
+    return values;
+}
+
+}  // namespace demlight::cli

@@ -1,0 +1,91 @@
+// demlight insolation DEM -o OUT.tif (--date D | --start D --end D) --tz ZONE: beam, diffuse,
+// reflected and global irradiation in kWh m-2 over local days, by binned sun positions
+// (products/insolation.h).
+#include "cli/clear_sky_options.h"
+#include "cli/common.h"
+#include "cli/progress_bar.h"
+#include "products/insolation.h"
+#include "src/error.h"
+
+#include <optional>
+
+namespace demlight::cli {
+namespace {
+
+struct InsolationOptions {
+    DemOptions dem;
+    OutputOptions out;
+    TilingOptions tiling;
+    SearchOptions search;
+    ClearSkyOptions sky;
+    DayOptions days;
+    std::string step = "10m";
+    std::optional<std::size_t> directions;
+    double elevationBandDeg = kDefaultInsolationBandDeg;
+    double sunDiameterDeg = kSunDiameterDeg;
+};
+
+InsolationRequest insolationRequest(const InsolationOptions& o) {
+    InsolationRequest r;
+    const LocalDays days = parseDayOptions(o.days, "insolation");
+    r.zone = days.zone;
+    r.firstDay = days.first;
+    r.lastDay = days.last;
+    r.step = parseStepOption(o.step, std::chrono::minutes(1));
+    r.linke = parseLinkeOption(o.sky.linke);
+    r.albedo = o.sky.albedo;
+    r.coeffBh = o.sky.coeffBh;
+    r.coeffDh = o.sky.coeffDh;
+    r.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
+    r.solarConstantWm2 = o.sky.solarConstantWm2;
+    r.directions = o.directions;
+    r.elevationBandDeg = o.elevationBandDeg;
+    r.sunDiameterDeg = o.sunDiameterDeg;
+    r.search = o.search.request;
+    return r;
+}
+
+void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
+    const InsolationRequest request = insolationRequest(o);
+    checkOutputPath(o.out, o.dem.path);
+    const DemSource dem = openDem(o.dem, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4, ctx);
+    const auto start = std::chrono::steady_clock::now();
+    const InsolationResult r = runRaster<InsolationResult>(
+        run, {{o.out, {}}}, ctx, o.dem.path,
+        [&](const CellWindow& w, const ProgressFn& p) { return insolationProduct(dem, w, request, p); },
+        [](const InsolationResult& s) { return std::vector<const ProductResult*>{&s}; });
+    note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in kWh/m2; diffuse model " +
+                  o.sky.diffuseModel + "): " + std::to_string(r.instants) + " instants every " + o.step + " in " +
+                  std::to_string(r.bins) + " bins of " + std::to_string(r.directions) + " azimuth sectors, " +
+                  formatSeconds(secondsSince(start)) + " compute");
+}
+
+}  // namespace
+
+void registerInsolation(CLI::App& app, CliContext& ctx) {
+    auto o = std::make_shared<InsolationOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "insolation", "Clear-sky solar irradiation (kWh/m2) over local days: beam, diffuse, reflected, global");
+    addDemArgument(cmd, o->dem);
+    addOutputOptions(cmd, o->out);
+    addDayOptions(cmd, o->days, "IANA time zone of the days (required; UTC for universal time)");
+    cmd->add_option("--step", o->step,
+                    "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
+                    "minutes); they are binned, so a finer step costs little")
+        ->capture_default_str();
+    addClearSkyOptions(cmd, o->sky, "each instant in --tz");
+    cmd->add_option("--sky-directions", o->directions,
+                    "Azimuth sectors of the sun bins and of the visible sky: one horizon sweep each (default 64)")
+        ->check(finiteRange(4, 1024));
+    cmd->add_option("--elevation-band", o->elevationBandDeg, "Elevation band of the sun bins (degrees)")
+        ->check(finiteRange(0, 90, /*lowOpen=*/true))
+        ->capture_default_str();
+    addSunDiameterOption(cmd, o->sunDiameterDeg);
+    addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
+    cmd->callback([o, &ctx] { runInsolation(*o, ctx); });
+}
+
+}  // namespace demlight::cli

@@ -1,0 +1,123 @@
+#include "lighting/insolation.h"
+
+#include "lighting/directions.h"
+#include "lighting/sun.h"
+#include "src/angles.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+namespace demlight {
+
+std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t directions, double elevationBandDeg) {
+    if (directions < 1 || !(elevationBandDeg > 0)) throw Error("binSuns: need directions >= 1 and a band > 0");
+    const double sector = 360.0 / static_cast<double>(directions);
+    struct Sum {
+        double hours = 0, azimuthOffset = 0, elevation = 0, g0 = 0;
+    };
+    std::map<std::tuple<std::size_t, long, double>, Sum> sums;  // ordered: by direction first
+    for (const WeightedSun& s : suns) {
+        if (!(s.elevationDeg > 0) || !(s.hours > 0)) continue;
+        const double az = wrapAzimuthDeg(s.azimuthDeg);
+        const auto direction = static_cast<std::size_t>(std::floor((az + sector / 2) / sector)) % directions;
+        double offset = az - directionAzimuthDeg(direction, directions);  // within the sector, unwrapped
+        if (offset > 180) offset -= 360;
+        if (offset < -180) offset += 360;
+        Sum& b = sums[{direction, static_cast<long>(std::floor(s.elevationDeg / elevationBandDeg)), s.linke}];
+        b.hours += s.hours;
+        b.azimuthOffset += s.hours * offset;
+        b.elevation += s.hours * s.elevationDeg;
+        b.g0 += s.hours * s.extraterrestrialWm2;
+    }
+    std::vector<SunBin> bins;
+    for (const auto& [key, b] : sums) {
+        const std::size_t direction = std::get<0>(key);
+        bins.push_back({direction, b.hours, directionAzimuthDeg(direction, directions) + b.azimuthOffset / b.hours,
+                        b.elevation / b.hours, b.g0 / b.hours, std::get<2>(key)});
+    }
+    return bins;
+}
+
+InsolationAccumulator::InsolationAccumulator(const Grid<float>& heightsM, const Normals& normals,
+                                             std::vector<SunBin> bins, std::size_t directions,
+                                             const IrradianceParams& params, double sunDiameterDeg)
+    : heights_(heightsM),
+      normals_(normals),
+      bins_(std::move(bins)),
+      directions_(directions),
+      params_(params),
+      sunDiameterDeg_(sunDiameterDeg),
+      beam_(heightsM.width(), heightsM.height(), 0.0),
+      diffuse_(beam_),
+      reflected_(beam_) {}
+
+void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
+    if (index >= directions_ || !horizonDeg.sameShape(heights_))
+        throw Error("InsolationAccumulator: direction out of range or horizons of another shape");
+    std::vector<const SunBin*> bins;
+    std::vector<SunAngles> angles;
+    for (const SunBin& b : bins_)
+        if (b.direction == index) {
+            bins.push_back(&b);
+            const double az = b.azimuthDeg * kDegToRad, el = b.elevationDeg * kDegToRad;
+            angles.push_back({b.azimuthDeg, b.elevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)});
+        }
+    if (bins.empty()) return;
+    const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
+    parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < heights_.width(); ++col) {
+            const float z = heights_(col, row);
+            if (std::isnan(z)) continue;
+            const Enu n = normals_.at(col, row);
+            for (std::size_t k = 0; k < bins.size(); ++k) {
+                const SunBin& b = *bins[k];
+                const SunAngles& sun = angles[k];
+                const ClearSky sky = clearSky(b.extraterrestrialWm2, b.linke, b.elevationDeg, z, params_.coeffBh,
+                                              params_.coeffDh);
+                const SunTerms terms = sunTerms(n, horizonDeg(col, row), sun, sunDiameterDeg_);
+                CellView view;
+                view.sunIrradiance = terms.irradiance;
+                view.sunVisibility = terms.visibility;
+                const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
+                view.surface = {n.up, toward, toward * sun.cosElevation + n.up * sun.sinElevation,
+                                b.elevationDeg * kDegToRad};
+                const CellIrradiance c = cellIrradiance(sky, view, params_);
+                beam_(col, row) += b.hours * c.beam;
+                // visible-sky: diffuse and reflected are K0 and 1 - K0 times horizon-free sums.
+                diffuse_(col, row) += b.hours * (visibleSky ? sky.diffuseHorizontal : c.diffuse);
+                reflected_(col, row) += b.hours * (visibleSky ? sky.globalHorizontal() : c.reflected);
+            }
+        }
+    });
+}
+
+IrradianceMaps InsolationAccumulator::finish(const Grid<float>* skyK0) const {
+    const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
+    if (visibleSky && (!skyK0 || !skyK0->sameShape(heights_)))
+        throw Error("InsolationAccumulator: the visible-sky model needs K0 of the DEM's shape");
+    const std::size_t w = heights_.width(), h = heights_.height();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    IrradianceMaps out{Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
+    for (std::size_t k = 0; k < heights_.size(); ++k) {
+        if (std::isnan(heights_.data()[k])) continue;
+        const double beam = beam_.data()[k];
+        double diffuse = diffuse_.data()[k], reflected = reflected_.data()[k];
+        if (visibleSky) {
+            const double k0 = std::clamp(static_cast<double>(skyK0->data()[k]), 0.0, 1.0);
+            diffuse *= k0;
+            reflected *= params_.albedo * (1 - k0);
+        }
+        out.beam.data()[k] = static_cast<float>(beam);
+        out.diffuse.data()[k] = static_cast<float>(diffuse);
+        out.reflected.data()[k] = static_cast<float>(reflected);
+        out.global.data()[k] = static_cast<float>(beam + diffuse + reflected);
+    }
+    return out;
+}
+
+}  // namespace demlight

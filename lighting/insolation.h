@@ -1,0 +1,63 @@
+// Irradiation totals over a period (Wh m-2) by binned sun positions (DESIGN §3 "Irradiance"):
+// the period's sun positions are put in bins by azimuth sector (the D directions of the sky
+// sweeps) and elevation band, each bin keeping its time and its time-weighted mean sun; every
+// cell then sums, over the bins, the irradiance of lighting/irradiance.h at the bin's mean sun
+// times the bin's hours, with the horizon of the bin's sector. One sweep per sector serves every
+// instant of the period, where an exact integral sweeps once per instant.
+//
+// What binning changes against the exact integral: a bin's sun is its mean (within one sector,
+// 360/D degrees, and one elevation band), its horizon is the one at the sector's centre azimuth,
+// and the sun is the one at the DEM centre (one position per instant for the whole DEM).
+#pragma once
+
+#include "lighting/irradiance.h"
+#include "lighting/surface.h"
+#include "src/grid.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace demlight {
+
+/// The period's sun positions in one azimuth sector and elevation band (and one Linke factor).
+struct SunBin {
+    std::size_t direction = 0;    ///< azimuth sector: directionAzimuthDeg(direction, directions)
+    double hours = 0;             ///< time the sun spends in the bin (hours, integration weights)
+    double azimuthDeg = 0;        ///< time-weighted mean true azimuth
+    double elevationDeg = 0;      ///< time-weighted mean apparent elevation (> 0)
+    double extraterrestrialWm2 = 0;  ///< time-weighted mean G0
+    double linke = 0;             ///< the Linke factor of the bin's instants
+};
+
+/// One sun position of the period with its integration weight.
+struct WeightedSun {
+    double hours = 0;  ///< weight (hours)
+    double azimuthDeg = 0, elevationDeg = 0, extraterrestrialWm2 = 0, linke = 0;
+};
+
+/// Bins of `suns` (those with elevation > 0) for `directions` azimuth sectors and elevation
+/// bands `elevationBandDeg` wide; a bin per (sector, band, Linke factor). Sorted by direction.
+std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t directions, double elevationBandDeg);
+
+/// Sums the bins per cell, one sector's horizons at a time. The grids are referenced, not copied.
+class InsolationAccumulator {
+public:
+    /// `params.extraterrestrialWm2` and `params.linke` are ignored: each bin has its own.
+    InsolationAccumulator(const Grid<float>& heightsM, const Normals& normals, std::vector<SunBin> bins,
+                          std::size_t directions, const IrradianceParams& params, double sunDiameterDeg);
+    /// Adds the bins of sector `index` with its horizons (degrees, NaN = nodata).
+    void addDirection(std::size_t index, const Grid<float>& horizonDeg);
+    /// Totals (Wh m-2); the visible-sky model takes K0 (lighting/irradiance.h) here. NaN at nodata.
+    IrradianceMaps finish(const Grid<float>* skyK0) const;
+
+private:
+    const Grid<float>& heights_;
+    const Normals& normals_;
+    std::vector<SunBin> bins_;
+    std::size_t directions_;
+    IrradianceParams params_;
+    double sunDiameterDeg_;
+    Grid<double> beam_, diffuse_, reflected_;
+};
+
+}  // namespace demlight

@@ -1,0 +1,137 @@
+#include "products/insolation.h"
+
+#include "geo/solar_position.h"
+#include "lighting/directions.h"
+#include "lighting/sky.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace demlight {
+namespace {
+
+constexpr double kWhPerKWh = 1000;
+constexpr std::chrono::milliseconds kMinStep = std::chrono::seconds(6), kMaxStep = std::chrono::hours(2);
+
+void validateInsolation(const InsolationRequest& r) {
+    validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
+    linkeAt(r.linke, localDay(r.firstDay, r.zone).startUtc, r.zone);
+    if (r.lastDay < r.firstDay)
+        throw FieldError("lastDay", " " + formatDate(r.lastDay) + ": is before the first day " + formatDate(r.firstDay));
+    if (r.step < kMinStep || r.step > kMaxStep) throw FieldError("step", ": must be from 6 s to 2 h");
+    if (r.directions && *r.directions < 4)
+        throw FieldError("directions", " " + std::to_string(*r.directions) + ": must be >= 4");
+    if (!(r.elevationBandDeg > 0 && r.elevationBandDeg <= 90))
+        throw FieldError("elevationBandDeg", " " + formatNumber(r.elevationBandDeg) + ": must be in (0, 90]");
+}
+
+double hoursBetween(UtcInstant a, UtcInstant b) { return std::chrono::duration<double, std::ratio<3600>>(b - a).count(); }
+
+/// The sun at the DEM centre every `step` over the period, with trapezoid weights (hours).
+std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationRequest& r, std::size_t& instants) {
+    const UtcInstant start = localDay(r.firstDay, r.zone).startUtc, end = localDay(r.lastDay, r.zone).endUtc;
+    std::vector<UtcInstant> times;
+    for (UtcInstant t = start; t < end; t += r.step) times.push_back(t);
+    times.push_back(end);
+    instants = times.size();
+    SolarSite site;
+    std::tie(site.latitudeDeg, site.longitudeDeg) = cellLatLon(
+        source.geometry(), 0.5 * static_cast<double>(source.width()), 0.5 * static_cast<double>(source.height()));
+    const auto [low, high] = std::pair(source.frame()->lowM, source.frame()->highM);
+    site.elevationM = 0.5 * (static_cast<double>(low) + static_cast<double>(high));
+    site.pressureHpa = r.atmosphere.pressureHpa;
+    site.temperatureC = r.atmosphere.temperatureC;
+    std::vector<WeightedSun> suns;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        const double before = i > 0 ? hoursBetween(times[i - 1], times[i]) : 0.0;
+        const double after = i + 1 < times.size() ? hoursBetween(times[i], times[i + 1]) : 0.0;
+        SpaTrace trace{};
+        const SolarPosition p = solarPosition(site, times[i], SpaOptions{}, &trace);
+        if (!(p.elevationDeg > 0)) continue;
+        suns.push_back({0.5 * (before + after), p.azimuthDeg, p.elevationDeg,
+                        extraterrestrialIrradiance(trace.earthSunDistanceAu, r.solarConstantWm2),
+                        linkeAt(r.linke, times[i], r.zone)});
+    }
+    return suns;
+}
+
+InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const InsolationRequest& r,
+                              const std::vector<SunBin>& bins, std::size_t directions, std::size_t instants,
+                              const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
+    const Normals normals = computeNormals(t, r.search.threads);
+    const HorizonParams hp = horizonParams(r.search, plan);
+    ProgressCounter counter(progress, "insolation", t.heightsM.size() * directions);
+    IrradianceParams params;
+    params.model = r.diffuseModel;
+    params.albedo = r.albedo;
+    params.coeffBh = r.coeffBh;
+    params.coeffDh = r.coeffDh;
+    params.threads = r.search.threads;
+    InsolationAccumulator totals(t.heightsM, normals, bins, directions, params, r.sunDiameterDeg);
+    std::optional<SkyAccumulator> sky;
+    if (visibleSky) sky.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, r.search.threads);
+    Grid<float> raised;
+    sweepDirections(t, hp, directions, [&](std::size_t i, const HorizonMap& h) {
+        totals.addDirection(i, h.angleDeg);
+        if (!sky) return;
+        raiseToHorizontal(h.angleDeg, raised);
+        sky->addDirection(i, raised);
+    }, &counter);
+    const Grid<float> k0 = sky ? std::move(*sky).finish(0.0).skyK : Grid<float>();
+    IrradianceMaps maps = totals.finish(visibleSky ? &k0 : nullptr);
+    for (Grid<float>* g : {&maps.beam, &maps.diffuse, &maps.reflected, &maps.global})
+        for (float& v : g->values()) v = static_cast<float>(v / kWhPerKWh);
+
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.merge(searchMetadata(t, hp.maxDistanceM, r.search.refraction));
+    meta.insert({
+        {"DEMLIGHT_FIRST_DAY", formatDate(r.firstDay)},
+        {"DEMLIGHT_LAST_DAY", formatDate(r.lastDay)},
+        {"DEMLIGHT_TIME_ZONE", r.zone.describe()},
+        {"DEMLIGHT_STEP_S", formatNumber(std::chrono::duration<double>(r.step).count())},
+        {"DEMLIGHT_INSTANTS", std::to_string(instants)},
+        {"DEMLIGHT_METHOD", "binned sun positions"},
+        {"DEMLIGHT_BINS", std::to_string(bins.size())},
+        {"DEMLIGHT_DIRECTIONS", std::to_string(directions)},
+        {"DEMLIGHT_ELEVATION_BAND_DEG", formatNumber(r.elevationBandDeg)},
+        {"DEMLIGHT_MODEL", "esra"},
+        {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
+        {"DEMLIGHT_LINKE", formatNumberList(r.linke)},
+        {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
+        {"DEMLIGHT_COEFF_BH", formatNumber(r.coeffBh)},
+        {"DEMLIGHT_COEFF_DH", formatNumber(r.coeffDh)},
+        {"DEMLIGHT_SOLAR_CONSTANT_WM2", formatNumber(r.solarConstantWm2)},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
+        {"DEMLIGHT_UNITS", "kWh m-2"},
+    });
+    InsolationResult out;
+    static_cast<ProductResult&>(out) = makeResult(dem, "insolation", meta);
+    out.instants = instants;
+    out.bins = bins.size();
+    out.directions = directions;
+    out.bands = irradianceBands(std::move(maps), "kWh m-2");
+    return out;
+}
+
+}  // namespace
+
+InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
+                                   const ProgressFn& progress) {
+    validateInsolation(request);
+    const Dem& whole = source.geometry();
+    const ScenePlan plan = planFor(request.search, whole.terrain);
+    const std::size_t directions = request.directions.value_or(kDefaultInsolationDirections);
+    // The whole DEM's bins for every window: the same bits on its cells.
+    std::size_t instants = 0;
+    const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, instants), directions, request.elevationBandDeg);
+    const std::size_t halo = haloCellsFor(whole.terrain, horizonParams(request.search, plan).maxDistanceM);
+    return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
+        return insolationOn(dem, plan, request, bins, directions, instants, progress);
+    });
+}
+
+}  // namespace demlight

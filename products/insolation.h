@@ -1,0 +1,53 @@
+// Solar irradiation totals in kWh m-2 over local days: beam, diffuse, reflected and global on
+// each cell's inclined surface, the clear sky and diffuse models of `irradiance`
+// (products/irradiance.h), integrated by binned sun positions (lighting/insolation.h): one
+// horizon sweep per azimuth sector for the whole period instead of one per instant.
+#pragma once
+
+#include "geo/time.h"
+#include "lighting/insolation.h"
+#include "products/irradiance.h"
+#include "products/product.h"
+
+#include <chrono>
+#include <optional>
+#include <vector>
+
+namespace demlight {
+
+/// Azimuth sectors of the bins and of the visible sky by default: 5.6 deg sectors
+/// (docs/accuracy.md#insolation-accuracy measures them against the per-instant integral).
+inline constexpr std::size_t kDefaultInsolationDirections = 64;
+/// Elevation band of the bins by default (degrees).
+inline constexpr double kDefaultInsolationBandDeg = 2;
+
+struct InsolationRequest {
+    std::chrono::sys_days firstDay, lastDay;  ///< local days, inclusive
+    TimeZoneSpec zone;                        ///< of the days and of monthly Linke values
+    /// Sun positions every `step` from local midnight of the first day to local midnight after
+    /// the last, weighted by the trapezoid rule.
+    std::chrono::milliseconds step = std::chrono::minutes(10);
+    std::vector<double> linke{kDefaultLinke};  ///< one value, or 12 monthly (each instant's month)
+    double albedo = kDefaultAlbedo;
+    double coeffBh = 1, coeffDh = 1;
+    DiffuseModel diffuseModel = DiffuseModel::VisibleSky;
+    double solarConstantWm2 = kSolarConstantWm2;
+    /// Azimuth sectors of the bins and of the visible sky (>= 4); none = kDefaultInsolationDirections.
+    std::optional<std::size_t> directions;
+    double elevationBandDeg = kDefaultInsolationBandDeg;  ///< in (0, 90]
+    double sunDiameterDeg = kSunDiameterDeg;
+    Atmosphere atmosphere;
+    SearchRequest search;
+};
+
+struct InsolationResult : ProductResult {
+    std::size_t instants = 0;  ///< sun positions of the period
+    std::size_t bins = 0;      ///< bins they fell in (sun up)
+    std::size_t directions = 0;
+};
+
+/// Bands (kWh m-2, Float32): beam, diffuse, reflected, global.
+InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
+                                   const ProgressFn& progress = {});
+
+}  // namespace demlight

@@ -1,0 +1,173 @@
+#include "products/irradiance.h"
+
+#include "geo/solar_position.h"
+#include "lighting/directions.h"
+#include "lighting/sky.h"
+#include "lighting/sun_frame.h"
+#include "lighting/surface.h"
+#include "src/error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace demlight {
+namespace {
+
+/// Linke factors accepted: 1 is a clean dry (Rayleigh) atmosphere by definition; ESRA's fits are
+/// not meant for turbidities beyond 10.
+constexpr double kMinLinke = 1, kMaxLinke = 10;
+/// Solar constants accepted (W m-2): the measured values lie near 1361-1367.
+constexpr double kMinSolarConstantWm2 = 1000, kMaxSolarConstantWm2 = 1500;
+
+void validateIrradiance(const IrradianceRequest& r) {
+    validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
+    linkeFor(r);
+    if (r.skyDirections && *r.skyDirections < 1)
+        throw FieldError("skyDirections", " " + std::to_string(*r.skyDirections) + ": must be >= 1");
+}
+
+/// K0: the sky K of the horizons raised to the horizontal (lighting/irradiance.h).
+Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::size_t directions,
+                               const HorizonParams& params, int threads, ProgressCounter& counter) {
+    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
+    Grid<float> raised;
+    sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) {
+        raiseToHorizontal(h.angleDeg, raised);
+        sky.addDirection(i, raised);
+    }, &counter);
+    return std::move(sky).finish(0.0).skyK;
+}
+
+IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const IrradianceRequest& r,
+                             const SunField& field, double g0, double linke, const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
+    const Normals normals = computeNormals(t, r.search.threads);
+    const std::size_t directions = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams hp = integralParams(r.search, plan, t, directions);
+    ProgressCounter counter(progress, "irradiance", t.heightsM.size() * ((visibleSky ? directions : 0) + 1));
+
+    const Grid<float> k0 =
+        visibleSky ? skyAboveHorizontal(t, normals, directions, hp, r.search.threads, counter) : Grid<float>();
+    const SunFrame frame = computeSunFrame(t, normals, field, sunFrameParams(r.search, r.sunDiameterDeg, plan), &counter);
+
+    IrradianceParams params;
+    params.model = r.diffuseModel;
+    params.linke = linke;
+    params.albedo = r.albedo;
+    params.coeffBh = r.coeffBh;
+    params.coeffDh = r.coeffDh;
+    params.extraterrestrialWm2 = g0;
+    params.threads = r.search.threads;
+    IrradianceInputs inputs;
+    inputs.heightsM = &t.heightsM;
+    inputs.normals = &normals;
+    inputs.sun = &field;
+    inputs.sunVisibility = &frame.light.visibility;
+    inputs.sunIrradiance = &frame.light.irradiance;
+    inputs.skyK0 = visibleSky ? &k0 : nullptr;
+    IrradianceMaps maps = computeIrradiance(inputs, params);
+
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.merge(searchMetadata(t, frame.maxDistanceM, r.search.refraction));
+    meta.insert({
+        {"DEMLIGHT_TIME_UTC", formatInstant(r.time.utc, std::string())},
+        {"DEMLIGHT_TIME_LOCAL", formatInstant(r.time.utc, r.time.zone)},
+        {"DEMLIGHT_TIME_ZONE", r.time.zone.describe()},
+        {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
+        {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
+        {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(frame.sweepRegions)},
+        {"DEMLIGHT_MODEL", "esra"},
+        {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
+        {"DEMLIGHT_LINKE", formatNumber(linke)},
+        {"DEMLIGHT_LINKE_MONTHLY", r.linke.size() == 12 ? formatNumberList(r.linke) : std::string()},
+        {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
+        {"DEMLIGHT_COEFF_BH", formatNumber(r.coeffBh)},
+        {"DEMLIGHT_COEFF_DH", formatNumber(r.coeffDh)},
+        {"DEMLIGHT_SOLAR_CONSTANT_WM2", formatNumber(r.solarConstantWm2)},
+        {"DEMLIGHT_EXTRATERRESTRIAL_WM2", formatNumber(g0)},
+        {"DEMLIGHT_UNITS", "W m-2"},
+        {"DEMLIGHT_SKY_DIRECTIONS", visibleSky ? std::to_string(directions) : std::string()},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", visibleSky ? metadataDistanceM(t, hp.maxDistanceM) : std::string()},
+    });
+    IrradianceResult out;
+    static_cast<ProductResult&>(out) = makeResult(dem, "irradiance", meta);
+    out.centreAzimuthDeg = field.centreAzimuthDeg;
+    out.centreElevationDeg = field.centreElevationDeg;
+    out.linke = linke;
+    out.extraterrestrialWm2 = g0;
+    out.bands = irradianceBands(std::move(maps), "W m-2");
+    return out;
+}
+
+}  // namespace
+
+std::vector<ProductBand> irradianceBands(IrradianceMaps maps, const std::string& unit) {
+    return {{"beam", unit, std::move(maps.beam), {}},
+            {"diffuse", unit, std::move(maps.diffuse), {}},
+            {"reflected", unit, std::move(maps.reflected), {}},
+            {"global", unit, std::move(maps.global), {}}};
+}
+
+void validateClearSky(double albedo, double coeffBh, double coeffDh, double solarConstantWm2, double sunDiameterDeg,
+                      const Atmosphere& atmosphere) {
+    validateSun(sunDiameterDeg, atmosphere);
+    for (const auto& [field, value] :
+         {std::pair<const char*, double>{"albedo", albedo}, {"coeffBh", coeffBh}, {"coeffDh", coeffDh}})
+        if (!(value >= 0 && value <= 1)) throw FieldError(field, " " + formatNumber(value) + ": must be in [0, 1]");
+    if (!(solarConstantWm2 >= kMinSolarConstantWm2 && solarConstantWm2 <= kMaxSolarConstantWm2))
+        throw FieldError("solarConstantWm2", " " + formatNumber(solarConstantWm2) + ": must be in [1000, 1500]");
+}
+
+std::string formatNumberList(const std::vector<double>& values) {
+    std::string out;
+    for (double v : values) {
+        if (!out.empty()) out += ',';
+        out += formatNumber(v);
+    }
+    return out;
+}
+
+double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpec& zone) {
+    if (linke.size() != 1 && linke.size() != 12)
+        throw FieldError("linke", " " + formatNumberList(linke) + ": expected one value or 12 monthly values");
+    for (double v : linke)
+        if (!(v >= kMinLinke && v <= kMaxLinke)) throw FieldError("linke", " " + formatNumber(v) + ": must be in [1, 10]");
+    if (linke.size() == 1) return linke[0];
+    const std::chrono::year_month_day date{localDayOf(t, zone).date};
+    return linke[static_cast<unsigned>(date.month()) - 1];
+}
+
+double linkeFor(const IrradianceRequest& r) { return linkeAt(r.linke, r.time.utc, r.time.zone); }
+
+IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window, const IrradianceRequest& request,
+                                   const ProgressFn& progress) {
+    validateIrradiance(request);
+    const double linke = linkeFor(request);
+    // R is heliocentric: any site gives it.
+    SpaTrace trace{};
+    solarPosition(SolarSite{}, request.time.utc, SpaOptions{}, &trace);
+    const double g0 = extraterrestrialIrradiance(trace.earthSunDistanceAu, request.solarConstantWm2);
+    const Dem& whole = source.geometry();
+    const ScenePlan plan = planFor(request.search, whole.terrain);
+    // The whole DEM's sun, read by each window: the same bits on its cells.
+    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+    std::size_t halo = 0;
+    if (!source.isWhole(window)) {
+        double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
+        if (request.diffuseModel == DiffuseModel::VisibleSky)
+            distance = std::max(distance, integralParams(request.search, plan, whole.terrain,
+                                                         request.skyDirections.value_or(
+                                                             static_cast<std::size_t>(plan.skyDirections)))
+                                              .maxDistanceM);
+        halo = haloCellsFor(whole.terrain, distance);
+    }
+    return onWindow<IrradianceResult>(source, window, halo, [&](const Dem& dem) {
+        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, progress);
+        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, progress);
+    });
+}
+
+}  // namespace demlight
