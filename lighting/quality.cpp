@@ -27,6 +27,16 @@ constexpr double kCurvatureShareOfTolerance = 0.1;
 // (kWholeDemShareOfDiagonal = 0.5, lighting/horizon.h.)
 /// Line slopes below this are grid-aligned directions off by rounding (the sweep snaps them too).
 constexpr double kSlopeSnap = 1e-12;
+/// A DEM of more cells than this is computed in tiles (it passes the default memory budget of a
+/// few GB at ~60 bytes a cell), and a search of the whole DEM would have every tile read and
+/// sweep all of it: a finite range limit is kept there whatever the step counts say.
+constexpr double kLargestWholeSearchCells = 64.0 * 1024 * 1024;
+
+/// The full grid of `terrain` has more than kLargestWholeSearchCells cells.
+bool tooLargeToSearchWhole(const Terrain& terrain) {
+    const FullGridRef g = fullGrid(terrain);
+    return static_cast<double>(g.width) * static_cast<double>(g.height) > kLargestWholeSearchCells;
+}
 
 /// The sweep's horizon error against the full-physics reference (the statistic of ExpectedError),
 /// the largest measured over real DEMs, azimuths and both plans (median and 99th percentile;
@@ -244,7 +254,7 @@ HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, 
     const double sectorDeg = 360.0 / static_cast<double>(directions);
     p.directionToleranceDeg =
         std::max(effectiveDirectionToleranceDeg(terrain, p), kIntegralToleranceShareOfSector * sectorDeg);
-    if (plan.userDistance || !std::isfinite(p.maxDistanceM)) return p;
+    if (plan.userDistance || !std::isfinite(p.maxDistanceM) || tooLargeToSearchWhole(terrain)) return p;
     HorizonParams whole = p;
     whole.maxDistanceM = std::numeric_limits<double>::infinity();
     return kRangeLimitStepCost * stepsOverDirections(terrain, p, directions) <
@@ -316,6 +326,7 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
 
 bool rangeLimitPays(const Terrain& terrain, const HorizonParams& params) {
     if (!std::isfinite(params.maxDistanceM)) return false;
+    if (tooLargeToSearchWhole(terrain)) return true;
     HorizonParams whole = params;
     whole.maxDistanceM = std::numeric_limits<double>::infinity();
     return kRangeLimitStepCost * estimateSweepSteps(terrain, params) < estimateSweepSteps(terrain, whole);
