@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs missing packages, then runs every test (GoogleTest through ctest) in Release, runs
 # them again, but for the real-DEM tests, under AddressSanitizer + UBSan (the asan preset,
-# clang), and runs each libFuzzer target for FUZZ_SECONDS (default 30). CI runs exactly this; what each stage costs on 2 cores and
+# clang), and runs each libFuzzer target for FUZZ_SECONDS (default 60). CI runs exactly this; what each stage costs on 2 cores and
 # which tests the sanitizer stage leaves to Release: docs/testing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,5 +24,5 @@ cmake --build --preset asan --target demlight demlight_tests demlight_fuzzers
 ctest --preset asan -j2 --timeout 900 -E "$asan_skip"
 
 stage "Fuzzing"
-scripts/fuzz.sh "${FUZZ_SECONDS:-30}"
+scripts/fuzz.sh "${FUZZ_SECONDS:-60}"
 stage "done"
