@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace demlight {
 namespace {
@@ -164,6 +165,37 @@ TEST(Quality, RangeLimitPaysOnlyWhereItShortensTheWalks) {
     EXPECT_TRUE(rangeLimitPays(t, p));
     p.maxDistanceM = std::numeric_limits<double>::infinity();
     EXPECT_FALSE(rangeLimitPays(t, p));
+}
+
+/// A 50 x 50 tile of a uniform full grid of `side` x `side` 30 m cells with 100 m of relief:
+/// one sweep region, where a whole-DEM search costs no more steps than a range limit.
+Terrain tileOfUniformGrid(std::size_t side) {
+    auto frame = std::make_shared<GridFrame>();
+    frame->width = frame->height = side;
+    frame->cellWidthM.assign(side, 30.0);
+    frame->cellHeightM.assign(side, 30.0);
+    frame->lowM = 0, frame->highM = 100;
+    Terrain t = makeUniformTerrain(Grid<float>(50, 50, 50.0f), 30.0);
+    t.frame = frame;
+    t.frameCol0 = t.frameRow0 = side / 2;
+    return t;
+}
+
+TEST(Quality, DemsTooLargeForOneTileKeepTheRangeLimit) {
+    QualityBudget budget;
+    budget.lowestElevationDeg = 2;
+    budget.toleranceDeg = 0.1;
+    // 4000^2 (16 Mi cells): the step counts decide, and on one region they choose the whole DEM.
+    const Terrain small = tileOfUniformGrid(4000);
+    const ScenePlan smallPlan = planScene(small, Quality::Auto, budget);
+    ASSERT_TRUE(std::isfinite(smallPlan.maxDistanceM));
+    EXPECT_FALSE(std::isfinite(planIntegralParams(small, smallPlan, 32, 0.13, 1).maxDistanceM));
+    EXPECT_FALSE(rangeLimitPays(small, planHorizonParams(smallPlan, 0.13, 1)));
+    // 9000^2 (77 Mi cells): computed in tiles, so the plan's range limit stays.
+    const Terrain large = tileOfUniformGrid(9000);
+    const ScenePlan largePlan = planScene(large, Quality::Auto, budget);
+    EXPECT_EQ(planIntegralParams(large, largePlan, 32, 0.13, 1).maxDistanceM, largePlan.maxDistanceM);
+    EXPECT_TRUE(rangeLimitPays(large, planHorizonParams(largePlan, 0.13, 1)));
 }
 
 }  // namespace
