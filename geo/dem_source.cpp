@@ -14,6 +14,7 @@ namespace {
 
 /// Cells per strip of the opening pass: ~64 MB of raw values and heights together.
 constexpr std::size_t kStripCells = std::size_t{8} << 20;
+std::size_t stripRowsFor(std::size_t width) { return std::max<std::size_t>(1, kStripCells / width); }
 
 /// The DEM without its heights, its terrain framed by `frame`.
 Dem geometryOf(Dem dem, const std::shared_ptr<const GridFrame>& frame) {
@@ -95,7 +96,7 @@ NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
                                        [&](std::size_t row) { return &z(0, row); });
         }
         return nodeHeightsFromRows(width(), height(), stepCells, meanHeightM_,
-                                   [&](std::size_t row) { return rowHeightsM(row); });
+                                   [&](std::size_t row) { return heightsM({0, row, width(), row + 1}).values(); });
     });
 }
 
@@ -103,7 +104,7 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
     Dem dem = openDem(path, heights);
     const std::size_t width = dem.band.width, height = dem.band.height;
     HeightStats stats;
-    const std::size_t stripRows = std::max<std::size_t>(1, kStripCells / width);
+    const std::size_t stripRows = stripRowsFor(width);
     for (std::size_t row0 = 0; row0 < height; row0 += stripRows) {
         const CellWindow strip{0, row0, width, std::min(height, row0 + stripRows)};
         stats.add(heightsInMetres(readRasterWindow(path, strip), path, dem.heights));
@@ -195,9 +196,14 @@ std::shared_ptr<const Dem> DemSource::readWhole() const {
     return held_ ? held_ : std::make_shared<const Dem>(read(whole()));
 }
 
-std::vector<float> DemSource::rowHeightsM(std::size_t row) const {
-    const Dem strip = read({0, row, width(), row + 1});
-    return strip.terrain.heightsM.values();
+Grid<float> DemSource::heightsM(const CellWindow& w) const {
+    checkWindow(w);
+    Grid<float> raw, heights;
+    std::size_t nodata = 0;
+    readCells(w, raw, heights, nodata);
+    return heights;
 }
+
+std::size_t DemSource::stripRows() const { return stripRowsFor(width()); }
 
 }  // namespace demlight

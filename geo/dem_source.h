@@ -66,8 +66,10 @@ public:
     Dem read(const CellWindow& w) const;
     /// The whole DEM: the one held, or read (read(whole())).
     std::shared_ptr<const Dem> readWhole() const;
-    /// Heights (metres, NaN for nodata) of one row.
-    std::vector<float> rowHeightsM(std::size_t row) const;
+    /// Heights (metres, NaN for nodata) of a window, without the rest of read()'s Dem.
+    Grid<float> heightsM(const CellWindow& w) const;
+    /// Rows per strip of a pass over the whole DEM (about 8 Mi cells a strip).
+    std::size_t stripRows() const;
     /// NodeHeights of the whole DEM, read from the rows the nodes lie on (remembered per step:
     /// every instant of a period asks for the same).
     NodeHeights nodeHeights(std::size_t stepCells) const;

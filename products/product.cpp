@@ -173,10 +173,12 @@ std::vector<Grid<float>> readAuxiliaryRaster(const std::string& path, const DemS
 
     // Coverage: a raster that misses every valid cell of the DEM is a wrong file, not "no data".
     bool covers = false;
-    for (std::size_t row = 0; row < source.height() && !covers; ++row) {
-        const std::vector<float> h = source.rowHeightsM(row);
-        for (std::size_t col = 0; col < h.size() && !covers; ++col)
-            covers = !std::isnan(h[col]) && !std::isnan(bands[0](col, row));
+    for (std::size_t row0 = 0; row0 < source.height() && !covers; row0 += source.stripRows()) {
+        const CellWindow strip{0, row0, source.width(), std::min(source.height(), row0 + source.stripRows())};
+        const Grid<float> h = source.heightsM(strip);
+        for (std::size_t r = 0; r < h.height() && !covers; ++r)
+            for (std::size_t col = 0; col < h.width() && !covers; ++col)
+                covers = !std::isnan(h(col, r)) && !std::isnan(bands[0](col, row0 + r));
     }
     if (!covers) throw FieldError(spec.field, what + ": covers no cell of the DEM (check its extent and CRS against the DEM's)");
 

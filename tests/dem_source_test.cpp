@@ -87,6 +87,22 @@ TEST(DemSource, AFileReadByWindowIsTheDemLoadedWhole) {
             EXPECT_TRUE(sameBits(a.nodesM, b.nodesM)) << path << " step " << step;
             EXPECT_EQ(std::memcmp(&a.centreM, &b.centreM, sizeof(float)), 0) << path;
             EXPECT_EQ(a.meanM, b.meanM) << path;
+            // Each node against the cell it names (src/sun_field.h's lattice), read here directly.
+            const Grid<float>& z = loadDem(path).terrain.heightsM;
+            ASSERT_EQ(a.nodesM.width(), (w - 1) / step + 2);
+            ASSERT_EQ(a.nodesM.height(), (h - 1) / step + 2);
+            for (std::size_t j = 0; j < a.nodesM.height(); ++j)
+                for (std::size_t i = 0; i < a.nodesM.width(); ++i) {
+                    const float want = z(std::min(i * step, w - 1), std::min(j * step, h - 1));
+                    EXPECT_EQ(std::memcmp(&a.nodesM(i, j), &want, sizeof(float)), 0) << path << " node " << i << "," << j;
+                }
+            double sum = 0;
+            std::size_t valid = 0;
+            for (float v : z.values())
+                if (!std::isnan(v)) sum += v, ++valid;
+            EXPECT_EQ(a.meanM, sum / static_cast<double>(valid)) << path;  // row order, as computeSunField summed
+            const float centre = z(w / 2, h / 2);
+            EXPECT_EQ(std::memcmp(&a.centreM, &centre, sizeof(float)), 0) << path;
         }
     }
 }
