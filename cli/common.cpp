@@ -358,23 +358,50 @@ void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
 
 void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp) {
     cmd->add_option("--date", o.date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
-    cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
-    cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    if (o.periods) {
+        cmd->add_option("--start", o.startDate,
+                        "Start of a range: a first local day YYYY-MM-DD, or a local time YYYY-MM-DDTHH:MM[:SS]");
+        cmd->add_option("--end", o.endDate,
+                        "End of a range: a last local day YYYY-MM-DD (inclusive), or a local time YYYY-MM-DDTHH:MM[:SS]");
+        cmd->add_option("--month", o.month, "Local calendar month YYYY-MM");
+        cmd->add_option("--year", o.year, "Local calendar year YYYY");
+    } else {
+        cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
+        cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    }
     cmd->add_option("--tz", o.tz, tzHelp);
 }
 
 LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
-    LocalDays days{{}, {}, zoneOfDays(o.tz)};
+    LocalDays days{{}, {}, zoneOfDays(o.tz), std::nullopt};
+    const bool range = !o.startDate.empty() || !o.endDate.empty();
+    const int given = int(!o.date.empty()) + int(range) + int(!o.month.empty()) + int(!o.year.empty());
+    const std::string choices = o.periods ? "--date D, --start D --end D, --month YYYY-MM or --year YYYY"
+                                          : "--date D, or both --start D and --end D";
+    if (given > 1) throw Error(command + ": give one of " + choices + ", not several");
     if (!o.date.empty()) {
-        if (!o.startDate.empty() || !o.endDate.empty())
-            throw Error(command + ": give either --date or --start/--end, not both");
         days.first = days.last = parseDate(o.date);
-        return days;
+    } else if (!o.month.empty()) {
+        const DateRange month = parseMonth(o.month);
+        days.first = month.first;
+        days.last = month.last;
+    } else if (!o.year.empty()) {
+        const DateRange year = parseYear(o.year);
+        days.first = year.first;
+        days.last = year.last;
+    } else if (o.startDate.empty() || o.endDate.empty()) {
+        throw Error(command + ": give " + choices);
+    } else if (o.periods && (o.startDate.find('T') != std::string::npos || o.endDate.find('T') != std::string::npos)) {
+        const UtcInstant start = parseTimeOptions(o.startDate, o.tz).utc, end = parseTimeOptions(o.endDate, o.tz).utc;
+        if (end <= start) throw Error(command + ": --end " + o.endDate + " is not after --start " + o.startDate);
+        days.interval = std::pair(start, end);
+        days.first = localDayOf(start, days.zone).date;
+        days.last = localDayOf(end, days.zone).date;
+    } else {
+        days.first = parseDate(o.startDate);
+        days.last = parseDate(o.endDate);
+        if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
     }
-    if (o.startDate.empty() || o.endDate.empty()) throw Error(command + ": give --date D, or both --start D and --end D");
-    days.first = parseDate(o.startDate);
-    days.last = parseDate(o.endDate);
-    if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
     return days;
 }
 

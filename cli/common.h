@@ -135,16 +135,20 @@ inline constexpr double kMaxPressureHpa = 5000;
 ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
-/// --date D, or --start D --end D, and --tz of the commands over local days.
+/// --date D, or --start D --end D, and --tz of the commands over local days; with periods also
+/// --month YYYY-MM, --year YYYY, and --start/--end as local times (an interval within days).
 struct DayOptions {
-    std::string date, startDate, endDate, tz;
+    std::string date, startDate, endDate, month, year, tz;
+    bool periods = false;  ///< --month, --year and local times in --start/--end are offered
 };
-/// Adds them; `tzHelp` says what --tz is the zone of.
+/// Adds them (--month and --year when o.periods); `tzHelp` says what --tz is the zone of.
 void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp);
 /// The local days (inclusive) of the options; `command` names the command in errors.
 struct LocalDays {
     std::chrono::sys_days first, last;
     TimeZoneSpec zone;
+    /// --start/--end given as local times: the interval itself (first and last are its days).
+    std::optional<std::pair<UtcInstant, UtcInstant>> interval;
 };
 LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
 
