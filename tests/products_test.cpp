@@ -197,7 +197,7 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
         if (f.index == 1) middle = f.lightmap.bands[1].values;
         check(std::move(f));
     };
-    const TimelapseResult res = timelapseProduct(dem, r, sink);
+    const TimelapseResult res = timelapseProduct(dem, dem.whole(), r, sink);
     EXPECT_EQ(frames, 3u);
     EXPECT_EQ(skies, 1u);
     ASSERT_TRUE(res.fit);
