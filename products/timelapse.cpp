@@ -47,9 +47,9 @@ void fillInstants(TimelapseInstants& f, UtcInstant t0, UtcInstant t1, std::chron
 /// The sky term's sweeps; with a stack, the stack's, which also give every frame's sun horizon.
 HorizonParams skyTermParams(const Terrain& t, const ScenePlan& plan, const TimelapseRequest& r,
                             std::size_t skyDirections) {
+    if (r.stackDirections == 0) return integralParams(r.search, plan, t, skyDirections);
     // The interpolated stack also gives every frame's sun horizon: the plan's own direction
     // tolerance, not the integrals' (planIntegralParams).
-    if (r.stackDirections == 0) return integralParams(r.search, plan, t, skyDirections);
     HorizonParams p = horizonParams(r.search, plan);
     // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's distance (full).
     if (!r.search.maxDistanceM)
