@@ -247,23 +247,27 @@ void ensureOpenFiles(std::size_t outputs) {
                 "that fits one piece");
 }
 
-/// Tiles outer, frames inside: each tile's sky term is computed once and each frame's lightmap
-/// tile goes into that frame's streamed GeoTIFF; every output stays under a temporary name until
-/// all are renamed together after the last tile (removed on failure or Ctrl-C).
-TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const TimelapseRequest& request,
-                         const RasterRun& run, const CliContext& ctx) {
+/// The rasters of a tiled run: sky_k.tif, frame i at 1 + i, then sequence_fit.tif (with a fit).
+std::vector<RasterTarget> tiledTargets(const TimelapseOptions& o, const TimelapseRequest& request) {
     const std::size_t n = request.frames.instants.size();
     const auto target = [&](const std::string& name) {
         RasterTarget t;
         t.out.path = (fs::path(o.outDir) / name).string();
         return t;
     };
-    std::vector<RasterTarget> targets{target(kSkyFile)};  // then frame i at 1 + i, then the fit
+    std::vector<RasterTarget> targets{target(kSkyFile)};
     for (std::size_t i = 0; i < n; ++i) targets.push_back(target(frameName(i, n, "tif")));
-    const std::size_t fitTarget = targets.size();
     if (request.fitDegree > 0) targets.push_back(target(kFitFile));
-    ensureOpenFiles(targets.size());
+    return targets;
+}
 
+/// Tiles outer, frames inside: each tile's sky term is computed once and each frame's lightmap
+/// tile goes into that frame's streamed GeoTIFF; every output stays under a temporary name until
+/// all are renamed together after the last tile (removed on failure or Ctrl-C).
+TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const TimelapseRequest& request,
+                         const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx) {
+    const std::size_t n = request.frames.instants.size();
+    const std::size_t fitTarget = 1 + n;
     TiledWriter writer(run, targets, ctx, o.dem.path);
     FrameIndex index(o.outDir);
     std::optional<TimelapseResult> total;
@@ -308,6 +312,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                     (tiled ? "in " + std::to_string(run.tiles.size()) + " tiles (--tile-size, --memory-limit)"
                            : std::string("a --srcwin window")) +
                     "; give --formats tif" + (tiled ? " (or a --memory-limit that fits the DEM in one piece)" : ""));
+    const std::vector<RasterTarget> targets = tiled ? tiledTargets(o, request) : std::vector<RasterTarget>{};
+    if (tiled) ensureOpenFiles(targets.size());
     std::error_code ec;
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
@@ -317,7 +323,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
 
     const auto start = std::chrono::steady_clock::now();
     if (tiled) {
-        const TimelapseResult result = runTiled(o, dem, request, run, ctx);
+        const TimelapseResult result = runTiled(o, dem, request, run, targets, ctx);
         noteTimelapse(o, request, result, formats, run.tiles.size(), secondsSince(start), ctx);
         return;
     }
