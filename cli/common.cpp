@@ -214,34 +214,41 @@ TiledWriter::TiledWriter(const RasterRun& run, std::vector<RasterTarget> targets
 TiledWriter::~TiledWriter() = default;
 
 void TiledWriter::write(const CellWindow& tile, const std::vector<const ProductResult*>& parts) {
-    if (sinks_.empty()) {
-        for (std::size_t k = 0; k < targets_.size(); ++k) {
-            const ProductResult& r = *parts[k];
-            WriteOptions w;
-            w.format = targets_[k].out.format;
-            w.creationOptions = targets_[k].out.creationOptions;
-            w.nodata = r.flagNodata.value_or(r.nodata);
-            w.metadata = r.metadata;
-            w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
-            for (const auto& [key, value] : targets_[k].extra) w.metadata[key] = value;
-            sinks_.push_back(std::make_unique<RasterSink>(targets_[k].out.path, run_.extent.col1 - run_.extent.col0,
-                                                          run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_));
-        }
+    for (std::size_t k = 0; k < targets_.size(); ++k) write(k, tile, *parts[k]);
+}
+
+void TiledWriter::write(std::size_t target, const CellWindow& tile, const ProductResult& part) {
+    sinks_.resize(targets_.size());
+    std::unique_ptr<RasterSink>& sink = sinks_[target];
+    if (!sink) {
+        WriteOptions w;
+        w.format = targets_[target].out.format;
+        w.creationOptions = targets_[target].out.creationOptions;
+        w.nodata = part.flagNodata.value_or(part.nodata);
+        w.metadata = part.metadata;
+        w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
+        for (const auto& [key, value] : targets_[target].extra) w.metadata[key] = value;
+        sink = std::make_unique<RasterSink>(targets_[target].out.path, run_.extent.col1 - run_.extent.col0,
+                                            run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_);
     }
     const CellWindow at{tile.col0 - run_.extent.col0, tile.row0 - run_.extent.row0, tile.col1 - run_.extent.col0,
                         tile.row1 - run_.extent.row0};
-    for (std::size_t k = 0; k < targets_.size(); ++k) {
-        std::vector<OutputBand> bands;
-        for (const ProductBand& b : parts[k]->bands)
-            bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
-                             b.resampling});
-        sinks_[k]->write(at, bands);
-    }
+    std::vector<OutputBand> bands;
+    for (const ProductBand& b : part.bands)
+        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
+                         b.resampling});
+    sink->write(at, bands);
+}
+
+void TiledWriter::setMetadata(std::size_t target, const std::map<std::string, std::string>& items) {
+    if (target >= sinks_.size() || !sinks_[target]) throw Error("internal: metadata for an output not yet written");
+    for (const auto& [key, value] : items) sinks_[target]->setMetadata(key, value);
 }
 
 void TiledWriter::commit() {
     for (std::size_t k = 0; k < sinks_.size(); ++k) {
         try {
+            if (!sinks_[k]) throw Error("internal: nothing was written to '" + targets_[k].out.path + "'");
             sinks_[k]->commit();
         } catch (const Error&) {
             removeOutputs(targets_, k);  // a product's rasters are all written or none

@@ -85,6 +85,11 @@ public:
     ~TiledWriter();
     /// Writes the parts of one tile's result, part k to target k.
     void write(const CellWindow& tile, const std::vector<const ProductResult*>& parts);
+    /// Writes one tile of target k alone (products that stream several rasters per tile).
+    void write(std::size_t target, const CellWindow& tile, const ProductResult& part);
+    /// Sets metadata items of target k known only once every tile is written (a mean over the
+    /// raster); the target must have been written.
+    void setMetadata(std::size_t target, const std::map<std::string, std::string>& items);
     /// Renames every output to its name.
     void commit();
 
@@ -98,6 +103,12 @@ private:
 
 /// Removes the first `count` targets' files (written before a later one failed).
 void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
+
+/// Runs step(tile, progress) on each tile of `run` in order, with one progress bar for the whole
+/// job: the tiled half of runRaster, and the driver of products that write several rasters while
+/// they compute a tile (time-lapse frames through a TiledWriter).
+template <class Step>
+void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step);
 
 /// Runs a raster product on each window of `run` (product(window, progress) -> Result; parts(r)
 /// lists its rasters, one per target) with one progress bar for the whole job, and writes them:
@@ -174,11 +185,19 @@ std::string formatSeconds(double seconds);
 /// Prints a line to stderr unless quiet.
 void note(const CliContext& ctx, const std::string& line);
 
+template <class Step>
+void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step) {
+    ProgressBar bar(!ctx.quiet);
+    for (std::size_t i = 0; i < run.tiles.size(); ++i)
+        step(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
+    bar.finish();
+}
+
 template <class Result, class Product, class Parts>
 Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
                  const std::string& inputPath, Product&& product, Parts&& parts) {
-    ProgressBar bar(!ctx.quiet);
     if (run.tiles.size() == 1) {
+        ProgressBar bar(!ctx.quiet);
         Result r = product(run.tiles.front(), bar.callback());
         bar.finish();
         const std::vector<const ProductResult*> rasters = parts(r);
@@ -194,12 +213,11 @@ Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets,
     }
     TiledWriter writer(run, targets, ctx, inputPath);
     std::optional<Result> first;
-    for (std::size_t i = 0; i < run.tiles.size(); ++i) {
-        Result r = product(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
-        writer.write(run.tiles[i], parts(r));
+    runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
+        Result r = product(tile, progress);
+        writer.write(tile, parts(r));
         if (!first) first = std::move(r);
-    }
-    bar.finish();
+    });
     writer.commit();
     return std::move(*first);
 }

@@ -692,6 +692,13 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
     }
 }
 
+void RasterSink::setMetadata(const std::string& key, const std::string& value) {
+    State& st = *state_;
+    if (!st.ds) throw Error("internal: metadata for '" + st.path + "' before its first window");
+    st.options.metadata[key] = value;  // a COG is written from the options at commit
+    st.ds->SetMetadataItem(key.c_str(), value.c_str());
+}
+
 void RasterSink::commit() {
     State& st = *state_;
     if (!st.ds) throw Error("internal: nothing was written to '" + st.path + "'");

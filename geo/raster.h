@@ -151,6 +151,9 @@ public:
     /// Writes `bands` (all the window's size, the same bands in the same order every time) at
     /// the window's cells.
     void write(const CellWindow& window, const std::vector<OutputBand>& bands);
+    /// Sets a dataset metadata item known only once every window is written (a mean over the
+    /// raster); after the first write, before commit.
+    void setMetadata(const std::string& key, const std::string& value);
     /// Closes, converts (COG) and renames the file to its path. Throws Error when GDAL fails.
     void commit();
 
