@@ -1,0 +1,71 @@
+"""demlight.dask on a LocalCluster of 2 worker processes: a real DEM in windows, each a task that
+reads its own halo, written into one file that is the command line's, bit for bit."""
+
+import re
+
+import pytest
+
+from conftest import HELENS, LUXEMBOURG, REPO, raster_facts
+
+distributed = pytest.importorskip("distributed", reason="demlight.dask needs python3-distributed (scripts/install-deps.sh)")
+import demlight  # noqa: E402
+import demlight.dask  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def test_windows_cover_the_extent_once():
+    extent = (3, 5, 330, 473)
+    for chunks in (100, (64, 200)):
+        ws = demlight.dask.windows(extent, chunks)
+        cells = sum((c1 - c0) * (r1 - r0) for c0, r0, c1, r1 in ws)
+        assert cells == (330 - 3) * (473 - 5)
+        assert all(extent[0] <= c0 < c1 <= extent[2] and extent[1] <= r0 < r1 <= extent[3] for c0, r0, c1, r1 in ws)
+
+
+def test_sun_in_windows_equals_cli(tmp_path, client, cli):
+    # 327 x 468 cells in windows of 128: 3 x 4 = 12 tasks on the two workers.
+    out = demlight.dask.run("sun", str(HELENS), str(tmp_path / "dask.tif"), chunks=128, client=client,
+                            time="2024-06-21T07:30", tz="America/Los_Angeles")
+    assert out == [str(tmp_path / "dask.tif")]
+    assert len(demlight.dask.windows((0, 0, 327, 468), 128)) >= 4
+    cli("sun", HELENS, "-o", tmp_path / "cli.tif", "--time", "2024-06-21T07:30", "--tz", "America/Los_Angeles")
+    assert raster_facts(tmp_path / "dask.tif") == raster_facts(tmp_path / "cli.tif")
+
+
+def test_horizon_cog_in_row_strips_equals_cli(tmp_path, client, cli):
+    # Two output files (horizons, truncation mask), COG, windows of 32 rows x 60 columns.
+    out = demlight.dask.run("horizon", str(LUXEMBOURG), str(tmp_path / "dask.tif"), chunks=(32, 60), client=client,
+                            format="COG", azimuth=[45.0, 200.0], max_distance=3000.0)
+    assert len(out) == 2
+    cli("horizon", LUXEMBOURG, "-o", tmp_path / "cli.tif", "--of", "COG", "--azimuth", "45", "200",
+        "--max-distance", "3000")
+    for path in out:
+        dask_facts = raster_facts(path)
+        cli_facts = raster_facts(path.replace("dask.", "cli."))
+        for facts in (dask_facts, cli_facts):
+            facts["metadata"].pop("DEMLIGHT_TRUNCATION_MASK")
+        assert dask_facts == cli_facts
+
+
+def test_error_in_a_window_leaves_no_file(tmp_path, client):
+    with pytest.raises(demlight.Error, match="tz"):
+        demlight.dask.run("sun", str(HELENS), str(tmp_path / "x.tif"), chunks=128, client=client, time="2024-06-21T07:30")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_readme_dask_example_runs(tmp_path, client):
+    readme = (REPO / "README.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", readme, re.S)
+    example = [b for b in blocks if "demlight.dask" in b]
+    assert example, "README.md has no demlight.dask example"
+    code = example[0].replace("sun_dask.tif", str(tmp_path / "sun_dask.tif")).replace("samples/", str(REPO / "samples") + "/")
+    code = re.sub(r"client = .*\n", "", code)  # the test's LocalCluster stands for the user's
+    exec(compile(code, "README.md", "exec"), {"client": client, "__name__": "readme"})
+    assert (tmp_path / "sun_dask.tif").exists()
