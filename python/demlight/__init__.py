@@ -272,7 +272,7 @@ def _default(o):
     text = o["default"]
     if not text or o["flag"]:
         return None
-    kind = _TYPES.get(o["type"].split()[0] if o["type"] else "", str)
+    kind = _TYPES.get(o["type"].split(":")[0].strip(), str)  # "FLOAT:[0, 20]": the type, then its check
     try:
         return kind(text)
     except ValueError:
