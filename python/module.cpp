@@ -490,8 +490,12 @@ PYBIND11_MODULE(_demlight, m) {
         .def("heights",
              [](const PyDem& d) {
                  if (!d.whole) {
-                     py::gil_scoped_release release;
-                     d.whole = d.source->readWhole();
+                     std::shared_ptr<const Dem> whole;
+                     {
+                         py::gil_scoped_release release;
+                         whole = d.source->readWhole();
+                     }
+                     if (!d.whole) d.whole = std::move(whole);  // with the GIL: one thread sets it
                  }
                  return view(d.whole->terrain.heightsM, d.whole);
              })

@@ -17,6 +17,8 @@ docs/python.md.
 import datetime as _datetime
 import inspect as _inspect
 import json as _json
+import re as _re
+import textwrap as _textwrap
 
 from . import _demlight
 
@@ -279,6 +281,11 @@ def _default(o):
         return text
 
 
+def _keywords_for_flags(text):
+    """The command line's "--max-distance" in a description as the keyword max_distance."""
+    return _re.sub(r"(?<![\w-])--?([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), text)
+
+
 def _docstring(command):
     lines = [
         "%s (demlight %s)." % (_demlight.command_description(command), command),
@@ -310,10 +317,15 @@ def _docstring(command):
             head += " (also %s)" % ", ".join(keywords[1:])
         if o["type"]:
             head += " : %s" % o["type"].lower()
+            if o["expected"] > 1:
+                head += " x %d" % o["expected"]
+        if o["required"]:
+            head += ", required"
         if o["default"]:
             head += ", default %s" % o["default"]
         lines.append(head)
-        lines.append("    " + o["description"])
+        lines += _textwrap.wrap(_keywords_for_flags(o["description"]), 92, initial_indent="    ",
+                                subsequent_indent="    ")
     lines += ["", "Returns a demlight.Result: .bands, .units, .metadata, .write(path), .to_xarray().",
               "Raises demlight.Error with the library's message (options named as keywords)."]
     return "\n".join(lines)

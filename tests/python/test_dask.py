@@ -39,13 +39,14 @@ def test_sun_in_windows_equals_cli(tmp_path, client, cli):
     assert raster_facts(tmp_path / "dask.tif") == raster_facts(tmp_path / "cli.tif")
 
 
-def test_horizon_cog_in_row_strips_equals_cli(tmp_path, client, cli):
-    # Two output files (horizons, truncation mask), COG, windows of 32 rows x 60 columns.
+def test_horizon_cog_window_in_row_strips_equals_cli(tmp_path, client, cli):
+    # Two output files (horizons, truncation mask), COG, a source window, in windows of 32 rows
+    # x 60 columns.
     out = demlight.dask.run("horizon", str(LUXEMBOURG), str(tmp_path / "dask.tif"), chunks=(32, 60), client=client,
-                            format="COG", azimuth=[45.0, 200.0], max_distance=3000.0)
+                            format="COG", azimuth=[45.0, 200.0], max_distance=3000.0, srcwin=(5, 3, 85, 80))
     assert len(out) == 2
     cli("horizon", LUXEMBOURG, "-o", tmp_path / "cli.tif", "--of", "COG", "--azimuth", "45", "200",
-        "--max-distance", "3000")
+        "--max-distance", "3000", "--srcwin", "5", "3", "85", "80")
     for path in out:
         dask_facts = raster_facts(path)
         cli_facts = raster_facts(path.replace("dask.", "cli."))
