@@ -545,6 +545,7 @@ PYBIND11_MODULE(_demlight, m) {
         .def("abandon", &PyWriter::abandon);
 
     m.def("parse", &parseCall, py::arg("arguments"));
+    m.def("keywords_for_flags", &keywordsForFlags, py::arg("text"));
     m.def("command_options", &commandOptions, py::arg("command"));
     m.def("command_description", &commandDescription, py::arg("command"));
     m.def("raster_commands", &rasterCommands);

@@ -17,7 +17,6 @@ docs/python.md.
 import datetime as _datetime
 import inspect as _inspect
 import json as _json
-import re as _re
 import textwrap as _textwrap
 
 from . import _demlight
@@ -281,11 +280,6 @@ def _default(o):
         return text
 
 
-def _keywords_for_flags(text):
-    """The command line's "--max-distance" in a description as the keyword max_distance."""
-    return _re.sub(r"(?<![\w-])--?([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), text)
-
-
 def _docstring(command):
     lines = [
         "%s (demlight %s)." % (_demlight.command_description(command), command),
@@ -324,7 +318,7 @@ def _docstring(command):
         if o["default"]:
             head += ", default %s" % o["default"]
         lines.append(head)
-        lines += _textwrap.wrap(_keywords_for_flags(o["description"]), 92, initial_indent="    ",
+        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
                                 subsequent_indent="    ")
     lines += ["", "Returns a demlight.Result: .bands, .units, .metadata, .write(path), .to_xarray().",
               "Raises demlight.Error with the library's message (options named as keywords)."]
