@@ -240,9 +240,16 @@ struct PyCall {
         const Terrain& terrain = dem.geometry().terrain;
         return haloCellsFor(terrain, planFor(call.search, terrain).maxDistanceM);
     }
-    /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them.
+    /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them; the
+    /// command line's messages about srcwin and tile_size name them as keywords.
     cli::RasterRun plan(const PyDem& dem) const {
-        return cli::planRasterRun(*dem.source, call.tiling, call.search, call.outputBands, ctx);
+        try {
+            return cli::planRasterRun(*dem.source, call.tiling, call.search, call.outputBands, ctx);
+        } catch (const FieldError&) {
+            throw;
+        } catch (const Error& e) {
+            throw Error(keywordsForFlags(e.what()));
+        }
     }
 };
 
