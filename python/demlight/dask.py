@@ -16,6 +16,7 @@ line's own writer, and renames it at the end: the file is the command line's out
 """
 
 import functools as _functools
+import os as _os
 
 import demlight as _demlight
 from demlight import _demlight as _core
@@ -37,16 +38,26 @@ def windows(extent, chunks):
 
 
 @_functools.lru_cache(maxsize=4)
-def _open(path, z_unit, z_factor):
-    """One opened DEM per worker process and path: its geometry and opening pass are shared by
-    the windows the worker computes."""
+def _open(path, z_unit, z_factor, stamp):
+    """One opened DEM per worker process, path and file version (`stamp`): its geometry and
+    opening pass are shared by the windows the worker computes, and a file replaced between two
+    runs on a long-lived cluster is opened again."""
     return _core.open(path, z_unit, z_factor, None)
+
+
+def _stamp(path):
+    """The file's modification time and size, or None where the OS cannot see it (/vsicurl/...)."""
+    try:
+        st = _os.stat(path)
+    except OSError:
+        return None
+    return (st.st_mtime_ns, st.st_size)
 
 
 def _compute(product, dem_path, arguments, window):
     """A task: one window of the command, on a worker."""
     call = _core.parse(arguments)
-    dem = _open(dem_path, call.z_unit, call.z_factor)
+    dem = _open(dem_path, call.z_unit, call.z_factor, _stamp(dem_path))
     return call.compute_window(dem, list(window), None)
 
 

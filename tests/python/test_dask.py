@@ -5,7 +5,7 @@ import re
 
 import pytest
 
-from conftest import HELENS, LUXEMBOURG, REPO, raster_facts
+from conftest import HELENS, LUXEMBOURG, REPO, ROCKY, raster_facts
 
 distributed = pytest.importorskip("distributed", reason="demlight.dask needs python3-distributed (scripts/install-deps.sh)")
 import demlight  # noqa: E402
@@ -53,6 +53,17 @@ def test_horizon_cog_window_in_row_strips_equals_cli(tmp_path, client, cli):
         for facts in (dask_facts, cli_facts):
             facts["metadata"].pop("DEMLIGHT_TRUNCATION_MASK")
         assert dask_facts == cli_facts
+
+
+def test_a_replaced_dem_is_read_again(tmp_path, client, cli):
+    # Workers keep a DEM open between runs; a file replaced at the same path is opened again.
+    dem = tmp_path / "dem.tif"
+    dem.write_bytes(LUXEMBOURG.read_bytes())
+    demlight.dask.run("sky", str(dem), str(tmp_path / "first.tif"), chunks=48, client=client)
+    dem.write_bytes(ROCKY.read_bytes())
+    demlight.dask.run("sky", str(dem), str(tmp_path / "second.tif"), chunks=48, client=client)
+    cli("sky", dem, "-o", tmp_path / "cli.tif")
+    assert raster_facts(tmp_path / "second.tif") == raster_facts(tmp_path / "cli.tif")
 
 
 def test_error_in_a_window_leaves_no_file(tmp_path, client):
