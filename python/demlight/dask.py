@@ -70,6 +70,10 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
     options of demlight.<product> (srcwin included; tile_size and memory_limit are not used:
     chunks sets the windows). progress: callback(fraction, stage) on the client as windows
     arrive. Returns the paths written (horizon: the horizons and the truncation mask).
+
+    With out_path None nothing is written: returns a dict band name -> dask array (rows,
+    columns), one chunk per window, computed when asked for (the first window is computed at
+    once, for the bands' names and types).
     """
     if product not in _demlight.COMMANDS:
         raise _demlight.Error("product '%s': expected one of %s" % (product, ", ".join(_demlight.COMMANDS)))
@@ -82,6 +86,8 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
     call = _core.parse(arguments)
     dem = _demlight.open(dem_path, z_unit=call.z_unit or None, z_factor=call.z_factor or None)
     parts = windows(call.extent(dem._dem), chunks)
+    if out_path is None:
+        return _arrays(client, product, dem_path, arguments, parts)
     command_line = "demlight.dask.run(%r, %r, %r, chunks=%r%s)" % (
         product, dem_path, out_path, chunks, "".join(", %s=%r" % kv for kv in options.items()))
     writer = _core.Writer(call, dem._dem, str(out_path), format, list(creation_options), command_line)
@@ -106,3 +112,29 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
         writer.abandon()
         client.cancel(futures)
         raise
+
+
+def _band(rasters, name):
+    for raster in rasters:
+        if name in raster.bands:
+            return raster.bands[name]
+    raise KeyError(name)
+
+
+def _arrays(client, product, dem_path, arguments, parts):
+    """Band name -> dask array of the windows' tasks (run's out_path None)."""
+    import dask
+    import dask.array as da
+
+    first = client.submit(_compute, product, dem_path, arguments, parts[0], pure=False).result()
+    bands = {name: values.dtype for raster in first for name, values in raster.bands.items()}
+    rows = {}
+    for window in parts:
+        rows.setdefault(window[1], []).append(window)
+    arrays = {}
+    tasks = {w: dask.delayed(_compute, pure=True)(product, dem_path, arguments, w) for w in parts}
+    for name, dtype in bands.items():
+        blocks = [[da.from_delayed(dask.delayed(_band, pure=True)(tasks[w], name), (w[3] - w[1], w[2] - w[0]), dtype)
+                   for w in row] for _, row in sorted(rows.items())]
+        arrays[name] = da.block(blocks)
+    return arrays

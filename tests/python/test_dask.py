@@ -39,6 +39,22 @@ def test_sun_in_windows_equals_cli(tmp_path, client, cli):
     assert raster_facts(tmp_path / "dask.tif") == raster_facts(tmp_path / "cli.tif")
 
 
+def test_dask_arrays_equal_cli(tmp_path, client, cli):
+    import numpy as np
+    import rasterio
+
+    arrays = demlight.dask.run("sun", str(HELENS), None, chunks=(200, 150), client=client,
+                               time="2024-06-21T07:30", tz="America/Los_Angeles")
+    assert list(arrays) == ["sun_visibility", "sun_irradiance"]
+    assert arrays["sun_visibility"].chunks == ((200, 200, 68), (150, 150, 27))
+    cli("sun", HELENS, "-o", tmp_path / "cli.tif", "--time", "2024-06-21T07:30", "--tz", "America/Los_Angeles")
+    with rasterio.open(tmp_path / "cli.tif") as ds:
+        for i, name in enumerate(ds.descriptions):
+            cells = ds.read(i + 1)
+            expected = np.where(cells == ds.nodata, np.float32(np.nan), cells)
+            assert np.array_equal(arrays[name].compute(), expected, equal_nan=True), name
+
+
 def test_horizon_cog_window_in_row_strips_equals_cli(tmp_path, client, cli):
     # Two output files (horizons, truncation mask), COG, a source window, in windows of 32 rows
     # x 60 columns.
