@@ -15,6 +15,7 @@ docs/python.md.
 """
 
 import datetime as _datetime
+import functools as _functools
 import inspect as _inspect
 import json as _json
 import textwrap as _textwrap
@@ -95,7 +96,8 @@ def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None
 
 
 def _as_dem(dem, transform, crs, nodata, options):
-    """The DEM a product runs on, and the file it came from (None for arrays)."""
+    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array, with
+    the options that apply when a DEM is opened (z_unit, z_factor)."""
     opening = {k: options.pop(k) for k in _OPEN_KEYWORDS if k in options}
     if isinstance(dem, Dem):
         if opening:
@@ -151,7 +153,7 @@ def _arguments(command, dem_label, options):
 
 def _command_line(command, dem, options):
     """DEMLIGHT_COMMAND of a Python run: the call as Python code."""
-    what = repr(dem.path) if dem.path else "<array %s>" % dem._dem.name
+    what = repr(dem.path) if dem.path else dem._dem.name  # an array: its name
     parts = [what] + ["%s=%r" % kv for kv in options.items()]
     return "demlight.%s(%s)" % (command, ", ".join(parts))
 
@@ -240,23 +242,20 @@ class Result:
         return "<demlight.Result %s: %s>" % (self.command, ", ".join(self.bands))
 
 
-_OPTION_CACHE = {}
-
-
+@_functools.lru_cache(maxsize=None)
 def _options(command):
-    """Keyword name -> the command-line option's facts (names, description, default, ...)."""
-    if command not in _OPTION_CACHE:
-        spec = {}
-        for o in _demlight.command_options(command):
-            if o["positional"]:
-                continue
-            keywords = [n.replace("-", "_") for n in o["names"]]
-            if keywords[0] in _NOT_KEYWORDS:
-                continue
-            for k in keywords:
-                spec[k] = dict(o, keyword=keywords[0], aliases=keywords[1:])
-        _OPTION_CACHE[command] = spec
-    return _OPTION_CACHE[command]
+    """Keyword name (aliases included) -> the command-line option's facts (names, description,
+    default, type, ...)."""
+    spec = {}
+    for o in _demlight.command_options(command):
+        if o["positional"]:
+            continue
+        keywords = [n.replace("-", "_") for n in o["names"]]
+        if keywords[0] in _NOT_KEYWORDS:
+            continue
+        for k in keywords:
+            spec[k] = dict(o, keyword=keywords[0], aliases=keywords[1:])
+    return spec
 
 
 def _run(command, dem, transform=None, crs=None, nodata=None, progress=None, **options):
