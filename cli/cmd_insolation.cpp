@@ -46,12 +46,23 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
     return r;
 }
 
+/// Bands of the output: beam, diffuse, reflected, global.
+constexpr std::size_t kInsolationBands = 4;
+
+RasterCall insolationCall(const InsolationOptions& o) {
+    return singleRasterCall(
+        "insolation", o.dem, o.tiling, o.search.request, kInsolationBands,
+        [request = insolationRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+            return insolationProduct(dem, w, request, p);
+        });
+}
+
 void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
     const InsolationRequest request = insolationRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kInsolationBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const InsolationResult r = runRaster<InsolationResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -88,7 +99,7 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runInsolation(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(insolationCall(*o)) : runInsolation(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -5,17 +5,24 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace demlight::cli {
 
+struct RasterCall;
+
 /// Shared state of one invocation: the full command line (recorded in output metadata) and
 /// whether to print progress.
 struct CliContext {
     std::string commandLine;
     bool quiet = false;
+    /// Set by a caller that brings its own DEM and writes the results itself (the Python module):
+    /// the raster commands then hand it their parsed options as a RasterCall (cli/common.h)
+    /// instead of running.
+    std::function<void(const RasterCall&)> takeCall;
 };
 
 void registerInfo(CLI::App& app, CliContext& ctx);

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -100,6 +101,41 @@ private:
     std::string inputPath_;
     std::vector<std::unique_ptr<RasterSink>> sinks_;
 };
+
+/// A raster command's parsed options as a call on any DEM source, for a caller that brings its own
+/// DEM and writes the results itself (CliContext::takeCall): the requests are the command's own,
+/// so names, defaults, checks and messages are the command line's.
+struct RasterCall {
+    std::string command;
+    HeightOptions heights;  ///< --z-unit, --z-factor: how the DEM argument is to be opened
+    TilingOptions tiling;
+    SearchRequest search;         ///< what the halo and the tiles are planned from (planRasterRun)
+    std::size_t outputBands = 0;  ///< of planRasterRun
+    /// The product on one window of a source: one result per output raster (rasterTargets).
+    std::function<std::vector<ProductResult>(const DemSource&, const CellWindow&, const ProgressFn&)> run;
+    /// The rasters the command writes for -o, in the order of run's results.
+    std::function<std::vector<RasterTarget>(const OutputOptions&)> targets;
+};
+
+/// What `demlight info --json` prints of `source` opened from `path`: one JSON object, as text.
+std::string infoJson(const std::string& path, const DemSource& source);
+
+/// A RasterCall of a command that writes one raster: `product(source, window, progress)`.
+template <class Product>
+RasterCall singleRasterCall(std::string command, const DemOptions& dem, const TilingOptions& tiling,
+                            const SearchRequest& search, std::size_t outputBands, Product product) {
+    RasterCall call;
+    call.command = std::move(command);
+    call.heights = dem.heights;
+    call.tiling = tiling;
+    call.search = search;
+    call.outputBands = outputBands;
+    call.run = [product](const DemSource& source, const CellWindow& w, const ProgressFn& p) {
+        return std::vector<ProductResult>{product(source, w, p)};
+    };
+    call.targets = [](const OutputOptions& out) { return std::vector<RasterTarget>{{out, {}}}; };
+    return call;
+}
 
 /// Removes the first `count` targets' files (written before a later one failed).
 void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
