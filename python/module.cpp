@@ -449,8 +449,11 @@ std::vector<std::string> rasterCommands() {
     CLI::App app;
     cli::registerCommands(app, ctx);
     for (const CLI::App* sub : app.get_subcommands({})) {
-        // A raster command is one whose options include -o and --tile-size (the tiled products).
-        if (sub->get_option_no_throw("--tile-size") && sub->get_option_no_throw("--output")) out.push_back(sub->get_name());
+        // A raster command is one whose options include -o and --tile-size (the tiled products),
+        // but timelapse, whose -o is a folder of frames and which hands no RasterCall.
+        if (sub->get_option_no_throw("--tile-size") && sub->get_option_no_throw("--output") &&
+            sub->get_name() != "timelapse")
+            out.push_back(sub->get_name());
     }
     return out;
 }
