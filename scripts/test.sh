@@ -15,8 +15,9 @@ ctest --preset release -j2 --timeout 900
 
 # Under the sanitizers the real-DEM tests (../shared/data/dem) would take a third of the time;
 # they run the code the synthetic tests and the bundled samples (Samples/*) run, on larger
-# grids, so they run in Release only.
-asan_skip='^SharedDems/|^RealDems/|OnARealTile$'
+# grids, so they run in Release only. So do the README's recipes (ReadmeRecipes): commands the
+# CLI tests already run under the sanitizers, at several times their Release CPU.
+asan_skip='^SharedDems/|^RealDems/|OnARealTile$|^ReadmeRecipes$'
 
 stage "AddressSanitizer + UBSan: build and tests"
 cmake --preset asan >/dev/null
