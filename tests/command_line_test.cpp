@@ -109,6 +109,20 @@ TEST(CommandsDoc, ReadmeTableHasEveryCommand) {
             << "README.md's command table has no row for " << command->get_name();
 }
 
+// The man page (docs/man.cmake, built with the tests) holds every command's help.
+TEST(CommandsDoc, ManPageHasEveryCommand) {
+    CLI::App app;
+    CliContext ctx;
+    registerCommands(app, ctx);
+    const std::string page = readText(std::string(DEMLIGHT_BUILD_DIR) + "/docs/demlight.1");
+    ASSERT_FALSE(page.empty()) << DEMLIGHT_BUILD_DIR << "/docs/demlight.1";
+    for (const CLI::App* command : app.get_subcommands({})) {
+        const std::string name = command->get_name();
+        EXPECT_NE(page.find(".SS demlight " + name + "\n"), std::string::npos) << "no section for " << name;
+        EXPECT_NE(page.find("Usage: demlight " + name + " "), std::string::npos) << "no usage line for " << name;
+    }
+}
+
 // The checks above find a missing option: an option deleted from a section is reported.
 TEST(CommandsDoc, SectionCheckSeesADeletedOption) {
     const std::string doc = "### `demlight sky DEM -o OUT.tif`\n\n`--albedo C`, `--sky-directions N`\n\n"
