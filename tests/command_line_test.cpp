@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,18 +25,21 @@ std::string readText(const std::string& path) {
 }
 
 /// The part of commands.md that documents `command`: from its heading "### `demlight COMMAND"
-/// to the next heading of that level or above. Empty when there is no such heading.
-std::string commandSection(const std::string& markdown, const std::string& command) {
-    const std::string doc = "\n" + markdown;  // a heading on the first line starts a line too
-    const std::string heading = "\n### `demlight " + command + " ";
-    const std::size_t begin = doc.find(heading);
-    if (begin == std::string::npos) return {};
-    static const std::regex nextHeading("\n#{1,3} ");
-    std::smatch m;
-    const auto from = doc.begin() + static_cast<std::ptrdiff_t>(begin + heading.size());
-    if (std::regex_search(from, doc.end(), m, nextHeading))
-        return std::string(doc.begin() + static_cast<std::ptrdiff_t>(begin), from + m.position(0));
-    return doc.substr(begin);
+/// to the next heading of that level or above (outside code blocks, whose shell comments also
+/// start with "# "). Empty when there is no such heading.
+std::string commandSection(const std::string& doc, const std::string& command) {
+    const std::string heading = "### `demlight " + command + " ";
+    std::istringstream lines(doc);
+    std::string section, line;
+    bool inside = false, inCode = false;
+    while (std::getline(lines, line)) {
+        if (line.starts_with("```")) inCode = !inCode;
+        const bool isHeading = !inCode && (line.starts_with("# ") || line.starts_with("## ") || line.starts_with("### "));
+        if (isHeading && inside) break;
+        if (isHeading && line.starts_with(heading)) inside = true;
+        if (inside) section += line + "\n";
+    }
+    return section;
 }
 
 /// Whether `text` names the option spelling `flag` (`--sky` is not named by `--sky-directions`).
@@ -125,11 +127,11 @@ TEST(CommandsDoc, ManPageHasEveryCommand) {
 
 // The checks above find a missing option: an option deleted from a section is reported.
 TEST(CommandsDoc, SectionCheckSeesADeletedOption) {
-    const std::string doc = "### `demlight sky DEM -o OUT.tif`\n\n`--albedo C`, `--sky-directions N`\n\n"
-                            "### `demlight sun DEM`\n\n`--sun-diameter`\n";
+    const std::string doc = "### `demlight sky DEM -o OUT.tif`\n\n`--albedo C`\n\n```sh\n# a comment\n```\n\n"
+                            "`--sky-directions N`\n\n### `demlight sun DEM`\n\n`--sun-diameter`\n";
     const std::string sky = commandSection(doc, "sky");
     EXPECT_TRUE(namesFlag(sky, "--albedo"));
-    EXPECT_TRUE(namesFlag(sky, "--sky-directions"));
+    EXPECT_TRUE(namesFlag(sky, "--sky-directions"));  // a shell comment in a code block ends no section
     EXPECT_TRUE(namesFlag(sky, "-o"));
     EXPECT_FALSE(namesFlag(sky, "--sky"));           // a prefix of another option is not it
     EXPECT_FALSE(namesFlag(sky, "--sun-diameter"));  // the next command's section is not this one's
