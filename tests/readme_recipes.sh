@@ -14,7 +14,7 @@ trap 'rm -rf "$work"' EXIT
 
 # One file per code block of the section, in order.
 awk -v dir="$work" '
-  /^## / { inside = ($0 == "## Recipes") }
+  /^## / { inside = ($0 == "## Recipes"); if (file != "") { close(file); file = "" } }
   inside && /^```sh$/ { n++; file = sprintf("%s/recipe_%d.sh", dir, n); next }
   inside && /^```$/ && file != "" { close(file); file = ""; next }
   file != "" { print > file }
