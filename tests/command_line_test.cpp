@@ -3,10 +3,13 @@
 // README's table, so the reference cannot drift from the program; usage lines and argument
 // errors read in the order a user types.
 #include "cli/commands.h"
+#include "cli_runner.h"
+#include "geo/raster.h"
 
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -110,6 +113,53 @@ TEST(CommandsDoc, ReadmeTableHasEveryCommand) {
     for (const CLI::App* command : app.get_subcommands({}))
         EXPECT_NE(readme.find("\n| `demlight " + command->get_name() + " "), std::string::npos)
             << "README.md's command table has no row for " << command->get_name();
+}
+
+// Every metadata key and band the raster commands write is named in docs/commands.md: each
+// command runs once on a small sample and its outputs are read back.
+TEST(CommandsDoc, DocumentsEveryMetadataKeyAndBandWritten) {
+    namespace fs = std::filesystem;
+    const std::string doc = readText(kDocsDir + "/commands.md");
+    ASSERT_FALSE(doc.empty());
+    const fs::path dir = fs::temp_directory_path() / "demlight_commands_doc";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
+    const std::string time = " --time 2024-06-21T14:00Z";
+    const std::string day = " --date 2024-06-21 --tz UTC --step 2h";
+    auto out = [&](const std::string& name) { return " -o " + (dir / name).string(); };
+    const std::vector<std::string> runs = {
+        "horizon " + dem + out("horizon.tif") + " --directions 2",
+        "sun " + dem + out("sun.tif") + time,
+        "sky " + dem + out("sky.tif") + " --patches sectors:2",
+        "aperture " + dem + out("aperture.tif"),
+        "light " + dem + out("light.tif") + time + " --sky-color 1,1,1",
+        "irradiance " + dem + out("irradiance.tif") + time,
+        "insolation " + dem + out("insolation.tif") + day,
+        "sunhours " + dem + out("sunhours.tif") + day,
+        "timelapse " + dem + out("tl") + " --start 2024-06-21T14:00Z --end 2024-06-21T15:00Z --step 1h --formats tif --fit-degree 1",
+        "sequence " + (dir / "tl" / "sequence_fit.tif").string() + out("sequence.tif") + time,
+    };
+    for (const std::string& run : runs) {
+        const auto r = testing::runDemlight("-q " + run);
+        ASSERT_EQ(r.exitCode, 0) << run << "\n" << r.err;
+    }
+    std::vector<std::string> missing;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        if (entry.path().extension() != ".tif") continue;
+        const RasterSummary summary = inspectRaster(entry.path().string());
+        for (const auto& [key, value] : summary.metadata)
+            if (key.starts_with("DEMLIGHT_") && !namesFlag(doc, key)) missing.push_back(key + " (" + entry.path().filename().string() + ")");
+        for (const std::string& band : summary.descriptions) {
+            // A band named per azimuth or patch ("horizon_azimuth=90") or numbered
+            // ("sun_irradiance_legendre_1") is documented by its stem.
+            std::string name = band.substr(0, band.find('=') + (band.find('=') == std::string::npos ? 0 : 1));
+            while (!name.empty() && std::isdigit(static_cast<unsigned char>(name.back()))) name.pop_back();
+            if (doc.find("`" + name) == std::string::npos) missing.push_back("band " + band + " (" + entry.path().filename().string() + ")");
+        }
+    }
+    fs::remove_all(dir);
+    EXPECT_TRUE(missing.empty()) << "docs/commands.md does not name: " << joined(missing);
 }
 
 // The man page (docs/man.cmake, built with the tests) holds every command's help.
