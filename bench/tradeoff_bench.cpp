@@ -435,7 +435,7 @@ private:
             for (std::size_t i = 0; i < h.size(); ++i)
                 if (!seed || exactH[i] >= 0) added.push_back(std::abs(static_cast<double>(h[i]) - exactH[i]));
             const double maxAdded = added.empty() ? 0 : *std::max_element(added.begin(), added.end());
-            sunPair("fixed16 sweep", seed ? "D0 seed 0..90" : "D0 signed -90..90", s, h, sampleOf(l.visibility),
+            sunPair("fixed16 sweep", seed ? "D0 unsigned 0..90" : "D0 signed -90..90", s, h, sampleOf(l.visibility),
                     "2 B/cell/direction instead of 4 (50% saved); added error vs float sweep max " + fmt("%.4f", maxAdded) + " deg" +
                         (seed ? " on h>=0; negative horizons stored as 0" : ""));
         }
@@ -558,9 +558,9 @@ private:
                 if (variant == 0)
                     add("sky sweep", params, s, "sky_K_mae", maeAgainst(sampleOf(maps.skyK), refK_));
                 else
-                    add("fixed16 sky sweep", params + (variant == 1 ? " seed 0..90" : " signed"), s, "sky_K_mae",
+                    add("fixed16 sky sweep", params + (variant == 1 ? " unsigned 0..90" : " signed"), s, "sky_K_mae",
                         maeAgainst(sampleOf(maps.skyK), refK_),
-                        variant == 1 ? "seed range: negative horizons stored as 0; 2 B/cell/direction"
+                        variant == 1 ? "unsigned range: negative horizons stored as 0; 2 B/cell/direction"
                                      : "signed range -90..90; 2 B/cell/direction");
             }
         }

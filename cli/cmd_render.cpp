@@ -53,7 +53,8 @@ void registerRender(CLI::App& app, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand("render", "Picture of the lit DEM (PNG, JPEG, EXR, ...) at one instant");
     addDemArgument(cmd, o->dem);
     cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg, .exr)")
-        ->required();
+        ->required()
+        ->type_name("OUT.png");
     addTimeOptions(cmd, o->time, o->tz);
     addPictureOptions(cmd, o->picture);
     cmd->add_option("--sky-directions", o->skyDirections,

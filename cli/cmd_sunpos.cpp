@@ -127,13 +127,16 @@ void registerSunpos(CLI::App& app, CliContext& /*ctx*/) {
     cmd->add_option("--time", o->time,
                     "Instant: ISO 8601 with offset or Z (2024-06-21T05:30:00+02:00), or local "
                     "time with --tz")
-        ->required();
+        ->required()
+        ->type_name("TIME");
     cmd->add_option("--tz", o->tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
     cmd->add_option("--lat", o->site.latitudeDeg, "Latitude (degrees, north positive)")
         ->required()
+        ->type_name("DEG")
         ->check(finiteRange(-90, 90));
     cmd->add_option("--lon", o->site.longitudeDeg, "Longitude (degrees, east positive)")
         ->required()
+        ->type_name("DEG")
         ->check(finiteRange(-180, 180));
     cmd->add_option("--elevation", o->site.elevationM, "Observer height above sea level (m)")
         ->check(finiteRange(-1000, 100000))

@@ -350,7 +350,8 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand("timelapse", "A lightmap and preview per instant, and an animated GIF");
     addDemArgument(cmd, o->dem);
     cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing; must be empty unless --overwrite)")
-        ->required();
+        ->required()
+        ->type_name("DIR");
     cmd->add_flag("--overwrite", o->overwrite,
                   "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 "
                   "and sequence_fit.tif of an earlier run there are removed first (other files are left)");

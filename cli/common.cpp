@@ -43,7 +43,7 @@ constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 }  // namespace
 
 void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
-    cmd->add_option("-o,--output", o.path, "Output raster path")->required();
+    cmd->add_option("-o,--output", o.path, "Output raster path")->required()->type_name("OUT.tif");
     cmd->add_option("--of", o.format, "Output format (also -of): GTiff (tiled, ZSTD level 1, band-interleaved) or COG (DEFLATE)")
         ->transform(
             [](std::string s) -> std::string {
@@ -359,7 +359,8 @@ ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz) {
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
     cmd->add_option("--time", time,
                     "Instant: ISO 8601 with offset or Z (2024-06-21T05:30:00+02:00), or local time with --tz")
-        ->required();
+        ->required()
+        ->type_name("TIME");
     cmd->add_option("--tz", tz, "IANA time zone for a local --time (e.g. Europe/Zurich)");
 }
 

@@ -23,8 +23,9 @@ if [ "$status" -eq 5 ]; then echo "pytest collected no tests in tests/python"; e
 
 # Under the sanitizers the real-DEM tests (../shared/data/dem) would take a third of the time;
 # they run the code the synthetic tests and the bundled samples (Samples/*) run, on larger
-# grids, so they run in Release only.
-asan_skip='^SharedDems/|^RealDems/|OnARealTile$'
+# grids, so they run in Release only. So do the README's recipes (ReadmeRecipes): commands the
+# CLI tests already run under the sanitizers, at several times their Release CPU.
+asan_skip='^SharedDems/|^RealDems/|OnARealTile$|^ReadmeRecipes$'
 
 stage "AddressSanitizer + UBSan: build and tests"
 cmake --preset asan >/dev/null
