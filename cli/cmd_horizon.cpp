@@ -21,6 +21,9 @@ struct HorizonOptions {
     std::string method = "sweep";
 };
 
+/// The horizon raster's metadata item that names its truncation mask raster.
+constexpr const char* kTruncationMaskKey = "DEMLIGHT_TRUNCATION_MASK";
+
 std::string truncationPath(const std::string& outPath) {
     std::filesystem::path p(outPath);
     return (p.parent_path() / (p.stem().string() + ".truncated.tif")).string();
@@ -44,7 +47,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2 * request.azimuthsDeg.size(), ctx);
     const auto start = std::chrono::steady_clock::now();
     const HorizonResult result = runRaster<HorizonResult>(
-        run, {{o.out, {{"DEMLIGHT_TRUNCATION_MASK", masks}}}, {maskOut, {{"DEMLIGHT_TRUNCATION_MASK", masks}}}}, ctx,
+        run, {{o.out, {{kTruncationMaskKey, masks}}}, {maskOut, {{kTruncationMaskKey, masks}}}}, ctx,
         o.dem.path, [&](const CellWindow& w, const ProgressFn& p) { return horizonProduct(dem, w, request, p); },
         [](const HorizonResult& r) { return std::vector<const ProductResult*>{&r.horizons, &r.truncation}; });
     const double seconds = secondsSince(start);
@@ -62,6 +65,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
 void registerHorizon(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<HorizonOptions>();
     CLI::App* cmd = app.add_subcommand("horizon", "Horizon elevation angle maps along true azimuths");
+    ctx.outputs[cmd->get_name()].companionKeys = {kTruncationMaskKey};
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
     auto* az = cmd->add_option("--azimuth", o->azimuthsDeg, "True azimuth(s), degrees clockwise from north (repeatable)")

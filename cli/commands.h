@@ -5,17 +5,27 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace demlight::cli {
 
+/// What a command writes, where -o is not simply one GDAL raster.
+struct CommandOutputs {
+    std::string kind;                      ///< what -o names: "folder", "picture"; empty: a raster (-o with --of) or a file
+    std::vector<std::string> companionKeys;  ///< metadata items of the -o raster that name further rasters written with it
+};
+
 /// Shared state of one invocation: the full command line (recorded in output metadata) and
 /// whether to print progress.
 struct CliContext {
     std::string commandLine;
     bool quiet = false;
+    /// What commands write beyond one GDAL raster at -o, by command name, for programs that drive
+    /// demlight (options --json, cli/cmd_options.cpp).
+    std::map<std::string, CommandOutputs> outputs;
 };
 
 void registerInfo(CLI::App& app, CliContext& ctx);
@@ -31,6 +41,8 @@ void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);
+/// The hidden `options --json` command: every other command's options as JSON.
+void registerOptions(CLI::App& app, CliContext& ctx);
 
 /// Makes `app` demlight's root command: --version, -q, every command above, and argument errors
 /// in demlight's one-line form (cli/command_line.cpp). main() parses with it, and so does the
