@@ -55,9 +55,9 @@ nlohmann::json describeOption(const CLI::Option& opt) {
     j["description"] = opt.get_description();
     j["default"] = opt.get_default_str().empty() ? nlohmann::json() : nlohmann::json(opt.get_default_str());
     j["required"] = opt.get_required();
-    j["flag"] = opt.get_type_size_max() == 0;
-    describeType(opt.get_type_name(), j);
     const auto [least, most] = valueCount(opt);
+    j["flag"] = most == 0;  // takes no value
+    describeType(opt.get_type_name(), j);
     j["min_values"] = least;
     j["max_values"] = most;
     nlohmann::json excludes = nlohmann::json::array();

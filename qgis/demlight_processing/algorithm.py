@@ -2,8 +2,6 @@
 (`demlight options --json`): its options become parameters, its help text the algorithm's help,
 and running it runs the CLI, so its outputs are the CLI's."""
 
-import html
-
 from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputRasterLayer,
                        QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
                        QgsProcessingParameterFileDestination, QgsProcessingParameterFolderDestination,
@@ -88,7 +86,10 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         return self._command["description"]
 
     def shortHelpString(self):
-        return "<pre>" + html.escape(self._command["help"]) + "</pre>"
+        # HTML for the dialog; only what HTML requires is escaped, so qgis_process help prints
+        # the CLI's text as it is.
+        text = self._command["help"].replace("&", "&amp;").replace("<", "&lt;")
+        return "<pre>" + text + "</pre>"
 
     def initAlgorithm(self, config=None):
         for option in self._command["options"]:
@@ -180,11 +181,15 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                 feedback.setProgressText(name)
             feedback.setProgress(percent)
 
-        code, messages = cli.run(args, on_progress, feedback.pushConsoleInfo, feedback.isCanceled)
+        def on_line(line):
+            if not line.startswith(cli.ERROR_PREFIX):  # errors go into the exception, once
+                feedback.pushConsoleInfo(line)
+
+        code, messages = cli.run(args, on_progress, on_line, feedback.isCanceled)
         if feedback.isCanceled():
             raise QgsProcessingException("demlight: cancelled")
         if code != 0:
-            errors = [m for m in messages if m.startswith("demlight:")] or messages
+            errors = [m for m in messages if m.startswith(cli.ERROR_PREFIX)] or messages
             raise QgsProcessingException("\n".join(errors) or f"demlight exited with code {code}")
         outputs.update(self._companions(outputs[OUTPUT]))
         return outputs

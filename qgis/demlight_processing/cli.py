@@ -21,6 +21,9 @@ EXECUTABLE_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "exec
 # (cli/progress_bar.cpp, ProgressBar::writeLine): "STAGE: 40 % after 1.2 s[, ~2.0 s left]".
 _PROGRESS_LINE = re.compile(r"^(?P<stage>.+): (?P<percent>\d+) % after ")
 
+#: How the CLI starts an error line (cli/main.cpp, cli/command_line.cpp).
+ERROR_PREFIX = "demlight: error: "
+
 # Seconds to wait for the CLI to stop at its next safe point after SIGINT before killing it.
 _CANCEL_GRACE_S = 10.0
 
@@ -74,8 +77,9 @@ def run(arguments, on_progress, on_line, is_cancelled, poll_s=0.2):
     lines = queue.Queue()
 
     def pump():
-        for line in proc.stdout:
-            lines.put(line.rstrip("\n"))
+        with proc.stdout:
+            for line in proc.stdout:
+                lines.put(line.rstrip("\n"))
         lines.put(None)
 
     reader = threading.Thread(target=pump, daemon=True)
