@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages demlight needs, only those that are missing (clang and its
-# runtime libraries: the asan preset and the libFuzzer targets).
+# runtime libraries: the asan preset and the libFuzzer targets; qgis, python3-qgis and
+# python3-pytest: the QGIS provider's tests, qgis/tests).
 # Runs apt-get as root, or through sudo when not root.
 set -euo pipefail
 
@@ -10,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
   nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox python3
   clang libclang-rt-dev
+  qgis python3-qgis python3-pytest
 )
 
 missing=()
