@@ -3,7 +3,7 @@
 and running it runs the CLI, so its outputs are the CLI's."""
 
 from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputRasterLayer,
-                       QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
+                       QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
                        QgsProcessingParameterFileDestination, QgsProcessingParameterFolderDestination,
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
                        QgsProcessingParameterRasterLayer, QgsProcessingParameterString)
@@ -114,6 +114,10 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
             return QgsProcessingParameterFileDestination(name, label, _PICTURE_FILTER if kind == "picture" else "")
         if option["flag"]:
             return QgsProcessingParameterBoolean(name, label, False, True)
+        if option["choices"] and option["max_values"] == 1:
+            # Static strings: qgis_process takes QUALITY=full, not the choice's index.
+            return QgsProcessingParameterEnum(name, label, option["choices"], False, option["default"], optional,
+                                              usesStaticStrings=True)
         if _is_number(option):
             kind = QgsProcessingParameterNumber.Integer if _is_integer(option) else QgsProcessingParameterNumber.Double
             return QgsProcessingParameterNumber(name, label, kind, _typed_default(option), optional)
@@ -158,7 +162,10 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                     continue
                 args += [flag, repr(value)]
                 continue
-            value = self.parameterAsString(parameters, name, context).strip()
+            if option["choices"] and option["max_values"] == 1:
+                value = self.parameterAsEnumString(parameters, name, context)
+            else:
+                value = self.parameterAsString(parameters, name, context).strip()
             if not value or value == option["default"]:
                 continue
             if option["max_values"] == 1:

@@ -130,12 +130,12 @@ def test_qgis_process_help_is_the_cli_help(qgis):
 
 def test_qgis_process_sun_equals_the_cli(qgis, tmp_path):
     ours = tmp_path / "qgis_sun.tif"
-    done = qgis("run", "demlight:sun", "--", f"INPUT={SAMPLE}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full",
+    done = qgis("run", "demlight:sun", "--", f"INPUT={SAMPLE}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
                 "SUN_DIAMETER=1.5", f"OUTPUT={ours}")
     assert done.returncode == 0, done.stdout + done.stderr
     theirs = tmp_path / "cli_sun.tif"
     subprocess.run([demlight_executable(), "-q", "sun", SAMPLE, "-o", str(theirs), "--time", TIME, "--tz", TZ,
-                    "--quality", "full", "--sun-diameter", "1.5"], check=True)
+                    "--quality", "full", "--of", "COG", "--sun-diameter", "1.5"], check=True)
     assert checksums(str(ours)) == checksums(str(theirs))
 
 
