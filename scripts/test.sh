@@ -22,7 +22,7 @@ scripts/check_install.sh
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 stage "QGIS provider: qgis_process against the CLI"
-PYTHONDONTWRITEBYTECODE=1 "$python" -m pytest -q -p no:cacheprovider qgis/tests
+PYTHONDONTWRITEBYTECODE=1 "$python" -m pytest -q -rs -p no:cacheprovider qgis/tests
 
 # Under the sanitizers the real-DEM tests (../shared/data/dem) would take a third of the time;
 # they run the code the synthetic tests and the bundled samples (Samples/*) run, on larger
