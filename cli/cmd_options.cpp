@@ -98,7 +98,7 @@ void registerOptions(CLI::App& app, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand("options", "Every command's options as JSON, for programs that drive demlight");
     cmd->group("");  // hidden from demlight --help and from the list of commands
     cmd->add_flag("--json", *json, "Print JSON (the only form)")->required();
-    cmd->callback([&app, &ctx] {
+    cmd->callback([json, &app, &ctx] {  // holds the flag's storage as long as the command
         nlohmann::json commands = nlohmann::json::array();
         for (const CLI::App* sub : app.get_subcommands({}))
             if (!sub->get_group().empty()) commands.push_back(describeCommand(*sub, ctx));

@@ -14,8 +14,10 @@ namespace demlight::cli {
 
 /// What a command writes, where -o is not simply one GDAL raster.
 struct CommandOutputs {
-    std::string kind;                      ///< what -o names: "folder", "picture"; empty: a raster (-o with --of) or a file
-    std::vector<std::string> companionKeys;  ///< metadata items of the -o raster that name further rasters written with it
+    /// What -o names: "folder", "picture"; empty: a GDAL raster (-o with --of) or a file.
+    std::string kind;
+    /// Metadata items of the -o raster that name further rasters written with it.
+    std::vector<std::string> companionKeys;
 };
 
 /// Shared state of one invocation: the full command line (recorded in output metadata) and
