@@ -49,7 +49,7 @@ def find_executable(configured=None):
 def load_commands(executable):
     """`demlight options --json`: {"version": ..., "commands": [...]} (cli/cmd_options.cpp)."""
     try:
-        done = subprocess.run([executable, "options", "--json"], capture_output=True, text=True, timeout=60,
+        done = subprocess.run([executable, "options", "--json"], capture_output=True, encoding="utf-8", timeout=60,
                               check=False)
     except (OSError, subprocess.SubprocessError) as e:
         raise DemlightError(f"{executable} options --json: {e}") from e
@@ -71,7 +71,8 @@ def run(arguments, on_progress, on_line, is_cancelled, poll_s=0.2):
     and leaves no partial output), and killed if it has not stopped after a grace period.
     Returns (exit code, the lines that were not progress)."""
     try:
-        proc = subprocess.Popen(arguments, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1)
+        proc = subprocess.Popen(arguments, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
+                                encoding="utf-8", errors="replace")
     except OSError as e:
         raise DemlightError(f"cannot run {arguments[0]}: {e}") from e
     lines = queue.Queue()
