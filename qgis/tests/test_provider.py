@@ -92,6 +92,13 @@ def test_progress_line_format():
 # ---- qgis_process -----------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
+def dem(tmp_path_factory):
+    """A copy of the sample: QGIS writes statistics beside a raster layer it opens
+    (DEM.aux.xml), which must not land in samples/."""
+    return shutil.copy(SAMPLE, tmp_path_factory.mktemp("dem"))
+
+
+@pytest.fixture(scope="module")
 def qgis(tmp_path_factory):
     """Runs qgis_process with the provider installed by qgis/install.sh into a temporary
     profile: qgis(*args) -> CompletedProcess."""
@@ -129,26 +136,26 @@ def test_qgis_process_help_is_the_cli_help(qgis):
         assert f"\n{parameter}:" in text, parameter
 
 
-def test_qgis_process_sun_equals_the_cli(qgis, tmp_path):
+def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
     ours = tmp_path / "qgis_sun.tif"
-    done = qgis("run", "demlight:sun", "--", f"INPUT={SAMPLE}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
+    done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
                 "SUN_DIAMETER=1.5", f"OUTPUT={ours}")
     assert done.returncode == 0, done.stdout + done.stderr
     theirs = tmp_path / "cli_sun.tif"
-    subprocess.run([demlight_executable(), "-q", "sun", SAMPLE, "-o", str(theirs), "--time", TIME, "--tz", TZ,
+    subprocess.run([demlight_executable(), "-q", "sun", dem, "-o", str(theirs), "--time", TIME, "--tz", TZ,
                     "--quality", "full", "--of", "COG", "--sun-diameter", "1.5"], check=True)
     assert checksums(str(ours)) == checksums(str(theirs))
 
 
-def test_qgis_process_horizon_returns_both_rasters(qgis, tmp_path):
+def test_qgis_process_horizon_returns_both_rasters(qgis, dem, tmp_path):
     # (Not OUTPUT=TEMPORARY_OUTPUT: qgis_process removes its temporary folder when it exits.)
-    done = qgis("--json", "run", "demlight:horizon", "--", f"INPUT={SAMPLE}", "AZIMUTH=10 200",
+    done = qgis("--json", "run", "demlight:horizon", "--", f"INPUT={dem}", "AZIMUTH=10 200",
                 f"OUTPUT={tmp_path / 'qgis_h.tif'}")
     assert done.returncode == 0, done.stdout + done.stderr
     results = json.loads(done.stdout)["results"]
     assert results == {"OUTPUT": str(tmp_path / "qgis_h.tif"), "TRUNCATION_MASK": str(tmp_path / "qgis_h.truncated.tif")}
     theirs = tmp_path / "cli_h.tif"
-    subprocess.run([demlight_executable(), "-q", "horizon", SAMPLE, "-o", str(theirs), "--azimuth", "10",
+    subprocess.run([demlight_executable(), "-q", "horizon", dem, "-o", str(theirs), "--azimuth", "10",
                     "--azimuth", "200"], check=True)
     for ours, cli_path in ((results["OUTPUT"], theirs), (results["TRUNCATION_MASK"], tmp_path / "cli_h.truncated.tif")):
         a, b = checksums(ours), checksums(str(cli_path))
@@ -158,13 +165,13 @@ def test_qgis_process_horizon_returns_both_rasters(qgis, tmp_path):
         assert a == b
 
 
-def test_qgis_process_timelapse_writes_its_folder(qgis, tmp_path):
+def test_qgis_process_timelapse_writes_its_folder(qgis, dem, tmp_path):
     ours = tmp_path / "qgis_day"
-    done = qgis("run", "demlight:timelapse", "--", f"INPUT={SAMPLE}", "DATE=2024-06-21", f"TZ={TZ}", "STEP=6h",
+    done = qgis("run", "demlight:timelapse", "--", f"INPUT={dem}", "DATE=2024-06-21", f"TZ={TZ}", "STEP=6h",
                 "FORMATS=tif", f"OUTPUT={ours}")
     assert done.returncode == 0, done.stdout + done.stderr
     theirs = tmp_path / "cli_day"
-    subprocess.run([demlight_executable(), "-q", "timelapse", SAMPLE, "-o", str(theirs), "--date", "2024-06-21",
+    subprocess.run([demlight_executable(), "-q", "timelapse", dem, "-o", str(theirs), "--date", "2024-06-21",
                     "--tz", TZ, "--step", "6h", "--formats", "tif"], check=True)
     assert sorted(os.listdir(ours)) == sorted(os.listdir(theirs))
     frames = [f for f in os.listdir(theirs) if f.endswith(".tif")]
@@ -173,8 +180,8 @@ def test_qgis_process_timelapse_writes_its_folder(qgis, tmp_path):
         assert checksums(str(ours / f)) == checksums(str(theirs / f)), f
 
 
-def test_qgis_process_reports_the_cli_error(qgis, tmp_path):
-    done = qgis("run", "demlight:sun", "--", f"INPUT={SAMPLE}", "TIME=2024-06-21T07:30",
+def test_qgis_process_reports_the_cli_error(qgis, dem, tmp_path):
+    done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", "TIME=2024-06-21T07:30",
                 f"OUTPUT={tmp_path / 'no_zone.tif'}")
     assert done.returncode != 0
     assert "has no zone" in done.stdout + done.stderr
