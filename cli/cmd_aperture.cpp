@@ -16,14 +16,30 @@ struct ApertureOptions {
     std::optional<std::size_t> directions;
 };
 
-void runAperture(const ApertureOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem, ctx);
+/// Bands of the output: bent normal E, N, U, aperture radius, visible solid angle.
+constexpr std::size_t kApertureBands = 5;
+
+ApertureRequest apertureRequest(const ApertureOptions& o) {
     ApertureRequest request;
     request.directions = o.directions;
     request.search = o.search.request;
+    return request;
+}
+
+RasterCall apertureCall(const ApertureOptions& o) {
+    return singleRasterCall(
+        "aperture", o.dem, o.tiling, o.search.request, kApertureBands,
+        [request = apertureRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+            return apertureProduct(dem, w, request, p);
+        });
+}
+
+void runAperture(const ApertureOptions& o, const CliContext& ctx) {
+    checkOutputPath(o.out, o.dem.path);
+    const DemSource dem = openDem(o.dem, ctx);
+    const ApertureRequest request = apertureRequest(o);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kApertureBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const ApertureResult result = runRaster<ApertureResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -47,7 +63,7 @@ void registerAperture(CLI::App& app, CliContext& ctx) {
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runAperture(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(apertureCall(*o)) : runAperture(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -29,33 +29,62 @@ std::string truncationPath(const std::string& outPath) {
     return (p.parent_path() / (p.stem().string() + ".truncated.tif")).string();
 }
 
-void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
+HorizonRequest horizonRequest(const HorizonOptions& o) {
     if (o.azimuthsDeg.empty() == (o.directions == 0)) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
-    checkOutputPath(o.out, o.dem.path);
-    const std::string masks = truncationPath(o.out.path);
-    checkOutputPath(masks, o.dem.path);
-    const DemSource dem = openDem(o.dem, ctx);
     HorizonRequest request;
     request.azimuthsDeg = o.azimuthsDeg;
     for (double az : evenAzimuthsDeg(static_cast<std::size_t>(o.directions))) request.azimuthsDeg.push_back(az);
     request.method = parseHorizonMethod(o.method);
     request.search = o.search.request;
+    return request;
+}
+
+/// The two rasters of -o OUT: the horizons in OUT, the truncation mask in OUT.truncated.tif (the
+/// same format and creation options), each naming the mask's file in its metadata.
+std::vector<RasterTarget> horizonTargets(const OutputOptions& out) {
+    OutputOptions maskOut = out;
+    maskOut.path = truncationPath(out.path);
+    return {{out, {{kTruncationMaskKey, maskOut.path}}}, {maskOut, {{kTruncationMaskKey, maskOut.path}}}};
+}
+
+/// Memory of a window per cell (for tile sizes): a horizon and a mask band per azimuth.
+std::size_t horizonBands(const HorizonRequest& request) { return 2 * request.azimuthsDeg.size(); }
+
+RasterCall horizonCall(const HorizonOptions& o) {
+    const HorizonRequest request = horizonRequest(o);
+    RasterCall call;
+    call.command = "horizon";
+    call.heights = o.dem.heights;
+    call.tiling = o.tiling;
+    call.search = request.search;
+    call.outputBands = horizonBands(request);
+    call.run = [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+        HorizonResult r = horizonProduct(dem, w, request, p);
+        return std::vector<ProductResult>{std::move(r.horizons), std::move(r.truncation)};
+    };
+    call.targets = horizonTargets;
+    return call;
+}
+
+void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
+    const HorizonRequest request = horizonRequest(o);
+    const std::vector<RasterTarget> targets = horizonTargets(o.out);
+    checkOutputPath(targets[0].out, o.dem.path);
+    checkOutputPath(targets[1].out.path, o.dem.path);
+    const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
 
-    OutputOptions maskOut = o.out;  // the same format and creation options as the horizons
-    maskOut.path = masks;
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2 * request.azimuthsDeg.size(), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, horizonBands(request), ctx);
     const auto start = std::chrono::steady_clock::now();
     const HorizonResult result = runRaster<HorizonResult>(
-        run, {{o.out, {{kTruncationMaskKey, masks}}}, {maskOut, {{kTruncationMaskKey, masks}}}}, ctx,
-        o.dem.path, [&](const CellWindow& w, const ProgressFn& p) { return horizonProduct(dem, w, request, p); },
+        run, targets, ctx, o.dem.path, [&](const CellWindow& w, const ProgressFn& p) { return horizonProduct(dem, w, request, p); },
         [](const HorizonResult& r) { return std::vector<const ProductResult*>{&r.horizons, &r.truncation}; });
     const double seconds = secondsSince(start);
 
     const std::size_t bands = request.azimuthsDeg.size();
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.width() * dem.height() * bands);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands) + (bands == 1 ? " horizon band" : " horizon bands") +
-                  ", degrees) and " + masks + " (truncation mask); max distance " +
+                  ", degrees) and " + targets[1].out.path + " (truncation mask); max distance " +
                   formatDistance(result.maxDistanceM) + "; " + formatSeconds(seconds) + " compute, " +
                   formatNumber(std::round(nsPerCellDir * 10) / 10) + " ns per cell per direction");
 }
@@ -78,7 +107,7 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--method", o->method, "sweep (fast, default) or reference (brute-force ray march)")
         ->check(CLI::IsMember({"sweep", "reference"}))
         ->capture_default_str();
-    cmd->callback([o, &ctx] { runHorizon(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(horizonCall(*o)) : runHorizon(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -22,7 +22,7 @@ struct InfoOptions {
     bool json = false;
 };
 
-void printJson(const std::string& path, const Dem& dem, const DemInfo& d) {
+nlohmann::json infoObject(const std::string& path, const Dem& dem, const DemInfo& d) {
     const HeightTransform& z = dem.heights;
     nlohmann::json j;
     j["path"] = path;
@@ -50,7 +50,7 @@ void printJson(const std::string& path, const Dem& dem, const DemInfo& d) {
                                ? nlohmann::json{{"min", d.convergenceDeg->first}, {"max", d.convergenceDeg->second}}
                                : nlohmann::json(nullptr);
     j["longest_shadow_m_at_5deg"] = d.longestShadowM;
-    std::cout << j.dump(2) << "\n";
+    return j;
 }
 
 void printText(const std::string& path, const Dem& dem, const DemInfo& d) {
@@ -87,12 +87,16 @@ void runInfo(const InfoOptions& o, const CliContext& ctx) {
     const DemSource source = openDem(o.dem, ctx);
     const DemInfo d = describeDem(source);
     if (o.json)
-        printJson(o.dem.path, source.geometry(), d);
+        std::cout << infoObject(o.dem.path, source.geometry(), d).dump(2) << "\n";
     else
         printText(o.dem.path, source.geometry(), d);
 }
 
 }  // namespace
+
+std::string infoJson(const std::string& path, const DemSource& source) {
+    return infoObject(path, source.geometry(), describeDem(source)).dump();
+}
 
 void registerInfo(CLI::App& app, CliContext& ctx) {
     auto opts = std::make_shared<InfoOptions>();

@@ -1,6 +1,6 @@
-// demlight insolation DEM -o OUT.tif (--date D | --start D --end D) --tz ZONE: beam, diffuse,
-// reflected and global irradiation in kWh m-2 over local days, by binned sun positions
-// (products/insolation.h).
+// demlight insolation DEM -o OUT.tif (--date D | --start D --end D | --month M | --year Y) --tz ZONE:
+// beam, diffuse, reflected and global irradiation in kWh m-2 and hours of direct sun over a
+// period of local days or times, by binned sun positions (products/insolation.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
 #include "cli/progress_bar.h"
@@ -31,6 +31,7 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
     r.zone = days.zone;
     r.firstDay = days.first;
     r.lastDay = days.last;
+    r.interval = days.interval;
     r.step = parseStepOption(o.step, std::chrono::minutes(1));
     r.linke = parseLinkeOption(o.sky.linke);
     r.albedo = o.sky.albedo;
@@ -45,18 +46,29 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
     return r;
 }
 
+/// Bands of the output: beam, diffuse, reflected, global.
+constexpr std::size_t kInsolationBands = 4;
+
+RasterCall insolationCall(const InsolationOptions& o) {
+    return singleRasterCall(
+        "insolation", o.dem, o.tiling, o.search.request, kInsolationBands,
+        [request = insolationRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+            return insolationProduct(dem, w, request, p);
+        });
+}
+
 void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
     const InsolationRequest request = insolationRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kInsolationBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const InsolationResult r = runRaster<InsolationResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
         [&](const CellWindow& w, const ProgressFn& p) { return insolationProduct(dem, w, request, p); },
         [](const InsolationResult& s) { return std::vector<const ProductResult*>{&s}; });
-    note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in kWh/m2; diffuse model " +
+    note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in kWh/m2, sun_hours; diffuse model " +
                   o.sky.diffuseModel + "): " + std::to_string(r.instants) + " instants every " + o.step + " in " +
                   std::to_string(r.bins) + " bins of " + std::to_string(r.directions) + " azimuth sectors, " +
                   formatSeconds(secondsSince(start)) + " compute");
@@ -66,8 +78,10 @@ void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
 
 void registerInsolation(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<InsolationOptions>();
+    o->days.periods = true;
     CLI::App* cmd = app.add_subcommand(
-        "insolation", "Clear-sky solar irradiation (kWh/m2) over local days: beam, diffuse, reflected, global");
+        "insolation", "Clear-sky solar irradiation (kWh/m2) over a period, from an interval within a day to a year: beam, "
+        "diffuse, reflected, global, and hours of direct sun");
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
     addDayOptions(cmd, o->days, "IANA time zone of the days (required; UTC for universal time)");
@@ -85,7 +99,7 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runInsolation(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(insolationCall(*o)) : runInsolation(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -23,7 +23,10 @@ struct IrradianceOptions {
     double sunDiameterDeg = kSunDiameterDeg;
 };
 
-void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
+/// Bands of the output: beam, diffuse, reflected, global.
+constexpr std::size_t kIrradianceBands = 4;
+
+IrradianceRequest irradianceRequest(const IrradianceOptions& o) {
     IrradianceRequest request;
     request.time = parseTimeOptions(o.time, o.tz);
     request.linke = parseLinkeOption(o.sky.linke);
@@ -36,12 +39,25 @@ void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
     request.sunDiameterDeg = o.sunDiameterDeg;
     request.search = o.search.request;
     linkeFor(request);  // a bad --linke fails before the DEM is read
+    return request;
+}
+
+RasterCall irradianceCall(const IrradianceOptions& o) {
+    return singleRasterCall(
+        "irradiance", o.dem, o.tiling, o.search.request, kIrradianceBands,
+        [request = irradianceRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+            return irradianceProduct(dem, w, request, p);
+        });
+}
+
+void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
+    const IrradianceRequest request = irradianceRequest(o);
     if (request.diffuseModel == DiffuseModel::RSun && o.skyDirections)
         note(ctx, "note: --sky-directions is used by --diffuse-model visible-sky only; rsun sweeps the sun's azimuth");
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kIrradianceBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const IrradianceResult r = runRaster<IrradianceResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -72,7 +88,7 @@ void registerIrradiance(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runIrradiance(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(irradianceCall(*o)) : runIrradiance(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -46,12 +46,22 @@ LightRequest lightRequest(const LightOptions& o) {
     return r;
 }
 
+/// Bands of the output (for tile sizes): light, or three of colour.
+constexpr std::size_t kLightBands = 3;
+
+RasterCall lightCall(const LightOptions& o) {
+    return singleRasterCall("light", o.dem, o.tiling, o.search.request, kLightBands,
+                            [request = lightRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+                                return lightProduct(dem, w, request, p);
+                            });
+}
+
 void runLight(const LightOptions& o, const CliContext& ctx) {
     const LightRequest request = lightRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 3, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kLightBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const LightResult result = runRaster<LightResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -93,7 +103,7 @@ void registerLight(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runLight(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(lightCall(*o)) : runLight(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -22,8 +22,7 @@ struct SkyOptions {
     std::string model = "stewart-langer";
 };
 
-void runSky(const SkyOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out, o.dem.path);
+SkyRequest skyRequest(const SkyOptions& o) {
     SkyRequest request;
     request.model = parseSkyModel(o.model);
     if (request.model == SkyModel::Hemisphere && !o.patches.empty())
@@ -33,12 +32,29 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     request.albedo = o.albedo;
     request.albedoRaster = o.albedoRaster;
     request.search = o.search.request;
+    return request;
+}
+
+/// Bands of the output: svf_horizontal, sky_fraction, sky_K, f_sky and one per sky patch.
+std::size_t skyBands(const SkyRequest& request) { return 4 + request.patches.patches.size(); }
+
+RasterCall skyCall(const SkyOptions& o) {
+    const SkyRequest request = skyRequest(o);
+    return singleRasterCall("sky", o.dem, o.tiling, request.search, skyBands(request),
+                            [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+                                return skyProduct(dem, w, request, p);
+                            });
+}
+
+void runSky(const SkyOptions& o, const CliContext& ctx) {
+    checkOutputPath(o.out, o.dem.path);
+    const SkyRequest request = skyRequest(o);
     const auto loadStart = std::chrono::steady_clock::now();
     const DemSource dem = openDem(o.dem, ctx);
     const double loadSeconds = secondsSince(loadStart);
     if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.geometry().terrain, ctx);
 
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 4 + request.patches.patches.size(), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, skyBands(request), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SkyResult result = runRaster<SkyResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -86,7 +102,7 @@ void registerSky(CLI::App& app, CliContext& ctx) {
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runSky(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(skyCall(*o)) : runSky(*o, ctx); });
 }
 
 }  // namespace demlight::cli

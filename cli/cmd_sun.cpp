@@ -21,7 +21,10 @@ struct SunOptions {
     std::optional<std::size_t> directions;
 };
 
-void runSun(const SunOptions& o, const CliContext& ctx) {
+/// Bands of the output: sun_visibility, sun_irradiance.
+constexpr std::size_t kSunBands = 2;
+
+SunRequest sunRequest(const SunOptions& o) {
     SunRequest request;
     request.time = parseTimeOptions(o.time, o.tz);
     request.model = parseSunModel(o.model);
@@ -29,12 +32,24 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     request.atmosphere = o.atmosphere;
     request.directions = o.directions;
     request.search = o.search.request;
+    return request;
+}
+
+RasterCall sunCall(const SunOptions& o) {
+    return singleRasterCall("sun", o.dem, o.tiling, o.search.request, kSunBands,
+                            [request = sunRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+                                return sunProduct(dem, w, request, p);
+                            });
+}
+
+void runSun(const SunOptions& o, const CliContext& ctx) {
+    const SunRequest request = sunRequest(o);
     if (request.model == SunModel::Horizon && o.directions)
         note(ctx, "note: --sky-directions is used by the aperture models only; --model horizon sweeps the sun's azimuth");
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 2, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunResult r = runRaster<SunResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -77,7 +92,7 @@ void registerSun(CLI::App& app, CliContext& ctx) {
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runSun(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(sunCall(*o)) : runSun(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -39,12 +39,23 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     return r;
 }
 
+/// Bands of the output: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
+constexpr std::size_t kSunhoursBands = 5;
+
+RasterCall sunhoursCall(const SunhoursOptions& o) {
+    return singleRasterCall(
+        "sunhours", o.dem, o.tiling, o.search.request, kSunhoursBands,
+        [request = sunhoursRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+            return sunhoursProduct(dem, w, request, p);
+        });
+}
+
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, 5, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunhoursBands, ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -77,7 +88,7 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
         ->check(finiteRange(4, 1024));
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runSunhours(*o, ctx); });
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(sunhoursCall(*o)) : runSunhours(*o, ctx); });
 }
 
 }  // namespace demlight::cli

@@ -6,7 +6,8 @@
 //   DIR/frames.csv     frame number -> local time, UTC, the sun at the DEM centre
 //   DIR/timelapse.gif  the previews as an animated GIF (longer side at most --gif-size px)
 // DIR must be missing or empty, or hold an earlier time-lapse and --overwrite be given (its files
-// are removed first, so frames of two runs never mix).
+// are removed first, so frames of two runs never mix). A run in tiles (--tile-size, --memory-limit)
+// or on a --srcwin window writes the GeoTIFFs and frames.csv only: pictures are of whole frames.
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "geo/image_out.h"
@@ -24,6 +25,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace demlight::cli {
 namespace {
@@ -33,6 +35,7 @@ namespace fs = std::filesystem;
 struct TimelapseOptions {
     DemOptions dem;
     std::string outDir;
+    TilingOptions tiling;
     SearchOptions search;
     std::string start, end, date, tz;
     std::string step = "15m";
@@ -63,11 +66,17 @@ std::set<std::string> parseFormats(const std::string& text) {
     return out;
 }
 
+/// The outputs besides the frames.
+const std::string kSkyFile = "sky_k.tif", kIndexFile = "frames.csv", kFitFile = "sequence_fit.tif";
+
+/// Open files a run needs besides its outputs (the DEM, GDAL's, standard streams, probes).
+constexpr rlim_t kSpareFiles = 64;
+
 std::string frameName(std::size_t i, std::size_t count, const std::string& ext) {
-    const int digits = std::max(3, static_cast<int>(std::to_string(count - 1).size()));
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "frame_%0*zu.", digits, i);
-    return buf + ext;
+    // Zero-padded to the digits of the last frame, at least three: names sort in frame order.
+    const std::size_t digits = std::max<std::size_t>(3, std::to_string(count - 1).size());
+    const std::string number = std::to_string(i);
+    return "frame_" + std::string(digits - std::min(digits, number.size()), '0') + number + "." + ext;
 }
 
 /// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size),
@@ -85,8 +94,7 @@ void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
 
 /// Whether `name` is a file a time-lapse writes (frameName and FrameWriter's names).
 bool isTimelapseOutput(const std::string& name) {
-    static const std::set<std::string> fixed = {"sky_k.tif", "frames.csv", "timelapse.gif", "timelapse.mp4",
-                                                "sequence_fit.tif"};
+    static const std::set<std::string> fixed = {kSkyFile, kIndexFile, "timelapse.gif", "timelapse.mp4", kFitFile};
     if (fixed.count(name)) return true;
     // frame_<digits>.tif or .png
     constexpr std::size_t kDigitsAt = 6;
@@ -113,6 +121,29 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
     }
 }
 
+/// DIR/frames.csv: frame number -> local time, UTC, the sun at the DEM centre; under a temporary
+/// name until commit().
+class FrameIndex {
+public:
+    explicit FrameIndex(const std::string& dir)
+        : file_((fs::path(dir) / kIndexFile).string(), TemporaryNaming::Hidden), out_(file_.path()) {
+        out_ << "frame,time_local,time_utc,sun_azimuth_deg,sun_elevation_deg\n";
+    }
+    void add(const TimelapseFrame& f) {
+        out_ << f.index << "," << f.localTime << "," << formatInstant(f.time, std::string()) << ","
+             << formatNumber(f.centreAzimuthDeg) << "," << formatNumber(f.centreElevationDeg) << "\n";
+    }
+    void commit() {
+        out_.close();
+        if (!out_) throw Error(writeFailureMessage("'" + file_.finalPath() + "'", file_.path(), {}));
+        file_.commit();
+    }
+
+private:
+    TemporaryFile file_;
+    std::ofstream out_;
+};
+
 /// Writes the frames as they come: frame i on a background thread while frame i + 1 computes;
 /// waiting for the previous write before handing over the next keeps the files (and the GIF) in
 /// order, and rethrows a failed write.
@@ -120,16 +151,12 @@ class FrameWriter {
 public:
     FrameWriter(const TimelapseOptions& o, const std::set<std::string>& formats, std::size_t frames,
                 const CliContext& ctx)
-        : o_(o), formats_(formats), n_(frames), ctx_(ctx),
-          indexFile_((fs::path(o.outDir) / "frames.csv").string(), TemporaryNaming::Hidden),
-          index_(indexFile_.path()) {
+        : o_(o), formats_(formats), n_(frames), ctx_(ctx), index_(o.outDir) {
         if (formats.count("gif")) gif_ = std::make_unique<GifWriter>((fs::path(o.outDir) / "timelapse.gif").string(), o.fps);
-        index_ << "frame,time_local,time_utc,sun_azimuth_deg,sun_elevation_deg\n";
     }
-    void sky(ProductResult&& r) { write(r, "sky_k.tif"); }
+    void sky(ProductResult&& r) { write(r, kSkyFile); }
     void frame(TimelapseFrame&& f) {
-        index_ << f.index << "," << f.localTime << "," << formatInstant(f.time, std::string()) << ","
-               << formatNumber(f.centreAzimuthDeg) << "," << formatNumber(f.centreElevationDeg) << "\n";
+        index_.add(f);
         wait();
         writing_ = std::async(std::launch::async, [this, f = std::move(f)] {
             if (formats_.count("tif")) write(f.lightmap, frameName(f.index, n_, "tif"));
@@ -141,9 +168,7 @@ public:
     void finish() {
         wait();
         if (gif_) gif_->finish();
-        index_.close();
-        if (!index_) throw Error(writeFailureMessage("'" + indexFile_.finalPath() + "'", indexFile_.path(), {}));
-        indexFile_.commit();
+        index_.commit();
     }
     void write(const ProductResult& r, const std::string& name) {
         OutputOptions out;
@@ -159,8 +184,7 @@ private:
     const std::set<std::string>& formats_;
     std::size_t n_;
     const CliContext& ctx_;
-    TemporaryFile indexFile_;  // frames.csv, renamed into place by finish()
-    std::ofstream index_;
+    FrameIndex index_;
     std::unique_ptr<GifWriter> gif_;
     std::future<void> writing_;
 };
@@ -180,26 +204,99 @@ TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std:
 }
 
 void noteTimelapse(const TimelapseOptions& o, const TimelapseRequest& r, const TimelapseResult& res,
-                   const std::set<std::string>& formats, double total, const CliContext& ctx) {
+                   const std::set<std::string>& formats, std::size_t tiles, double total, const CliContext& ctx) {
     const auto& f = r.frames;
     note(ctx, "frames: " + std::to_string(res.frames) + " (" + f.description + ", " +
                   formatInstant(f.instants.front(), f.zone) + " .. " + formatInstant(f.instants.back(), f.zone) +
-                  ", step " + o.step + "), " + std::to_string(res.sunUpFrames) + " with the sun up");
-    note(ctx, "time: sky " + formatSeconds(res.skySeconds) + " once (" + std::to_string(res.skyDirections) +
+                  ", step " + o.step + "), " +
+                  std::to_string(std::count(res.sunUp.begin(), res.sunUp.end(), true)) + " with the sun up");
+    note(ctx, "time: sky " + formatSeconds(res.skySeconds) +
+                  (tiles > 1 ? " once per tile, " + std::to_string(tiles) + " tiles" : std::string(" once")) + " (" +
+                  std::to_string(res.skyDirections) +
                   " directions to " + formatDistance(res.skyMaxDistanceM) + ", quality " +
                   std::string(qualityName(res.quality)) +
                   (r.stackDirections > 0 ? ", also the interpolated sun horizons" : "") + "); total " +
                   formatSeconds(total) + ", " + formatSeconds(total / static_cast<double>(res.frames)) +
-                  " per frame (writing in the background)");
+                  " per frame" + (tiles > 1 ? std::string() : " (writing in the background)"));
     note(ctx, "wrote " + o.outDir + ": frames.csv " +
                   (formats.count("tif") ? "frame_*.tif (sun_visibility, sun_irradiance), sky_k.tif " : "") +
                   (formats.count("png") ? "frame_*.png " : "") + (formats.count("gif") ? "timelapse.gif " : "") +
-                  (formats.count("mp4") ? "timelapse.mp4" : "") + (res.fit ? "sequence_fit.tif" : ""));
-    if (res.fit)
-        note(ctx, "sequence_fit.tif: sun_irradiance as degree-" + std::to_string(r.fitDegree) + " polynomials, " +
+                  (formats.count("mp4") ? "timelapse.mp4" : "") + (r.fitDegree > 0 ? kFitFile : ""));
+    if (r.fitDegree > 0)
+        note(ctx, kFitFile + ": sun_irradiance as degree-" + std::to_string(r.fitDegree) + " polynomials, " +
                       std::to_string(r.fitDegree + 1) + " bands for " + std::to_string(res.frames) +
-                      " frames; RMS error vs the exact frames: mean " + formatNumber(res.fitMeanRms) +
-                      ", worst cell " + formatNumber(res.fitWorstRms));
+                      " frames; RMS error vs the exact frames: mean " + formatNumber(res.fitStats.meanRms()) +
+                      ", worst cell " + formatNumber(res.fitStats.worstRms));
+}
+
+/// A tiled run keeps every output GeoTIFF open from the first tile to the end: raises this
+/// process's open-file limit to what `outputs` need (up to the hard limit), or refuses before any
+/// work.
+void ensureOpenFiles(std::size_t outputs) {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
+    const rlim_t need = static_cast<rlim_t>(outputs) + kSpareFiles;
+    if (limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= need) return;
+    if (limit.rlim_max == RLIM_INFINITY || limit.rlim_max >= need) {
+        limit.rlim_cur = need;
+        if (::setrlimit(RLIMIT_NOFILE, &limit) == 0) return;
+    }
+    throw Error("timelapse: a tiled run keeps its " + std::to_string(outputs) +
+                " GeoTIFFs open until the last tile, more files than this process may open (ulimit -n " +
+                std::to_string(limit.rlim_max) + "); use fewer frames (--step, --start/--end) or a --memory-limit "
+                "that fits one piece");
+}
+
+/// The rasters of a tiled run: sky_k.tif, frame i at 1 + i, then sequence_fit.tif (with a fit).
+std::vector<RasterTarget> tiledTargets(const TimelapseOptions& o, const TimelapseRequest& request) {
+    const std::size_t n = request.frames.instants.size();
+    const auto target = [&](const std::string& name) {
+        RasterTarget t;
+        t.out.path = (fs::path(o.outDir) / name).string();
+        return t;
+    };
+    std::vector<RasterTarget> targets{target(kSkyFile)};
+    for (std::size_t i = 0; i < n; ++i) targets.push_back(target(frameName(i, n, "tif")));
+    if (request.fitDegree > 0) targets.push_back(target(kFitFile));
+    return targets;
+}
+
+/// Tiles outer, frames inside: each tile's sky term is computed once and each frame's lightmap
+/// tile goes into that frame's streamed GeoTIFF; every output stays under a temporary name until
+/// all are renamed together after the last tile (removed on failure or Ctrl-C).
+TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const TimelapseRequest& request,
+                         const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx) {
+    const std::size_t n = request.frames.instants.size();
+    const std::size_t fitTarget = 1 + n;
+    TiledWriter writer(run, targets, ctx, o.dem.path);
+    FrameIndex index(o.outDir);
+    std::optional<TimelapseResult> total;
+    runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
+        const TimelapseSink sink{[&](ProductResult&& r) { writer.write(0, tile, r); },
+                                 [&](TimelapseFrame&& f) {
+                                     if (!total) index.add(f);  // the same row from every tile
+                                     writer.write(1 + f.index, tile, f.lightmap);
+                                 }};
+        TimelapseResult r = timelapseProduct(dem, tile, request, sink, progress);
+        if (r.fit) writer.write(fitTarget, tile, *r.fit);
+        r.fit.reset();
+        if (!total) {
+            total = std::move(r);
+            return;
+        }
+        total->skySeconds += r.skySeconds;
+        total->fitStats.merge(r.fitStats);
+        for (std::size_t i = 0; i < n; ++i) total->sunUp[i] = total->sunUp[i] || r.sunUp[i];
+    });
+    if (request.fitDegree > 0) writer.setMetadata(fitTarget, total->fitStats.metadata());
+    writer.commit();
+    try {
+        index.commit();
+    } catch (const Error&) {
+        removeOutputs(targets, targets.size());
+        throw;
+    }
+    return std::move(*total);
 }
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
@@ -208,6 +305,15 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, timelapseGridsPerCell(request), ctx);
+    const bool tiled = run.tiles.size() > 1;
+    if (request.previews && !dem.isWhole(run.tiles.front()))
+        throw Error("--formats " + o.formats + ": png, gif and mp4 are pictures of whole frames of the DEM, and this run is " +
+                    (tiled ? "in " + std::to_string(run.tiles.size()) + " tiles (--tile-size, --memory-limit)"
+                           : std::string("a --srcwin window")) +
+                    "; give --formats tif" + (tiled ? " (or a --memory-limit that fits the DEM in one piece)" : ""));
+    const std::vector<RasterTarget> targets = tiled ? tiledTargets(o, request) : std::vector<RasterTarget>{};
+    if (tiled) ensureOpenFiles(targets.size());
     std::error_code ec;
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
@@ -216,11 +322,16 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     notePlan(o.search, dem.geometry().terrain, ctx);
 
     const auto start = std::chrono::steady_clock::now();
+    if (tiled) {
+        const TimelapseResult result = runTiled(o, dem, request, run, targets, ctx);
+        noteTimelapse(o, request, result, formats, run.tiles.size(), secondsSince(start), ctx);
+        return;
+    }
     FrameWriter writer(o, formats, request.frames.instants.size(), ctx);
     ProgressBar bar(!ctx.quiet);
     const TimelapseSink sink{[&](ProductResult&& r) { writer.sky(std::move(r)); },
                              [&](TimelapseFrame&& f) { writer.frame(std::move(f)); }};
-    const TimelapseResult result = timelapseProduct(dem, request, sink, bar.callback());
+    const TimelapseResult result = timelapseProduct(dem, run.tiles.front(), request, sink, bar.callback());
     writer.finish();
     bar.finish();
     if (formats.count("mp4")) {
@@ -228,8 +339,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
         if (!formats.count("png"))  // the PNGs were only the video's input
             for (std::size_t i = 0; i < result.frames; ++i) fs::remove(fs::path(o.outDir) / frameName(i, result.frames, "png"));
     }
-    if (result.fit) writer.write(*result.fit, "sequence_fit.tif");
-    noteTimelapse(o, request, result, formats, secondsSince(start), ctx);
+    if (result.fit) writer.write(*result.fit, kFitFile);
+    noteTimelapse(o, request, result, formats, 1, secondsSince(start), ctx);
 }
 
 }  // namespace
@@ -275,6 +386,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
         ->check(finiteRange(0, 12));
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
+    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { runTimelapse(*o, ctx); });
 }
 

@@ -5,12 +5,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace demlight::cli {
+
+struct RasterCall;
 
 /// What a command writes, where -o is not simply one GDAL raster.
 struct CommandOutputs {
@@ -25,6 +28,10 @@ struct CommandOutputs {
 struct CliContext {
     std::string commandLine;
     bool quiet = false;
+    /// Set by a caller that brings its own DEM and writes the results itself (the Python module):
+    /// the raster commands then hand it their parsed options as a RasterCall (cli/common.h)
+    /// instead of running.
+    std::function<void(const RasterCall&)> takeCall;
     /// What commands write beyond one GDAL raster at -o, by command name, for programs that drive
     /// demlight (options --json, cli/cmd_options.cpp).
     std::map<std::string, CommandOutputs> outputs;

@@ -214,34 +214,41 @@ TiledWriter::TiledWriter(const RasterRun& run, std::vector<RasterTarget> targets
 TiledWriter::~TiledWriter() = default;
 
 void TiledWriter::write(const CellWindow& tile, const std::vector<const ProductResult*>& parts) {
-    if (sinks_.empty()) {
-        for (std::size_t k = 0; k < targets_.size(); ++k) {
-            const ProductResult& r = *parts[k];
-            WriteOptions w;
-            w.format = targets_[k].out.format;
-            w.creationOptions = targets_[k].out.creationOptions;
-            w.nodata = r.flagNodata.value_or(r.nodata);
-            w.metadata = r.metadata;
-            w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
-            for (const auto& [key, value] : targets_[k].extra) w.metadata[key] = value;
-            sinks_.push_back(std::make_unique<RasterSink>(targets_[k].out.path, run_.extent.col1 - run_.extent.col0,
-                                                          run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_));
-        }
+    for (std::size_t k = 0; k < targets_.size(); ++k) write(k, tile, *parts[k]);
+}
+
+void TiledWriter::write(std::size_t target, const CellWindow& tile, const ProductResult& part) {
+    sinks_.resize(targets_.size());
+    std::unique_ptr<RasterSink>& sink = sinks_[target];
+    if (!sink) {
+        WriteOptions w;
+        w.format = targets_[target].out.format;
+        w.creationOptions = targets_[target].out.creationOptions;
+        w.nodata = part.flagNodata.value_or(part.nodata);
+        w.metadata = part.metadata;
+        w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
+        for (const auto& [key, value] : targets_[target].extra) w.metadata[key] = value;
+        sink = std::make_unique<RasterSink>(targets_[target].out.path, run_.extent.col1 - run_.extent.col0,
+                                            run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_);
     }
     const CellWindow at{tile.col0 - run_.extent.col0, tile.row0 - run_.extent.row0, tile.col1 - run_.extent.col0,
                         tile.row1 - run_.extent.row0};
-    for (std::size_t k = 0; k < targets_.size(); ++k) {
-        std::vector<OutputBand> bands;
-        for (const ProductBand& b : parts[k]->bands)
-            bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
-                             b.resampling});
-        sinks_[k]->write(at, bands);
-    }
+    std::vector<OutputBand> bands;
+    for (const ProductBand& b : part.bands)
+        bands.push_back({b.values.empty() ? nullptr : &b.values, b.values.empty() ? &b.flags : nullptr, b.name, b.unit,
+                         b.resampling});
+    sink->write(at, bands);
+}
+
+void TiledWriter::setMetadata(std::size_t target, const std::map<std::string, std::string>& items) {
+    if (target >= sinks_.size() || !sinks_[target]) throw Error("internal: metadata for an output not yet written");
+    for (const auto& [key, value] : items) sinks_[target]->setMetadata(key, value);
 }
 
 void TiledWriter::commit() {
     for (std::size_t k = 0; k < sinks_.size(); ++k) {
         try {
+            if (!sinks_[k]) throw Error("internal: nothing was written to '" + targets_[k].out.path + "'");
             sinks_[k]->commit();
         } catch (const Error&) {
             removeOutputs(targets_, k);  // a product's rasters are all written or none
@@ -358,23 +365,50 @@ void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz) {
 
 void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp) {
     cmd->add_option("--date", o.date, "Local day YYYY-MM-DD (midnight to midnight in --tz)");
-    cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
-    cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    if (o.periods) {
+        cmd->add_option("--start", o.startDate,
+                        "Start of a range: a first local day YYYY-MM-DD, or a local time YYYY-MM-DDTHH:MM[:SS]");
+        cmd->add_option("--end", o.endDate,
+                        "End of a range: a last local day YYYY-MM-DD (inclusive), or a local time YYYY-MM-DDTHH:MM[:SS]");
+        cmd->add_option("--month", o.month, "Local calendar month YYYY-MM");
+        cmd->add_option("--year", o.year, "Local calendar year YYYY");
+    } else {
+        cmd->add_option("--start", o.startDate, "First local day YYYY-MM-DD of a range");
+        cmd->add_option("--end", o.endDate, "Last local day YYYY-MM-DD of a range (inclusive)");
+    }
     cmd->add_option("--tz", o.tz, tzHelp);
 }
 
 LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
-    LocalDays days{{}, {}, zoneOfDays(o.tz)};
+    LocalDays days{{}, {}, zoneOfDays(o.tz), std::nullopt};
+    const bool range = !o.startDate.empty() || !o.endDate.empty();
+    const int given = int(!o.date.empty()) + int(range) + int(!o.month.empty()) + int(!o.year.empty());
+    const std::string choices = o.periods ? "--date D, --start D --end D, --month YYYY-MM or --year YYYY"
+                                          : "--date D, or both --start D and --end D";
+    if (given > 1) throw Error(command + ": give one of " + choices + ", not several");
     if (!o.date.empty()) {
-        if (!o.startDate.empty() || !o.endDate.empty())
-            throw Error(command + ": give either --date or --start/--end, not both");
         days.first = days.last = parseDate(o.date);
-        return days;
+    } else if (!o.month.empty()) {
+        const DateRange month = parseMonth(o.month);
+        days.first = month.first;
+        days.last = month.last;
+    } else if (!o.year.empty()) {
+        const DateRange year = parseYear(o.year);
+        days.first = year.first;
+        days.last = year.last;
+    } else if (o.startDate.empty() || o.endDate.empty()) {
+        throw Error(command + ": give " + choices);
+    } else if (o.periods && (o.startDate.find('T') != std::string::npos || o.endDate.find('T') != std::string::npos)) {
+        const UtcInstant start = parseTimeOptions(o.startDate, o.tz).utc, end = parseTimeOptions(o.endDate, o.tz).utc;
+        if (end <= start) throw Error(command + ": --end " + o.endDate + " is not after --start " + o.startDate);
+        days.interval = std::pair(start, end);
+        days.first = localDayOf(start, days.zone).date;
+        days.last = localDayOf(end, days.zone).date;
+    } else {
+        days.first = parseDate(o.startDate);
+        days.last = parseDate(o.endDate);
+        if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
     }
-    if (o.startDate.empty() || o.endDate.empty()) throw Error(command + ": give --date D, or both --start D and --end D");
-    days.first = parseDate(o.startDate);
-    days.last = parseDate(o.endDate);
-    if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
     return days;
 }
 

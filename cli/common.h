@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -85,6 +86,11 @@ public:
     ~TiledWriter();
     /// Writes the parts of one tile's result, part k to target k.
     void write(const CellWindow& tile, const std::vector<const ProductResult*>& parts);
+    /// Writes one tile of target k alone (products that stream several rasters per tile).
+    void write(std::size_t target, const CellWindow& tile, const ProductResult& part);
+    /// Sets metadata items of target k known only once every tile is written (a mean over the
+    /// raster); the target must have been written.
+    void setMetadata(std::size_t target, const std::map<std::string, std::string>& items);
     /// Renames every output to its name.
     void commit();
 
@@ -96,8 +102,49 @@ private:
     std::vector<std::unique_ptr<RasterSink>> sinks_;
 };
 
+/// A raster command's parsed options as a call on any DEM source, for a caller that brings its own
+/// DEM and writes the results itself (CliContext::takeCall): the requests are the command's own,
+/// so names, defaults, checks and messages are the command line's.
+struct RasterCall {
+    std::string command;
+    HeightOptions heights;  ///< --z-unit, --z-factor: how the DEM argument is to be opened
+    TilingOptions tiling;
+    SearchRequest search;         ///< what the halo and the tiles are planned from (planRasterRun)
+    std::size_t outputBands = 0;  ///< of planRasterRun
+    /// The product on one window of a source: one result per output raster (rasterTargets).
+    std::function<std::vector<ProductResult>(const DemSource&, const CellWindow&, const ProgressFn&)> run;
+    /// The rasters the command writes for -o, in the order of run's results.
+    std::function<std::vector<RasterTarget>(const OutputOptions&)> targets;
+};
+
+/// What `demlight info --json` prints of `source` opened from `path`: one JSON object, as text.
+std::string infoJson(const std::string& path, const DemSource& source);
+
+/// A RasterCall of a command that writes one raster: `product(source, window, progress)`.
+template <class Product>
+RasterCall singleRasterCall(std::string command, const DemOptions& dem, const TilingOptions& tiling,
+                            const SearchRequest& search, std::size_t outputBands, Product product) {
+    RasterCall call;
+    call.command = std::move(command);
+    call.heights = dem.heights;
+    call.tiling = tiling;
+    call.search = search;
+    call.outputBands = outputBands;
+    call.run = [product](const DemSource& source, const CellWindow& w, const ProgressFn& p) {
+        return std::vector<ProductResult>{product(source, w, p)};
+    };
+    call.targets = [](const OutputOptions& out) { return std::vector<RasterTarget>{{out, {}}}; };
+    return call;
+}
+
 /// Removes the first `count` targets' files (written before a later one failed).
 void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
+
+/// Runs step(tile, progress) on each tile of `run` in order, with one progress bar for the whole
+/// job: the tiled half of runRaster, and the driver of products that write several rasters while
+/// they compute a tile (time-lapse frames through a TiledWriter).
+template <class Step>
+void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step);
 
 /// Runs a raster product on each window of `run` (product(window, progress) -> Result; parts(r)
 /// lists its rasters, one per target) with one progress bar for the whole job, and writes them:
@@ -135,16 +182,20 @@ inline constexpr double kMaxPressureHpa = 5000;
 ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
-/// --date D, or --start D --end D, and --tz of the commands over local days.
+/// --date D, or --start D --end D, and --tz of the commands over local days; with periods also
+/// --month YYYY-MM, --year YYYY, and --start/--end as local times (an interval within days).
 struct DayOptions {
-    std::string date, startDate, endDate, tz;
+    std::string date, startDate, endDate, month, year, tz;
+    bool periods = false;  ///< --month, --year and local times in --start/--end are offered
 };
-/// Adds them; `tzHelp` says what --tz is the zone of.
+/// Adds them (--month and --year when o.periods); `tzHelp` says what --tz is the zone of.
 void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp);
 /// The local days (inclusive) of the options; `command` names the command in errors.
 struct LocalDays {
     std::chrono::sys_days first, last;
     TimeZoneSpec zone;
+    /// --start/--end given as local times: the interval itself (first and last are its days).
+    std::optional<std::pair<UtcInstant, UtcInstant>> interval;
 };
 LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
 
@@ -170,11 +221,19 @@ std::string formatSeconds(double seconds);
 /// Prints a line to stderr unless quiet.
 void note(const CliContext& ctx, const std::string& line);
 
+template <class Step>
+void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step) {
+    ProgressBar bar(!ctx.quiet);
+    for (std::size_t i = 0; i < run.tiles.size(); ++i)
+        step(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
+    bar.finish();
+}
+
 template <class Result, class Product, class Parts>
 Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
                  const std::string& inputPath, Product&& product, Parts&& parts) {
-    ProgressBar bar(!ctx.quiet);
     if (run.tiles.size() == 1) {
+        ProgressBar bar(!ctx.quiet);
         Result r = product(run.tiles.front(), bar.callback());
         bar.finish();
         const std::vector<const ProductResult*> rasters = parts(r);
@@ -190,12 +249,11 @@ Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets,
     }
     TiledWriter writer(run, targets, ctx, inputPath);
     std::optional<Result> first;
-    for (std::size_t i = 0; i < run.tiles.size(); ++i) {
-        Result r = product(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
-        writer.write(run.tiles[i], parts(r));
+    runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
+        Result r = product(tile, progress);
+        writer.write(tile, parts(r));
         if (!first) first = std::move(r);
-    }
-    bar.finish();
+    });
     writer.commit();
     return std::move(*first);
 }

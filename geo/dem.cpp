@@ -301,6 +301,23 @@ Dem loadDem(const std::string& path, const HeightOptions& heights) {
     return dem;
 }
 
+Dem demFromArray(const Grid<float>& values, const GeoReference& ref, std::optional<double> nodata,
+                 const std::string& name, const HeightOptions& heights) {
+    if (values.empty()) throw Error("'" + name + "' holds no cells");
+    const MemoryRaster file(values, ref, nodata);
+    try {
+        Dem dem = loadDem(file.path(), heights);
+        dem.band.path = name;
+        return dem;
+    } catch (const Error& e) {
+        // The messages name the file the values passed through; the caller knows them by `name`.
+        std::string message = e.what();
+        for (auto at = message.find(file.path()); at != std::string::npos; at = message.find(file.path(), at + name.size()))
+            message.replace(at, file.path().size(), name);
+        throw Error(message);
+    }
+}
+
 std::pair<double, double> cellLatLon(const Dem& dem, double col, double row) {
     const auto& gt = dem.band.ref.geoTransform;
     double x = gt[0] + col * gt[1];

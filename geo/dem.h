@@ -75,6 +75,13 @@ struct Dem {
 /// Throws Error on all bad input listed in DESIGN §6 and on invalid `heights`.
 Dem loadDem(const std::string& path, const HeightOptions& heights = {});
 
+/// loadDem of band values held in memory: `values` (raw, NaN or `nodata` for no data) on `ref`
+/// (ref.crsWkt: WKT, or a definition such as "EPSG:32610"), read through a MemoryRaster so that
+/// every check and conversion of a file applies. `name` stands for the file in the DEM
+/// (band.path, DEMLIGHT_INPUT) and in messages.
+Dem demFromArray(const Grid<float>& values, const GeoReference& ref, std::optional<double> nodata,
+                 const std::string& name, const HeightOptions& heights = {});
+
 /// loadDem without reading the heights: the band's header (band.values empty, band.width and
 /// band.height set), CRS, height transform, and the terrain's per-row cell sizes, latitudes and
 /// convergence for the whole grid (terrain.heightsM empty). What a streamed source keeps.

@@ -11,6 +11,7 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -260,6 +261,30 @@ Grid<float> readRasterWindow(const std::string& path, const CellWindow& window, 
     if (nodataCount) *nodataCount = count;
     return values;
 }
+
+MemoryRaster::MemoryRaster(const Grid<float>& values, const GeoReference& ref, std::optional<double> nodata) {
+    detail::ensureGdal();
+    static std::atomic<unsigned long> serial{0};
+    path_ = "/vsimem/demlight-array-" + std::to_string(::getpid()) + "-" + std::to_string(serial++) + ".tif";
+    GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+    DatasetPtr ds(gtiff->Create(path_.c_str(), static_cast<int>(values.width()), static_cast<int>(values.height()), 1,
+                                GDT_Float32, nullptr));
+    if (!ds) throw Error(withGdalReason("cannot hold a " + std::to_string(values.width()) + " x " +
+                                        std::to_string(values.height()) + " array in GDAL's memory"));
+    std::array<double, 6> gt = ref.geoTransform;
+    ds->SetGeoTransform(gt.data());
+    OGRSpatialReference srs;
+    if (!ref.crsWkt.empty() && srs.SetFromUserInput(ref.crsWkt.c_str()) == OGRERR_NONE) ds->SetSpatialRef(&srs);
+    detail::takeGdalError();  // an unreadable CRS is reported by the reader, as a missing one
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    if (nodata) band->SetNoDataValue(*nodata);
+    if (band->RasterIO(GF_Write, 0, 0, static_cast<int>(values.width()), static_cast<int>(values.height()),
+                       const_cast<float*>(values.data()), static_cast<int>(values.width()),
+                       static_cast<int>(values.height()), GDT_Float32, 0, 0) != CE_None)
+        throw Error(withGdalReason("cannot hold the array in GDAL's memory"));
+}
+
+MemoryRaster::~MemoryRaster() { VSIUnlink(path_.c_str()); }
 
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary) {
     if (summary) *summary = inspectRaster(path);
@@ -690,6 +715,13 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
             throw Error(writeFailureMessage("band " + std::to_string(i + 1) + " of '" + st.path + "'", st.file->path(),
                                             detail::takeGdalError()));
     }
+}
+
+void RasterSink::setMetadata(const std::string& key, const std::string& value) {
+    State& st = *state_;
+    if (!st.ds) throw Error("internal: metadata for '" + st.path + "' before its first window");
+    st.options.metadata[key] = value;  // a COG is written from the options at commit
+    st.ds->SetMetadataItem(key.c_str(), value.c_str());
 }
 
 void RasterSink::commit() {

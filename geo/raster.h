@@ -58,6 +58,23 @@ Grid<float> readRasterWindow(const std::string& path, const CellWindow& window, 
 
 struct RasterSummary;
 
+/// A one-band Float32 GeoTIFF in GDAL's memory file system (/vsimem/): `values` on `ref`, with
+/// `nodata` declared when given. ref.crsWkt may be WKT or any definition GDAL reads
+/// (OGRSpatialReference::SetFromUserInput: "EPSG:32610", PROJ strings); an empty or unreadable one
+/// leaves the raster without a CRS, which readers then refuse. The file is removed with the object.
+/// It lets values held in memory pass through the readers of files (demFromArray).
+class MemoryRaster {
+public:
+    MemoryRaster(const Grid<float>& values, const GeoReference& ref, std::optional<double> nodata);
+    MemoryRaster(const MemoryRaster&) = delete;
+    MemoryRaster& operator=(const MemoryRaster&) = delete;
+    ~MemoryRaster();
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
 /// Reads every band of a raster as float (nodata and NaN become NaN), without resampling.
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary = nullptr);
 
@@ -151,6 +168,9 @@ public:
     /// Writes `bands` (all the window's size, the same bands in the same order every time) at
     /// the window's cells.
     void write(const CellWindow& window, const std::vector<OutputBand>& bands);
+    /// Sets a dataset metadata item known only once every window is written (a mean over the
+    /// raster); after the first write, before commit.
+    void setMetadata(const std::string& key, const std::string& value);
     /// Closes, converts (COG) and renames the file to its path. Throws Error when GDAL fails.
     void commit();
 

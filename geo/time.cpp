@@ -577,6 +577,25 @@ chr::sys_days parseDate(const std::string& text) {
     return chr::sys_days{ymd};
 }
 
+DateRange parseMonth(const std::string& text) {
+    chr::sys_days first;
+    try {
+        first = parseDate(text + "-01");
+    } catch (const Error&) {
+        throw Error("month '" + text + "': expected YYYY-MM (e.g. 2024-06)");
+    }
+    const chr::year_month ym = chr::year_month_day{first}.year() / chr::year_month_day{first}.month();
+    return {first, chr::sys_days{(ym + chr::months{1}) / chr::day{1}} - chr::days{1}};
+}
+
+DateRange parseYear(const std::string& text) {
+    try {
+        return {parseDate(text + "-01-01"), parseDate(text + "-12-31")};
+    } catch (const Error&) {
+        throw Error("year '" + text + "': expected YYYY (e.g. 2024)");
+    }
+}
+
 std::string formatDate(chr::sys_days date) {
     const chr::year_month_day ymd{date};
     char buf[16];

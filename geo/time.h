@@ -102,6 +102,15 @@ std::chrono::sys_days parseDate(const std::string& text);
 /// "YYYY-MM-DD".
 std::string formatDate(std::chrono::sys_days date);
 
+/// The first and last calendar dates (inclusive) of a month or a year.
+struct DateRange {
+    std::chrono::sys_days first, last;
+};
+/// The days of the calendar month "YYYY-MM". Throws Error naming the text otherwise.
+DateRange parseMonth(const std::string& text);
+/// The days of the calendar year "YYYY". Throws Error naming the text otherwise.
+DateRange parseYear(const std::string& text);
+
 /// Decimal (Gregorian) year of t: 2024.0 at 2024-01-01T00:00Z, 2024.5 near 2 July.
 double decimalYear(UtcInstant t);
 

@@ -31,10 +31,14 @@ double esraRefractionDeg(double trueElevationDeg) {
     return 0.061359 * (0.1594 + h * (1.123 + 0.065656 * h)) / (1 + h * (28.9344 + 277.3971 * h)) * kRadToDeg;  // E3
 }
 
+double pressureRatio(double elevationM) { return std::exp(-elevationM / kEsraScaleHeightM); }  // E2
+
+double airMassDenominator(double apparentElevationDeg) {
+    return std::sin(apparentElevationDeg * kDegToRad) + 0.50572 * std::pow(apparentElevationDeg + 6.07995, -1.6364);  // E4
+}
+
 double relativeAirMass(double apparentElevationDeg, double elevationM) {
-    const double pressureRatio = std::exp(-elevationM / kEsraScaleHeightM);  // E2
-    return pressureRatio / (std::sin(apparentElevationDeg * kDegToRad) +
-                            0.50572 * std::pow(apparentElevationDeg + 6.07995, -1.6364));  // E4
+    return pressureRatio(elevationM) / airMassDenominator(apparentElevationDeg);  // E4
 }
 
 double rayleighOpticalThickness(double m) {
@@ -61,16 +65,53 @@ double diffuseAngular(double linke, double sinElevation) {
     return a1 + sinElevation * (a2 + a3 * sinElevation);
 }
 
+ClearSkySun clearSkySun(double g0, double linke, double apparentElevationDeg, double coeffBh, double coeffDh) {
+    ClearSkySun sun;
+    sun.extraterrestrial = g0;
+    sun.linke = linke;
+    sun.coeffBh = coeffBh;
+    if (!(apparentElevationDeg > 0)) return sun;
+    sun.up = true;
+    sun.sinElevation = std::sin(apparentElevationDeg * kDegToRad);
+    sun.airMassDenominator = airMassDenominator(apparentElevationDeg);
+    sun.diffuseHorizontal = coeffDh * g0 * diffuseTransmission(linke) * diffuseAngular(linke, sun.sinElevation);  // E9
+    return sun;
+}
+
+ClearSky clearSky(const ClearSkySun& sun, double pressureRatio) {
+    if (!sun.up) return clearSkyWithBeam(sun, 0);
+    const double airMass = pressureRatio / sun.airMassDenominator;  // E4
+    return clearSkyWithBeam(sun, sun.coeffBh * beamNormalClearSky(sun.extraterrestrial, sun.linke, airMass));
+}
+
+ClearSky clearSkyWithBeam(const ClearSkySun& sun, double beamNormal) {
+    ClearSky out;
+    out.extraterrestrial = sun.extraterrestrial;
+    if (!sun.up) return out;
+    out.beamNormal = beamNormal;
+    out.beamHorizontal = beamNormal * sun.sinElevation;  // E6
+    out.diffuseHorizontal = sun.diffuseHorizontal;
+    return out;
+}
+
+BeamNormalTable::BeamNormalTable(const ClearSkySun& sun, double lowM, double highM) : sun_(sun) {
+    first_ = std::floor(std::min(lowM, highM) / kStepM);
+    const double lastNode = std::max(std::ceil(std::max(lowM, highM) / kStepM), first_ + 1);
+    values_.resize(static_cast<std::size_t>(lastNode - first_) + 1);
+    for (std::size_t i = 0; i < values_.size(); ++i)
+        values_[i] = clearSky(sun, pressureRatio((first_ + static_cast<double>(i)) * kStepM)).beamNormal;
+    last_ = static_cast<double>(values_.size() - 2);
+    if (sun.up) {
+        // E4 with m = kRayleighPolynomialMaxAirMass solved for the elevation (E2).
+        const double switchM = -kEsraScaleHeightM * std::log(kRayleighPolynomialMaxAirMass * sun.airMassDenominator);
+        const double segment = std::floor(switchM / kStepM) - first_;
+        if (segment >= 0 && segment <= last_) switchSegment_ = segment;
+    }
+}
+
 ClearSky clearSky(double g0, double linke, double apparentElevationDeg, double elevationM, double coeffBh,
                   double coeffDh) {
-    ClearSky out;
-    out.extraterrestrial = g0;
-    if (!(apparentElevationDeg > 0)) return out;
-    const double sinH = std::sin(apparentElevationDeg * kDegToRad);
-    out.beamNormal = coeffBh * beamNormalClearSky(g0, linke, relativeAirMass(apparentElevationDeg, elevationM));
-    out.beamHorizontal = out.beamNormal * sinH;                                             // E6
-    out.diffuseHorizontal = coeffDh * g0 * diffuseTransmission(linke) * diffuseAngular(linke, sinH);  // E9
-    return out;
+    return clearSky(clearSkySun(g0, linke, apparentElevationDeg, coeffBh, coeffDh), pressureRatio(elevationM));
 }
 
 double muneerDiffuse(double dhc, double kb, const TiltedSurface& s, double sunlit) {

@@ -31,6 +31,11 @@
 // for comparisons with r.sun, which computes true elevations.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
 namespace demlight {
 
 /// ESRA's and r.sun's solar constant I0 (W m-2).
@@ -48,6 +53,11 @@ double extraterrestrialIrradiance(double earthSunDistanceAu, double solarConstan
 /// E3: ESRA's refraction correction (degrees) of a true solar elevation `trueElevationDeg`.
 double esraRefractionDeg(double trueElevationDeg);
 
+/// E2: pressure ratio p/p0 at `elevationM` metres above sea level.
+double pressureRatio(double elevationM);
+/// E4's denominator at apparent solar elevation `apparentElevationDeg` (degrees, > 0): the air
+/// mass at sea level is its reciprocal.
+double airMassDenominator(double apparentElevationDeg);
 /// E2 and E4: relative optical air mass at apparent solar elevation `apparentElevationDeg`
 /// (degrees, > 0) seen from `elevationM` metres above sea level.
 double relativeAirMass(double apparentElevationDeg, double elevationM);
@@ -71,6 +81,51 @@ struct ClearSky {
     double diffuseHorizontal = 0;  ///< coeffDh Dhc (W m-2)
     double extraterrestrial = 0;   ///< G0 (W m-2)
     double globalHorizontal() const { return beamHorizontal + diffuseHorizontal; }
+};
+
+/// What clearSky takes of the sun alone, for drivers that evaluate one sun over many cells: all
+/// but the air mass's pressure ratio (E2), the one term that depends on the cell's elevation.
+struct ClearSkySun {
+    bool up = false;                  ///< the sun's centre is above the horizon
+    double extraterrestrial = 0;      ///< G0 (W m-2)
+    double linke = 0;
+    double sinElevation = 0;
+    double airMassDenominator = 0;    ///< E4's
+    double coeffBh = 1;
+    double diffuseHorizontal = 0;     ///< coeffDh Dhc (W m-2), E7-E9
+};
+ClearSkySun clearSkySun(double extraterrestrialWm2, double linke, double apparentElevationDeg, double coeffBh = 1,
+                        double coeffDh = 1);
+/// clearSky of `sun` at a cell of pressure ratio `pressureRatio` (E2).
+ClearSky clearSky(const ClearSkySun& sun, double pressureRatio);
+/// clearSky of `sun` at a cell whose beam normal irradiance coeffBh B0c is `beamNormal`.
+ClearSky clearSkyWithBeam(const ClearSkySun& sun, double beamNormal);
+
+/// The beam normal irradiance coeffBh B0c (E2, E4-E6) of one sun as a function of the cell's
+/// elevation, for drivers that evaluate one sun over millions of cells: exact at nodes every
+/// kStepM metres from sea level and linear between them, but exact in the segment where E5
+/// switches fits (m = 20, suns below about 2.5 deg), whose jump no line follows. The nodes are
+/// anchored at 0 m, not at the heights the table covers, so every window of a DEM gets the same
+/// values. Between nodes the relative error is below 1e-7 (E6's curvature in z;
+/// tests/irradiance_test.cpp measures it).
+class BeamNormalTable {
+public:
+    static constexpr double kStepM = 1.0;
+    /// Covers elevations lowM..highM (metres); outside them `at` extrapolates the end segment.
+    BeamNormalTable(const ClearSkySun& sun, double lowM, double highM);
+    double at(double elevationM) const {
+        const double t = elevationM / kStepM - first_;
+        const double i = std::clamp(std::floor(t), 0.0, last_);
+        if (i == switchSegment_) return clearSky(sun_, pressureRatio(elevationM)).beamNormal;
+        const auto k = static_cast<std::size_t>(i);
+        return values_[k] + (t - i) * (values_[k + 1] - values_[k]);
+    }
+
+private:
+    ClearSkySun sun_;
+    double first_ = 0, last_ = 0;  ///< first node (in steps from 0 m), last segment start index
+    double switchSegment_ = -1;    ///< the segment holding E5's switch, or -1
+    std::vector<double> values_;
 };
 
 /// E4-E9 for a sun at apparent elevation `apparentElevationDeg` seen from `elevationM` metres;

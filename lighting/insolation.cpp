@@ -1,6 +1,7 @@
 #include "lighting/insolation.h"
 
 #include "lighting/directions.h"
+#include "lighting/esra.h"
 #include "lighting/sun.h"
 #include "src/angles.h"
 #include "src/error.h"
@@ -54,18 +55,30 @@ InsolationAccumulator::InsolationAccumulator(const Grid<float>& heightsM, const 
       sunDiameterDeg_(sunDiameterDeg),
       beam_(heightsM.width(), heightsM.height(), 0.0),
       diffuse_(beam_),
-      reflected_(beam_) {}
+      reflected_(beam_),
+      sunHours_(beam_) {
+    for (float z : heightsM.values())
+        if (!std::isnan(z)) {
+            lowM_ = std::min(lowM_, static_cast<double>(z));
+            highM_ = std::max(highM_, static_cast<double>(z));
+        }
+}
 
 void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
     if (index >= directions_ || !horizonDeg.sameShape(heights_))
         throw Error("InsolationAccumulator: direction out of range or horizons of another shape");
+    if (!(lowM_ <= highM_)) return;  // no valid cell
     std::vector<const SunBin*> bins;
     std::vector<SunAngles> angles;
+    std::vector<ClearSkySun> skies;  // all but the cell's pressure ratio, once per bin
+    std::vector<BeamNormalTable> beams;
     for (const SunBin& b : bins_)
         if (b.direction == index) {
             bins.push_back(&b);
             const double az = b.azimuthDeg * kDegToRad, el = b.elevationDeg * kDegToRad;
             angles.push_back({b.azimuthDeg, b.elevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)});
+            skies.push_back(clearSkySun(b.extraterrestrialWm2, b.linke, b.elevationDeg, params_.coeffBh, params_.coeffDh));
+            beams.emplace_back(skies.back(), lowM_, highM_);
         }
     if (bins.empty()) return;
     const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
@@ -74,11 +87,13 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
             const float z = heights_(col, row);
             if (std::isnan(z)) continue;
             const Enu n = normals_.at(col, row);
+            // Summed in registers, in the same order as into the grids.
+            double beam = beam_(col, row), hours = sunHours_(col, row), diffuse = diffuse_(col, row),
+                   reflected = reflected_(col, row);
             for (std::size_t k = 0; k < bins.size(); ++k) {
                 const SunBin& b = *bins[k];
                 const SunAngles& sun = angles[k];
-                const ClearSky sky = clearSky(b.extraterrestrialWm2, b.linke, b.elevationDeg, z, params_.coeffBh,
-                                              params_.coeffDh);
+                const ClearSky sky = clearSkyWithBeam(skies[k], beams[k].at(z));
                 const SunTerms terms = sunTerms(n, horizonDeg(col, row), sun, sunDiameterDeg_);
                 CellView view;
                 view.sunIrradiance = terms.irradiance;
@@ -87,22 +102,29 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 view.surface = {n.up, toward, toward * sun.cosElevation + n.up * sun.sinElevation,
                                 b.elevationDeg * kDegToRad};
                 const CellIrradiance c = cellIrradiance(sky, view, params_);
-                beam_(col, row) += b.hours * c.beam;
+                beam += b.hours * c.beam;
+                hours += b.hours * terms.visibility;
                 // visible-sky: diffuse and reflected are K0 and 1 - K0 times horizon-free sums.
-                diffuse_(col, row) += b.hours * (visibleSky ? sky.diffuseHorizontal : c.diffuse);
-                reflected_(col, row) += b.hours * (visibleSky ? sky.globalHorizontal() : c.reflected);
+                diffuse += b.hours * (visibleSky ? sky.diffuseHorizontal : c.diffuse);
+                reflected += b.hours * (visibleSky ? sky.globalHorizontal() : c.reflected);
             }
+            beam_(col, row) = beam;
+            sunHours_(col, row) = hours;
+            diffuse_(col, row) = diffuse;
+            reflected_(col, row) = reflected;
         }
     });
 }
 
-IrradianceMaps InsolationAccumulator::finish(const Grid<float>* skyK0) const {
+InsolationMaps InsolationAccumulator::finish(const Grid<float>* skyK0) const {
     const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
     if (visibleSky && (!skyK0 || !skyK0->sameShape(heights_)))
         throw Error("InsolationAccumulator: the visible-sky model needs K0 of the DEM's shape");
     const std::size_t w = heights_.width(), h = heights_.height();
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    IrradianceMaps out{Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan)};
+    InsolationMaps totals{{Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan), Grid<float>(w, h, nan)},
+                          Grid<float>(w, h, nan)};
+    IrradianceMaps& out = totals.irradiation;
     for (std::size_t k = 0; k < heights_.size(); ++k) {
         if (std::isnan(heights_.data()[k])) continue;
         const double beam = beam_.data()[k];
@@ -116,8 +138,9 @@ IrradianceMaps InsolationAccumulator::finish(const Grid<float>* skyK0) const {
         out.diffuse.data()[k] = static_cast<float>(diffuse);
         out.reflected.data()[k] = static_cast<float>(reflected);
         out.global.data()[k] = static_cast<float>(beam + diffuse + reflected);
+        totals.sunHours.data()[k] = static_cast<float>(sunHours_.data()[k]);
     }
-    return out;
+    return totals;
 }
 
 }  // namespace demlight

@@ -15,6 +15,7 @@
 #include "src/grid.h"
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace demlight {
@@ -39,6 +40,13 @@ struct WeightedSun {
 /// bands `elevationBandDeg` wide; a bin per (sector, band, Linke factor). Sorted by direction.
 std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t directions, double elevationBandDeg);
 
+/// Irradiation totals (Wh m-2) and hours of direct sun (the time of each bin times the sun's
+/// visible disk fraction there, as lighting/sunhours.h counts it per instant).
+struct InsolationMaps {
+    IrradianceMaps irradiation;
+    Grid<float> sunHours;
+};
+
 /// Sums the bins per cell, one sector's horizons at a time. The grids are referenced, not copied.
 class InsolationAccumulator {
 public:
@@ -47,8 +55,8 @@ public:
                           std::size_t directions, const IrradianceParams& params, double sunDiameterDeg);
     /// Adds the bins of sector `index` with its horizons (degrees, NaN = nodata).
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
-    /// Totals (Wh m-2); the visible-sky model takes K0 (lighting/irradiance.h) here. NaN at nodata.
-    IrradianceMaps finish(const Grid<float>* skyK0) const;
+    /// Totals; the visible-sky model takes K0 (lighting/irradiance.h) here. NaN at nodata.
+    InsolationMaps finish(const Grid<float>* skyK0) const;
 
 private:
     const Grid<float>& heights_;
@@ -57,7 +65,9 @@ private:
     std::size_t directions_;
     IrradianceParams params_;
     double sunDiameterDeg_;
-    Grid<double> beam_, diffuse_, reflected_;
+    Grid<double> beam_, diffuse_, reflected_, sunHours_;
+    /// Valid heights' range: what the bins' BeamNormalTables cover.
+    double lowM_ = std::numeric_limits<double>::infinity(), highM_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace demlight

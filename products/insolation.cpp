@@ -18,7 +18,10 @@ constexpr std::chrono::milliseconds kMinStep = std::chrono::seconds(6), kMaxStep
 void validateInsolation(const InsolationRequest& r) {
     validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
     linkeAt(r.linke, localDay(r.firstDay, r.zone).startUtc, r.zone);
-    if (r.lastDay < r.firstDay)
+    if (r.interval && !(r.interval->first < r.interval->second))
+        throw FieldError("interval", " " + formatInstant(r.interval->second, r.zone) + ": is not after its start " +
+                                         formatInstant(r.interval->first, r.zone));
+    if (!r.interval && r.lastDay < r.firstDay)
         throw FieldError("lastDay", " " + formatDate(r.lastDay) + ": is before the first day " + formatDate(r.firstDay));
     if (r.step < kMinStep || r.step > kMaxStep) throw FieldError("step", ": must be from 6 s to 2 h");
     if (r.directions && *r.directions < 4)
@@ -29,9 +32,15 @@ void validateInsolation(const InsolationRequest& r) {
 
 double hoursBetween(UtcInstant a, UtcInstant b) { return std::chrono::duration<double, std::ratio<3600>>(b - a).count(); }
 
+/// First and last instant of the period: the interval, or the days from midnight to midnight.
+std::pair<UtcInstant, UtcInstant> periodOf(const InsolationRequest& r) {
+    if (r.interval) return *r.interval;
+    return {localDay(r.firstDay, r.zone).startUtc, localDay(r.lastDay, r.zone).endUtc};
+}
+
 /// The sun at the DEM centre every `step` over the period, with trapezoid weights (hours).
 std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationRequest& r, std::size_t& instants) {
-    const UtcInstant start = localDay(r.firstDay, r.zone).startUtc, end = localDay(r.lastDay, r.zone).endUtc;
+    const auto [start, end] = periodOf(r);
     std::vector<UtcInstant> times;
     for (UtcInstant t = start; t < end; t += r.step) times.push_back(t);
     times.push_back(end);
@@ -82,15 +91,17 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
         sky->addDirection(i, raised);
     }, &counter);
     const Grid<float> k0 = sky ? std::move(*sky).finish(0.0).skyK : Grid<float>();
-    IrradianceMaps maps = totals.finish(visibleSky ? &k0 : nullptr);
+    InsolationMaps totalMaps = totals.finish(visibleSky ? &k0 : nullptr);
+    IrradianceMaps& maps = totalMaps.irradiation;
     for (Grid<float>* g : {&maps.beam, &maps.diffuse, &maps.reflected, &maps.global})
         for (float& v : g->values()) v = static_cast<float>(v / kWhPerKWh);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.merge(searchMetadata(t, hp.maxDistanceM, r.search.refraction));
+    const auto [start, end] = periodOf(r);
     meta.insert({
-        {"DEMLIGHT_FIRST_DAY", formatDate(r.firstDay)},
-        {"DEMLIGHT_LAST_DAY", formatDate(r.lastDay)},
+        {"DEMLIGHT_START", formatInstant(start, r.zone)},
+        {"DEMLIGHT_END", formatInstant(end, r.zone)},
         {"DEMLIGHT_TIME_ZONE", r.zone.describe()},
         {"DEMLIGHT_STEP_S", formatNumber(std::chrono::duration<double>(r.step).count())},
         {"DEMLIGHT_INSTANTS", std::to_string(instants)},
@@ -114,6 +125,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
     out.bins = bins.size();
     out.directions = directions;
     out.bands = irradianceBands(std::move(maps), "kWh m-2");
+    out.bands.push_back({"sun_hours", "hours", std::move(totalMaps.sunHours), {}});
     return out;
 }
 

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace demlight {
@@ -24,8 +25,11 @@ inline constexpr double kDefaultInsolationBandDeg = 2;
 struct InsolationRequest {
     std::chrono::sys_days firstDay, lastDay;  ///< local days, inclusive
     TimeZoneSpec zone;                        ///< of the days and of monthly Linke values
+    /// An interval instead of whole days: sun positions from its first instant to its second
+    /// (firstDay and lastDay are then ignored).
+    std::optional<std::pair<UtcInstant, UtcInstant>> interval;
     /// Sun positions every `step` from local midnight of the first day to local midnight after
-    /// the last, weighted by the trapezoid rule.
+    /// the last (or over the interval), weighted by the trapezoid rule.
     std::chrono::milliseconds step = std::chrono::minutes(10);
     std::vector<double> linke{kDefaultLinke};  ///< one value, or 12 monthly (each instant's month)
     double albedo = kDefaultAlbedo;
@@ -46,7 +50,8 @@ struct InsolationResult : ProductResult {
     std::size_t directions = 0;
 };
 
-/// Bands (kWh m-2, Float32): beam, diffuse, reflected, global.
+/// Bands (Float32): beam, diffuse, reflected, global (kWh m-2), sun_hours (hours of direct sun:
+/// the time of each bin times the fraction of the sun's disk the cell sees in it).
 InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
                                    const ProgressFn& progress = {});
 

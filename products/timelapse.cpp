@@ -11,11 +11,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace demlight {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// IEEE 754 binary32: stored significand bits, and the exponent bias plus those bits (a
+/// significand read as an integer).
+constexpr int kFloatMantissaBits = 23, kFloatExponentBias = 127 + kFloatMantissaBits;
 
 /// Horizon directions of the interpolated mode when no N is given.
 constexpr std::size_t kDefaultStackDirections = 64;
@@ -39,6 +44,19 @@ void fillInstants(TimelapseInstants& f, UtcInstant t0, UtcInstant t1, std::chron
     for (UtcInstant t = t0; t <= t1; t += step) f.instants.push_back(t);
 }
 
+/// The sky term's sweeps; with a stack, the stack's, which also give every frame's sun horizon.
+HorizonParams skyTermParams(const Terrain& t, const ScenePlan& plan, const TimelapseRequest& r,
+                            std::size_t skyDirections) {
+    if (r.stackDirections == 0) return integralParams(r.search, plan, t, skyDirections);
+    // The interpolated stack also gives every frame's sun horizon: the plan's own direction
+    // tolerance, not the integrals' (planIntegralParams).
+    HorizonParams p = horizonParams(r.search, plan);
+    // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's distance (full).
+    if (!r.search.maxDistanceM)
+        p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(t, 0.0, r.sunDiameterDeg);
+    return p;
+}
+
 /// The sky term once; with a stack, the stack too (it gives every frame's sun horizon).
 struct SkyTerm {
     Grid<float> skyK;
@@ -49,17 +67,11 @@ struct SkyTerm {
 SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan, const TimelapseRequest& r,
                 std::size_t skyDirections, ProgressCounter& counter) {
     SkyTerm out;
-    // The interpolated stack also gives every frame's sun horizon: the plan's own direction
-    // tolerance, not the integrals' (planIntegralParams).
-    out.params = r.stackDirections > 0 ? horizonParams(r.search, plan) : integralParams(r.search, plan, t, skyDirections);
+    out.params = skyTermParams(t, plan, r, skyDirections);
     if (r.stackDirections == 0) {
         out.skyK = skyLightK(t, normals, skyDirections, out.params, &counter);
         return out;
     }
-    // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's distance (full).
-    if (!r.search.maxDistanceM)
-        out.params.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM
-                                                                : sunSearchDistanceM(t, 0.0, r.sunDiameterDeg);
     // The stack also gives every frame's sun horizon: two scan lines per cell.
     HorizonParams stackParams = out.params;
     stackParams.nearestLine = false;
@@ -70,18 +82,28 @@ SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan,
     return out;
 }
 
-ProductResult fitResult(const Dem& dem, const ScenePlan& plan, const SequenceFitter& fitter,
-                        const std::vector<UtcInstant>& instants, TimelapseResult& stats) {
+/// Search distance (metres) around a window: the sky term's, and the longest any frame's sun
+/// needs on the whole DEM (with a stack, the stack's serves every sun).
+double reachM(const DemSource& source, const ScenePlan& plan, const TimelapseRequest& r, std::size_t skyDirections) {
+    const Terrain& whole = source.geometry().terrain;
+    double reach = skyTermParams(whole, plan, r, skyDirections).maxDistanceM;
+    if (r.stackDirections == 0)
+        for (UtcInstant when : r.frames.instants)
+            reach = std::max(reach, sunFrameDistanceM(r.search, r.sunDiameterDeg, plan, whole,
+                                                      sunFieldFor(source, when, Atmosphere{}, plan)));
+    return reach;
+}
+
+/// The fit of a window's cells onto `out` (on the window's georeference, no bands yet);
+/// `heightsM` are the window's (nodata cells have no residual to count).
+ProductResult fitResult(ProductResult out, const ScenePlan& plan, const SequenceFitter& fitter,
+                        const Grid<float>& heightsM, const std::vector<UtcInstant>& instants, TimelapseResult& stats) {
     SequenceFit fit = fitter.finish();
-    double sum = 0, worst = 0;
-    std::size_t n = 0;
     for (std::size_t i = 0; i < fit.rmsError.size(); ++i) {
         const float e = fit.rmsError.data()[i];
-        if (std::isnan(e) || std::isnan(dem.terrain.heightsM.data()[i])) continue;
-        sum += e, worst = std::max<double>(worst, e), ++n;
+        if (std::isnan(e) || std::isnan(heightsM.data()[i])) continue;
+        stats.fitStats.add(e);
     }
-    stats.fitMeanRms = n ? sum / static_cast<double>(n) : 0.0;
-    stats.fitWorstRms = worst;
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.insert({
         {"DEMLIGHT_FIT_DEGREE", std::to_string(fit.degree)},
@@ -89,9 +111,9 @@ ProductResult fitResult(const Dem& dem, const ScenePlan& plan, const SequenceFit
         {"DEMLIGHT_FIT_T0_UTC", formatInstant(instants.front(), std::string())},
         {"DEMLIGHT_FIT_T1_UTC", formatInstant(instants.back(), std::string())},
         {"DEMLIGHT_FIT_FRAMES", std::to_string(instants.size())},
-        {"DEMLIGHT_FIT_MEAN_RMS", formatNumber(stats.fitMeanRms)},
     });
-    ProductResult out = makeResult(dem, "sequence fit", meta);
+    meta.merge(stats.fitStats.metadata());
+    for (const auto& [key, value] : meta) out.metadata[key] = value;
     for (int j = 0; j <= fit.degree; ++j)
         out.bands.push_back({"sun_irradiance_legendre_" + std::to_string(j), "normalised irradiance",
                              std::move(fit.coefficients[static_cast<std::size_t>(j)]), {}});
@@ -162,25 +184,27 @@ std::size_t parseHorizonMode(const std::string& text, const std::string& field) 
     throw FieldError(field, " '" + text + "': expected exact, interpolated or interpolated:N (N in 4..720)");
 }
 
-TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest& request, const TimelapseSink& sink,
+namespace {
+
+/// The frames of `window`, computed on `dem` (the window grown by its halo, `read`; the whole
+/// DEM when the window is).
+TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const CellWindow& read,
+                                 const CellWindow& window, const ScenePlan& plan, std::size_t skyDirections,
+                                 const TimelapseRequest& request, const TimelapseSink& sink,
                                  const ProgressFn& progress) {
     const auto& instants = request.frames.instants;
-    if (instants.empty()) throw Error("frames: the sequence has no instants");
-    if (request.stackDirections != 0 &&
-        (request.stackDirections < kMinStackDirections || request.stackDirections > kMaxStackDirections))
-        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
-    validatePicture(request.picture);
-    validateSun(request.sunDiameterDeg, Atmosphere{});
-    const std::shared_ptr<const Dem> whole = source.readWhole();
-    const Dem& dem = *whole;
     const Terrain& t = dem.terrain;
-    const std::vector<Grid<float>> albedo = loadPictureAlbedo(source, request.picture);
+    const bool whole = source.isWhole(window);
+    // Onto the window's cells and georeference (a no-op for the whole DEM).
+    const CellWindow local{window.col0 - read.col0, window.row0 - read.row0, window.col1 - read.col0,
+                           window.row1 - read.row0};
+    const auto toWindow = [&](ProductResult& r) {
+        if (!whole) cropResult(r, read, window);
+    };
+    const std::vector<Grid<float>> albedo =
+        request.previews ? loadPictureAlbedo(source, request.picture) : std::vector<Grid<float>>{};
 
     const auto tStart = Clock::now();
-    const ScenePlan plan = planFor(request.search, t);
-    const std::size_t skyDirections = request.stackDirections > 0
-                                          ? request.stackDirections
-                                          : request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t n = instants.size();
     ProgressCounter counter(progress, "timelapse", t.heightsM.size() * (skyDirections + n));
     const Normals normals = computeNormals(t, request.search.threads);
@@ -201,6 +225,7 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
         });
         ProductResult skyResult = makeResult(dem, "timelapse sky", meta);
         skyResult.bands.push_back({"sky_k", "normalised sky irradiance K under a unit uniform sky (0-1)", sky.skyK, {}});
+        toWindow(skyResult);
         sink.sky(std::move(skyResult));
     }
 
@@ -212,13 +237,15 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
     if (request.fitDegree > 0) {
         std::vector<double> times;
         for (UtcInstant when : instants) times.push_back(unixSeconds(when));
-        fitter.emplace(times, request.fitDegree, t.width(), t.height());
+        fitter.emplace(times, request.fitDegree, window.col1 - window.col0, window.row1 - window.row0);
     }
     const std::string method =
         request.stackDirections > 0 ? "sweep, interpolated:" + std::to_string(request.stackDirections) : "sweep";
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = instants[i];
-        const SunField field = sunFieldFor(source, when, Atmosphere{}, plan);
+        // The whole DEM's sun, read by this window (SunField::onTile): the same bits on its cells.
+        const SunField wholeField = sunFieldFor(source, when, Atmosphere{}, plan);
+        const SunField field = t.frame ? sunFieldOnTile(wholeField, dem, source) : wholeField;
         SunFrame frame;
         TimelapseFrame out;
         if (request.stackDirections > 0) {
@@ -231,7 +258,7 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
             out.sunUp = frame.sweepRegions > 0;
         }
         counter.throwIfCancelled();
-        result.sunUpFrames += out.sunUp ? 1 : 0;
+        result.sunUp.push_back(out.sunUp);
         out.index = i;
         out.time = when;
         out.localTime = formatInstant(when, request.frames.zone);
@@ -247,7 +274,7 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
                                                 formatNumber(field.centreAzimuthDeg) + " deg, elevation " +
                                                 formatNumber(field.centreElevationDeg) + " deg"}};
         }
-        if (fitter) fitter->addFrame(i, frame.light.irradiance);
+        if (fitter) fitter->addFrame(i, whole ? frame.light.irradiance : cropGrid(frame.light.irradiance, local));
         if (request.lightmaps) {
             // The horizons of this frame resolve what its own search distance reaches.
             ScenePlan framePlan = plan;
@@ -275,11 +302,82 @@ TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest
                 {"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
                 {"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
                  std::move(frame.light.irradiance), {}}};
+            toWindow(out.lightmap);
         }
         if (sink.frame) sink.frame(std::move(out));
     }
-    if (fitter) result.fit = fitResult(dem, plan, *fitter, instants, result);
+    if (fitter) {
+        ProductResult fit = makeResult(dem, "sequence fit");
+        toWindow(fit);  // no bands yet: the window's georeference
+        result.fit = fitResult(fit, plan, *fitter, whole ? t.heightsM : cropGrid(t.heightsM, local), instants, result);
+    }
     return result;
+}
+
+}  // namespace
+
+TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& window, const TimelapseRequest& request,
+                                 const TimelapseSink& sink, const ProgressFn& progress) {
+    const auto& instants = request.frames.instants;
+    if (instants.empty()) throw Error("frames: the sequence has no instants");
+    if (request.stackDirections != 0 &&
+        (request.stackDirections < kMinStackDirections || request.stackDirections > kMaxStackDirections))
+        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
+    validatePicture(request.picture);
+    validateSun(request.sunDiameterDeg, Atmosphere{});
+    source.checkWindow(window);
+    if (request.previews && !source.isWhole(window))
+        throw FieldError("previews", ": pictures are of the whole DEM; a window or tile of it gets lightmaps only");
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    const std::size_t skyDirections = request.stackDirections > 0
+                                          ? request.stackDirections
+                                          : request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    if (source.isWhole(window)) {
+        const std::shared_ptr<const Dem> dem = source.readWhole();
+        return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, sink, progress);
+    }
+    const CellWindow read =
+        source.withHalo(window, haloCellsFor(source.geometry().terrain, reachM(source, plan, request, skyDirections)));
+    return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, sink, progress);
+}
+
+std::size_t timelapseGridsPerCell(const TimelapseRequest& request) {
+    // sky K, a frame's visibility and irradiance, the stack's angles, and per fitted
+    // coefficient a double moment (two grids) plus the finished float coefficient, the sum of
+    // squares (a double) and the residual.
+    const std::size_t fitGrids =
+        request.fitDegree > 0 ? 3 * (static_cast<std::size_t>(request.fitDegree) + 1) + 3 : 0;
+    return 1 + 2 + request.stackDirections + fitGrids;
+}
+
+void FitStats::add(float rms) {
+    // IEEE 754 binary32: a biased exponent e and a 24-bit significand m (hidden bit set unless
+    // subnormal) stand for m x 2^(max(e, 1) - 150).
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &rms, sizeof bits);
+    const std::uint32_t exponent = (bits >> kFloatMantissaBits) & 0xffu;
+    const std::uint32_t hidden = exponent > 0 ? 1u << kFloatMantissaBits : 0u;
+    rmsMantissas[exponent] += (bits & ((1u << kFloatMantissaBits) - 1)) | hidden;
+    ++cells;
+    worstRms = std::max<double>(worstRms, rms);
+}
+
+void FitStats::merge(const FitStats& other) {
+    cells += other.cells;
+    worstRms = std::max(worstRms, other.worstRms);
+    for (std::size_t e = 0; e < rmsMantissas.size(); ++e) rmsMantissas[e] += other.rmsMantissas[e];
+}
+
+double FitStats::meanRms() const {
+    if (cells == 0) return 0.0;
+    double sum = 0;
+    for (std::size_t e = 0; e < rmsMantissas.size(); ++e)
+        sum += std::ldexp(static_cast<double>(rmsMantissas[e]), std::max(static_cast<int>(e), 1) - kFloatExponentBias);
+    return sum / static_cast<double>(cells);
+}
+
+std::map<std::string, std::string> FitStats::metadata() const {
+    return {{"DEMLIGHT_FIT_MEAN_RMS", formatNumber(meanRms())}};
 }
 
 }  // namespace demlight

@@ -1,7 +1,9 @@
 // A lightmap and a preview per instant. Per frame the sun is placed per region and swept exactly
 // along its own azimuth (lighting/sun_frame.h), or its horizons interpolated from a stack of
 // directions swept once; the sky light K is computed once. Frames reach the caller through a
-// sink as they complete, so a sequence of any length never sits in memory.
+// sink as they complete, so a sequence of any length never sits in memory. Like every raster
+// product it computes any window of the DEM with its halo and gives it the whole DEM's bits, so
+// a tiled run holds one tile (plus halo) and its sky term, and streams each frame's tile.
 #pragma once
 
 #include "geo/time.h"
@@ -9,8 +11,11 @@
 #include "products/product.h"
 #include "products/render.h"
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,8 +60,24 @@ struct TimelapseFrame {
     std::string localTime;      ///< ISO 8601 in the request's zone
     double centreAzimuthDeg = 0, centreElevationDeg = 0;
     bool sunUp = false;
-    ProductResult lightmap;     ///< bands sun_visibility, sun_irradiance (when lightmaps)
+    ProductResult lightmap;     ///< bands sun_visibility, sun_irradiance (when lightmaps), on the window
     Image8 preview;             ///< when previews
+};
+
+/// The sequence fit's RMS residuals over the valid cells of a run, merged across its windows.
+/// The mean is summed exactly (the floats' mantissas per exponent, in integers), so the windows
+/// of a tiled run give the one-piece mean to the bit whatever their order.
+struct FitStats {
+    std::size_t cells = 0;
+    double worstRms = 0;
+    std::array<std::uint64_t, 256> rmsMantissas{};  ///< indexed by the float's biased exponent
+
+    /// One cell's RMS residual (finite, >= 0).
+    void add(float rms);
+    void merge(const FitStats& other);
+    double meanRms() const;
+    /// The fit raster's metadata items that depend on every cell of the run.
+    std::map<std::string, std::string> metadata() const;
 };
 
 struct TimelapseSink {
@@ -67,21 +88,32 @@ struct TimelapseSink {
 };
 
 struct TimelapseResult {
-    std::size_t frames = 0, sunUpFrames = 0;
+    std::size_t frames = 0;
     std::size_t skyDirections = 0;
     double skyMaxDistanceM = 0;
     Quality quality = Quality::Auto;
     double skySeconds = 0;  ///< time spent on the sky term (and the stack)
-    /// fitDegree > 0: bands sun_irradiance_legendre_<j> and rms_error.
+    /// fitDegree > 0: bands sun_irradiance_legendre_<j> and rms_error, on the window.
     std::optional<ProductResult> fit;
-    double fitMeanRms = 0, fitWorstRms = 0;
+    FitStats fitStats;  ///< of the window's cells
+    /// Per frame: whether the sun is up over the window (a sweep region of it has the sun above
+    /// the horizon; with a stack, the sun is up somewhere on the DEM).
+    std::vector<bool> sunUp;
 };
 
 /// "exact" -> 0; "interpolated" -> 64; "interpolated:N" -> N (4..720). Throws naming `field`.
 std::size_t parseHorizonMode(const std::string& text, const std::string& field);
 
-/// Runs the whole DEM (time-lapses are not windowed yet), frame by frame into the sink.
-TimelapseResult timelapseProduct(const DemSource& source, const TimelapseRequest& request, const TimelapseSink& sink,
-                                 const ProgressFn& progress = {});
+/// Runs `window` of the DEM (the whole DEM, a tile or a --srcwin window, computed with its halo:
+/// the sky term's search and the longest any frame's sun needs), frame by frame into the sink;
+/// the sky term, each lightmap and the fit cover the window. Previews are pictures of the whole
+/// DEM: request.previews on any other window throws FieldError("previews").
+TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& window, const TimelapseRequest& request,
+                                 const TimelapseSink& sink, const ProgressFn& progress = {});
+
+/// Float32 grids a run holds per cell besides what every horizon product holds
+/// (productBytesPerCell): the sky term, a frame's two bands, the stack's directions and the
+/// fit's accumulators. For sizing tiles.
+std::size_t timelapseGridsPerCell(const TimelapseRequest& request);
 
 }  // namespace demlight

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs missing packages, builds demlight, and lights the bundled Mount St. Helens DEM.
+# Installs missing packages, builds demlight and its Python package (put on /usr/bin/python3's
+# path: docs/python.md), and lights the bundled Mount St. Helens DEM.
 # Outputs go to out/demo/ (override with DEMLIGHT_DEMO_OUT=folder).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh demlight
+scripts/build.sh demlight _demlight
 bin=build/release/cli/demlight
 dem=samples/mount_st_helens_1980_usgs.dem
 out=${DEMLIGHT_DEMO_OUT:-out/demo}

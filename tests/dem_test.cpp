@@ -3,11 +3,14 @@
 // transverse Mercator (an implementation independent of the PROJ path demlight uses).
 #include "geo/dem.h"
 #include "geo/raster.h"
+#include "src/error.h"
 
 #include <GeographicLib/TransverseMercator.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace demlight {
 namespace {
@@ -93,6 +96,57 @@ TEST(Metrics, ConvergenceAtUtmZoneEdgeMatchesGeographicLib) {
     // Sign: east of the central meridian in the northern hemisphere grid north lies east of
     // true north, so gamma is positive.
     EXPECT_GT(field.at(199, 50), 2.5);
+}
+
+/// Equal values, NaN equal to NaN.
+bool sameCells(const Grid<float>& a, const Grid<float>& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!(a.data()[i] == b.data()[i] || (std::isnan(a.data()[i]) && std::isnan(b.data()[i])))) return false;
+    return true;
+}
+
+// Values held in memory (the Python module's arrays) read as the file holding them does:
+// heights, nodata cells, CRS, cell sizes and convergence, under the caller's name.
+TEST(DemFromArray, ReadsAsTheFileTheValuesCameFrom) {
+    const Dem file = loadDem(std::string(DEMLIGHT_SAMPLES_DIR) + "/mount_st_helens_1980_usgs.dem");
+    ASSERT_TRUE(file.band.nodata.has_value());
+    ASSERT_GT(file.band.nodataCount, 0u);
+    Grid<float> raw = file.band.values;  // NaN at nodata: put the file's nodata value back
+    for (float& v : raw.values())
+        if (std::isnan(v)) v = static_cast<float>(*file.band.nodata);
+    const Dem array = demFromArray(raw, file.band.ref, file.band.nodata, "<array>");
+    EXPECT_EQ(array.band.path, "<array>");
+    EXPECT_EQ(array.band.nodata, file.band.nodata);
+    EXPECT_EQ(array.band.nodataCount, file.band.nodataCount);
+    EXPECT_TRUE(sameCells(array.terrain.heightsM, file.terrain.heightsM));
+    EXPECT_EQ(array.crs.epsg, file.crs.epsg);
+    EXPECT_EQ(array.crs.name, file.crs.name);
+    EXPECT_EQ(array.terrain.cellWidthM, file.terrain.cellWidthM);
+    EXPECT_EQ(array.terrain.rowLatitudeDeg, file.terrain.rowLatitudeDeg);
+    EXPECT_TRUE(sameCells(array.terrain.convergence.gammaDeg, file.terrain.convergence.gammaDeg));
+}
+
+// An array gets a file's checks, and the message names the array, not the memory file.
+TEST(DemFromArray, RefusesWhatAFileWouldBeRefusedFor) {
+    const Grid<float> z(20, 10, 100.0f);
+    GeoReference ref;
+    ref.geoTransform = {500000, 30, 0, 6700000, 0, -30};
+    try {
+        demFromArray(z, ref, std::nullopt, "heights");  // no CRS
+        FAIL() << "an array without a CRS was accepted";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("'heights' has no coordinate reference system"), std::string::npos) << message;
+        EXPECT_EQ(message.find("/vsimem"), std::string::npos) << message;
+    }
+    ref.crsWkt = "EPSG:32633";
+    ref.geoTransform[5] = 30;  // south-up
+    EXPECT_THROW(demFromArray(z, ref, std::nullopt, "heights"), Error);
+    ref.geoTransform[5] = -30;
+    const Dem dem = demFromArray(z, ref, std::nullopt, "heights");
+    EXPECT_EQ(dem.crs.epsg, 32633);
+    EXPECT_DOUBLE_EQ(dem.terrain.cellWidthM.front(), 30.0);
 }
 
 }  // namespace

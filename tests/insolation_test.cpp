@@ -6,6 +6,7 @@
 #include "lighting/insolation.h"
 #include "products/insolation.h"
 #include "products/irradiance.h"
+#include "products/sunhours.h"
 #include "src/error.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -136,12 +138,14 @@ TEST(InsolationProduct, BandsUnitsAndBadRequests) {
     r.directions = 16;
     r.search.threads = 2;
     const InsolationResult out = insolationProduct(dem, dem.whole(), r);
-    const char* names[] = {"beam", "diffuse", "reflected", "global"};
-    ASSERT_EQ(out.bands.size(), 4u);
-    for (std::size_t b = 0; b < 4; ++b) {
+    const char* names[] = {"beam", "diffuse", "reflected", "global", "sun_hours"};
+    ASSERT_EQ(out.bands.size(), 5u);
+    for (std::size_t b = 0; b < 5; ++b) {
         EXPECT_EQ(out.bands[b].name, names[b]);
-        EXPECT_EQ(out.bands[b].unit, "kWh m-2");
+        EXPECT_EQ(out.bands[b].unit, b < 4 ? "kWh m-2" : "hours");
     }
+    EXPECT_EQ(out.metadata.at("DEMLIGHT_START"), "2024-03-20T00:00:00-07:00");
+    EXPECT_EQ(out.metadata.at("DEMLIGHT_END"), "2024-03-21T00:00:00-07:00");
     EXPECT_EQ(out.metadata.at("DEMLIGHT_PRODUCT"), "insolation");
     EXPECT_EQ(out.metadata.at("DEMLIGHT_UNITS"), "kWh m-2");
     EXPECT_EQ(out.instants, 49u);
@@ -171,6 +175,81 @@ TEST(InsolationProduct, BandsUnitsAndBadRequests) {
     bad = r;
     bad.elevationBandDeg = 0;
     EXPECT_EQ(fieldOf(bad), "elevationBandDeg");
+    bad = r;
+    const UtcInstant noon = parseZonedInstant("2024-03-20T12:00", "America/Los_Angeles").utc;
+    bad.interval = std::pair(noon, noon);
+    EXPECT_EQ(fieldOf(bad), "interval");
+}
+
+// sun_hours of the bins against the sunhours product, which sweeps along every instant's own
+// azimuth (lighting/sunhours.h): the same step, days and disk.
+TEST(InsolationProduct, SunHoursFollowThePerInstantSunHours) {
+    const DemSource dem = DemSource::open(kRocky);
+    for (const char* day : {"2024-06-21", "2024-12-21"}) {
+        InsolationRequest r;
+        r.firstDay = r.lastDay = parseDate(day);
+        r.zone = TimeZoneSpec::iana("America/Denver");
+        r.step = std::chrono::minutes(10);
+        r.search.threads = 2;
+        const InsolationResult binned = insolationProduct(dem, dem.whole(), r);
+        SunhoursRequest s;
+        s.firstDay = s.lastDay = r.firstDay;
+        s.zone = r.zone;
+        s.step = r.step;
+        s.search.threads = 2;
+        const SunhoursResult exact = sunhoursProduct(dem, dem.whole(), s);
+        const Grid<float>& e = exact.band("sun_hours").values;
+        const Diff d = compare(std::vector<double>(e.values().begin(), e.values().end()), binned.band("sun_hours").values);
+        std::printf("%s sun hours exact %.4f binned %.4f MAE %.4f p99 %.4f h\n", day, d.meanExact, d.meanBinned, d.mae,
+                    d.p99);
+        EXPECT_GT(d.meanExact, 3.0) << day;
+        EXPECT_NEAR(d.meanBinned, d.meanExact, 0.01 * d.meanExact) << day;
+        EXPECT_LT(d.mae, 0.02 * d.meanExact) << day;
+    }
+}
+
+// An interval is the period it names: midnight to midnight is the day's bits, and a morning and
+// an afternoon add up to the day (to the binning's rounding: each half has its own bin means).
+TEST(InsolationProduct, IntervalsWithinADayAddUpToTheDay) {
+    const DemSource dem = DemSource::open(kHelens);
+    const std::string tz = "America/Los_Angeles";
+    InsolationRequest day;
+    day.firstDay = day.lastDay = parseDate("2024-06-21");
+    day.zone = TimeZoneSpec::iana(tz);
+    day.step = std::chrono::minutes(15);
+    day.directions = 16;
+    day.search.threads = 2;
+    const auto at = [&](const char* local) { return parseZonedInstant(local, tz).utc; };
+    const auto run = [&](UtcInstant a, UtcInstant b) {
+        InsolationRequest r = day;
+        r.interval = std::pair(a, b);
+        return insolationProduct(dem, dem.whole(), r);
+    };
+    const InsolationResult whole = insolationProduct(dem, dem.whole(), day);
+    const InsolationResult same = run(at("2024-06-21T00:00"), at("2024-06-22T00:00"));
+    for (std::size_t b = 0; b < whole.bands.size(); ++b)
+        ASSERT_EQ(std::memcmp(whole.bands[b].values.data(), same.bands[b].values.data(),
+                              whole.bands[b].values.size() * sizeof(float)),
+                  0)
+            << whole.bands[b].name;
+    const InsolationResult morning = run(at("2024-06-21T00:00"), at("2024-06-21T12:00"));
+    const InsolationResult afternoon = run(at("2024-06-21T12:00"), at("2024-06-22T00:00"));
+    EXPECT_EQ(morning.instants + afternoon.instants, whole.instants + 1);
+    for (const char* band : {"global", "sun_hours"}) {
+        const Grid<float>& w = whole.band(band).values;
+        const Grid<float>& m = morning.band(band).values;
+        const Grid<float>& a = afternoon.band(band).values;
+        double sumWhole = 0, sumParts = 0, worst = 0;
+        for (std::size_t k = 0; k < w.size(); ++k) {
+            if (std::isnan(w.data()[k])) continue;
+            sumWhole += w.data()[k];
+            sumParts += m.data()[k] + a.data()[k];
+            worst = std::max(worst, std::fabs(double(m.data()[k]) + a.data()[k] - w.data()[k]));
+        }
+        std::printf("%s: day %.2f, morning + afternoon %.2f, worst cell %.4f\n", band, sumWhole, sumParts, worst);
+        EXPECT_NEAR(sumParts, sumWhole, 0.002 * sumWhole) << band;
+        EXPECT_GT(sumWhole, 0) << band;
+    }
 }
 
 }  // namespace

@@ -111,9 +111,9 @@ TEST_F(IrradianceCli, InsolationWritesKilowattHoursAndItsWindowsAreTheOnePieceBi
     const testing::RunResult r = runDemlight("-q insolation '" + kRocky + "' -o '" + whole + "'" + args);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const RasterSummary s = inspectRaster(whole);
-    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"beam", "diffuse", "reflected", "global"}));
-    EXPECT_EQ(s.units, std::vector<std::string>(4, "kWh m-2"));
-    EXPECT_EQ(s.dataTypes, std::vector<std::string>(4, "Float32"));
+    EXPECT_EQ(s.descriptions, (std::vector<std::string>{"beam", "diffuse", "reflected", "global", "sun_hours"}));
+    EXPECT_EQ(s.units, (std::vector<std::string>{"kWh m-2", "kWh m-2", "kWh m-2", "kWh m-2", "hours"}));
+    EXPECT_EQ(s.dataTypes, std::vector<std::string>(5, "Float32"));
     EXPECT_EQ(s.ref.geoTransform, inspectRaster(kRocky).ref.geoTransform);
     EXPECT_EQ(s.metadata.at("DEMLIGHT_PRODUCT"), "insolation");
     EXPECT_EQ(s.metadata.at("DEMLIGHT_DIRECTIONS"), "16");
@@ -121,8 +121,8 @@ TEST_F(IrradianceCli, InsolationWritesKilowattHoursAndItsWindowsAreTheOnePieceBi
         runDemlight("-q insolation '" + kRocky + "' -o '" + window + "'" + args + " --srcwin 20 30 60 50");
     ASSERT_EQ(w.exitCode, 0) << w.err;
     const std::vector<Grid<float>> a = readRasterBands(whole), c = readRasterBands(window);
-    ASSERT_EQ(c.size(), 4u);
-    for (std::size_t band = 0; band < 4; ++band)
+    ASSERT_EQ(c.size(), 5u);
+    for (std::size_t band = 0; band < 5; ++band)
         for (std::size_t row = 0; row < 50; ++row)
             for (std::size_t col = 0; col < 60; ++col) {
                 const float x = a[band](col + 20, row + 30), y = c[band](col, row);
@@ -132,6 +132,31 @@ TEST_F(IrradianceCli, InsolationWritesKilowattHoursAndItsWindowsAreTheOnePieceBi
         runDemlight("insolation '" + kRocky + "' -o '" + path("bad.tif") + "' --start 2024-06-21 --end 2024-06-20 --tz UTC");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("--end"), std::string::npos) << bad.err;
+}
+
+TEST_F(IrradianceCli, InsolationPeriodsFromAnIntervalToAYear) {
+    const std::string out = path("period.tif");
+    const auto period = [&](const std::string& args) {
+        const testing::RunResult r = runDemlight("-q insolation '" + kRocky + "' -o '" + out +
+                                                 "' --tz America/Denver --step 2h --sky-directions 8 --threads 2 " + args);
+        EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
+        const RasterSummary s = inspectRaster(out);
+        return std::pair(s.metadata.at("DEMLIGHT_START"), s.metadata.at("DEMLIGHT_END"));
+    };
+    EXPECT_EQ(period("--month 2024-02"), std::pair(std::string("2024-02-01T00:00:00-07:00"), std::string("2024-03-01T00:00:00-07:00")));
+    EXPECT_EQ(period("--year 2023"), std::pair(std::string("2023-01-01T00:00:00-07:00"), std::string("2024-01-01T00:00:00-07:00")));
+    EXPECT_EQ(period("--start 2024-06-21T10:00 --end 2024-06-21T14:30"),
+              std::pair(std::string("2024-06-21T10:00:00-06:00"), std::string("2024-06-21T14:30:00-06:00")));
+    const auto err = [&](const std::string& args) {
+        const testing::RunResult r =
+            runDemlight("insolation '" + kRocky + "' -o '" + path("bad.tif") + "' --tz America/Denver " + args);
+        EXPECT_NE(r.exitCode, 0) << args;
+        return r.err;
+    };
+    EXPECT_NE(err("--month 2024-13").find("2024-13"), std::string::npos);
+    EXPECT_NE(err("--year 2024 --date 2024-01-01").find("not several"), std::string::npos);
+    EXPECT_NE(err("--start 2024-06-21T14:00 --end 2024-06-21T10:00").find("--end"), std::string::npos);
+    EXPECT_FALSE(fs::exists(path("bad.tif")));
 }
 
 }  // namespace

@@ -15,7 +15,9 @@
 #include <GeographicLib/UTMUPS.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -67,6 +69,28 @@ TEST(Esra, FormulasMatchTheTestsOwnCodingOverLinkeElevationAndAltitude) {
     // Low suns cross E5's switch at m = 20 (near 2.5 deg at sea level): both fits are used.
     EXPECT_GT(relativeAirMass(1.0, 0), 20);
     EXPECT_LT(relativeAirMass(5.0, 0), 20);
+}
+
+// The insolation driver's table of B0c over elevation against the test's own coding at every
+// elevation between the nodes, and anchored at sea level: two tables over overlapping ranges (two
+// windows of one DEM) give the same bits where they overlap.
+TEST(Esra, BeamNormalTableIsTheFormulaWithinItsStatedBound) {
+    const double g0 = 1361.5;
+    double worst = 0;
+    for (double linke : {1.0, 3.0, 7.5})
+        for (double h : {0.5, 1.0, 2.5, 10.0, 45.0, 89.0}) {
+            const ClearSkySun sun = clearSkySun(g0, linke, h, 0.8);
+            const BeamNormalTable table(sun, -420.3, 8848.0);
+            for (double z = -420.3; z <= 8848.0; z += 0.173) {
+                const double exact = 0.8 * ownBeamNormal(g0, linke, ownAirMass(h, z));
+                worst = std::max(worst, std::fabs(table.at(z) - exact) / exact);
+            }
+            const BeamNormalTable a(sun, 100.0, 250.5), b(sun, 180.2, 3000.0);
+            for (double z = 180.2; z <= 250.5; z += 0.31) ASSERT_EQ(a.at(z), b.at(z)) << z;
+        }
+    std::printf("worst relative error of the table %.3g\n", worst);
+    EXPECT_LT(worst, 1e-7);
+    EXPECT_EQ(clearSkyWithBeam(clearSkySun(g0, 3, -1.0), 0).diffuseHorizontal, 0.0);  // the sun is down
 }
 
 TEST(Esra, KnownValuesOfTheAirMassAndTheRealSkyIndices) {

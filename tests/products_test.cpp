@@ -197,7 +197,7 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
         if (f.index == 1) middle = f.lightmap.bands[1].values;
         check(std::move(f));
     };
-    const TimelapseResult res = timelapseProduct(dem, r, sink);
+    const TimelapseResult res = timelapseProduct(dem, dem.whole(), r, sink);
     EXPECT_EQ(frames, 3u);
     EXPECT_EQ(skies, 1u);
     ASSERT_TRUE(res.fit);
@@ -224,6 +224,39 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
         within += std::abs(rec.data()[k] - middle.data()[k]) <= 3 * rms.data()[k] + 1e-6f ? 1 : 0;
     }
     EXPECT_GT(within, valid * 9 / 10);
+}
+
+TEST(Products, TimelapsePreviewsAreOfTheWholeDemOnly) {
+    const DemSource& dem = rocky();
+    TimelapseRequest r;
+    r.frames = instantsBetween(parseZonedInstant("2024-06-21T14:00:00Z", ""), parseZonedInstant("2024-06-21T15:00:00Z", ""),
+                               std::chrono::hours(1), 100);
+    r.search.threads = 2;
+    try {
+        timelapseProduct(dem, CellWindow{10, 10, 60, 60}, r, TimelapseSink{});
+        ADD_FAILURE() << "previews of a window were made";
+    } catch (const FieldError& e) {
+        EXPECT_EQ(e.field(), "previews");
+    }
+}
+
+TEST(Products, TimelapseFitMeanIsTheSameBitsInAnyOrderOfWindows) {
+    // A double running sum drops 2^-60 beside 1 (53-bit significand), so 1 then 1024 x 2^-60
+    // sums to 1 while the small values first give 1 + 2^-50; the exact sum gives the latter in
+    // any order.
+    const float tiny = std::ldexp(1.0f, -60);
+    FitStats oneFirst, tinyFirst, left, right;
+    oneFirst.add(1.0f);
+    for (int i = 0; i < 1024; ++i) oneFirst.add(tiny), tinyFirst.add(tiny), (i < 500 ? left : right).add(tiny);
+    tinyFirst.add(1.0f);
+    right.add(1.0f);
+    left.merge(right);
+    const double expected = (1.0 + std::ldexp(1.0, -50)) / 1025.0;
+    EXPECT_EQ(oneFirst.meanRms(), expected);
+    EXPECT_EQ(tinyFirst.meanRms(), expected);
+    EXPECT_EQ(left.meanRms(), expected);
+    EXPECT_EQ(left.cells, 1025u);
+    EXPECT_EQ(left.worstRms, 1.0);
 }
 
 TEST(Products, AWindowIsTheWholeDemsAnswerOnItsCells) {

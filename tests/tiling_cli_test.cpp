@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -116,6 +117,103 @@ TEST_P(TiledCli, TilesAndMosaickedWindowsAreTheOnePieceBytes) {
 
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledCli, ::testing::ValuesIn(kDems),
                          [](const auto& testInfo) { return demTestName(testInfo.param.name); });
+
+// ---- Time-lapse frames ---------------------------------------------------------------------------
+
+struct TimelapseCase {
+    const char* name;
+    bool bundled;        ///< a sample of the repository (samples/), not of ../shared
+    const char* crop;    ///< gdal_translate -srcwin of the DEM ("" = the whole file)
+    int smallTile, largeTile;  ///< below the halo (--max-distance 1500 m: 51 cells of 30 m) and above
+    const char* srcwin;  ///< one window computed by itself
+};
+
+// Pacific time: 8 am, noon and 4 pm PDT; the fit needs degree + 1 = 2 frames.
+constexpr const char* kTimelapseOptions =
+    " --start 2024-06-21T15:00:00Z --end 2024-06-21T23:00:00Z --step 4h --max-distance 1500 --fit-degree 1"
+    " --formats tif --threads 2 -q";
+
+/// gdalinfo -checksum of every GeoTIFF in a time-lapse folder (frames, sky_k, sequence_fit), by
+/// name, and frames.csv's text.
+std::map<std::string, std::vector<std::string>> folderChecksums(const fs::path& dir) {
+    std::map<std::string, std::vector<std::string>> out;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.path().extension() == ".tif") out[name] = checksums(entry.path().string());
+        if (name == "frames.csv") {
+            std::ifstream in(entry.path());
+            std::stringstream text;
+            text << in.rdbuf();
+            out[name] = {text.str()};
+        }
+    }
+    return out;
+}
+
+class TiledTimelapse : public ::testing::TestWithParam<TimelapseCase> {};
+
+TEST_P(TiledTimelapse, TiledFramesAreTheOnePieceFramesBitForBit) {
+    const TimelapseCase c = GetParam();
+    const std::string src = c.bundled ? std::string(DEMLIGHT_SAMPLES_DIR) + "/" + c.name : sharedDemPath(c.name);
+    if (!fs::exists(src)) GTEST_SKIP() << c.name << " absent";
+    const fs::path dir = fs::temp_directory_path() / ("demlight_tiled_timelapse_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::string dem = src;
+    if (*c.crop) {
+        dem = (dir / "dem.tif").string();
+        ASSERT_FALSE(shell("gdal_translate -q -srcwin " + std::string(c.crop) + " '" + src + "' '" + dem + "' && echo ok").empty());
+    }
+    const auto run = [&](const std::string& out, const std::string& extra) {
+        const auto r = runDemlight("timelapse '" + dem + "' -o '" + (dir / out).string() + "'" + kTimelapseOptions + extra);
+        EXPECT_EQ(r.exitCode, 0) << extra << ": " << r.err;
+        return folderChecksums(dir / out);
+    };
+    for (const std::string mode : {"exact", "interpolated:8"}) {
+        const auto whole = run("whole_" + mode, " --horizon-mode " + mode);
+        ASSERT_EQ(whole.size(), 3u + 3u) << mode;  // three frames, sky_k, sequence_fit, frames.csv
+        for (const int tile : {c.smallTile, c.largeTile})
+            EXPECT_EQ(run("tile" + std::to_string(tile) + "_" + mode, " --horizon-mode " + mode + " --tile-size " +
+                                                                           std::to_string(tile)),
+                      whole)
+                << mode << " --tile-size " << tile;
+    }
+    // A window by itself: every raster is the one-piece raster's window.
+    const auto window = run("window", std::string(" --srcwin ") + c.srcwin);
+    for (const auto& [name, sums] : window) {
+        if (name == "frames.csv") continue;
+        const std::string vrt = (dir / (name + ".vrt")).string();
+        ASSERT_FALSE(shell("gdal_translate -q -of VRT -srcwin " + std::string(c.srcwin) + " '" +
+                           (dir / "whole_exact" / name).string() + "' '" + vrt + "' && echo ok")
+                         .empty());
+        EXPECT_EQ(sums, checksums(vrt)) << name << " --srcwin " << c.srcwin;
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, TiledTimelapse,
+                         ::testing::Values(TimelapseCase{"mount_st_helens_1980_usgs.dem", true, "80 120 160 200", 40,
+                                                         120, "50 70 70 50"}),
+                         [](const auto& testInfo) { return demTestName(testInfo.param.name); });
+INSTANTIATE_TEST_SUITE_P(RealDems, TiledTimelapse,
+                         ::testing::Values(TimelapseCase{"big_tujunga_srtm30m_utm11.tif", false, "300 100 400 300", 45,
+                                                         250, "150 100 150 120"}),
+                         [](const auto& testInfo) { return demTestName(testInfo.param.name); });
+
+TEST(TilingCli, TiledTimelapsePicturesAreRefusedNamingFormats) {
+    const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/mount_st_helens_1980_usgs.dem";
+    const fs::path dir = fs::temp_directory_path() / ("demlight_tiled_timelapse_png_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    for (const std::string extra : {" --tile-size 200", " --srcwin 0 0 100 100"}) {
+        const auto r = runDemlight("timelapse '" + dem + "' -o '" + dir.string() +
+                                   "' --start 2024-06-21T15:00:00Z --end 2024-06-21T16:00:00Z --step 1h" + extra);
+        EXPECT_NE(r.exitCode, 0) << extra;
+        EXPECT_NE(r.err.find("--formats tif,png,gif"), std::string::npos) << extra << ": " << r.err;
+        EXPECT_NE(r.err.find("give --formats tif"), std::string::npos) << extra << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir)) << extra;  // refused before the folder is made
+    }
+}
 
 TEST(TilingCli, BadTileSizesAndWindowsAreRefusedNamingTheOption) {
     const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";

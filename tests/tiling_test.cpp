@@ -11,6 +11,7 @@
 #include "products/sky.h"
 #include "products/sun.h"
 #include "products/sunhours.h"
+#include "products/timelapse.h"
 #include "shared_dem.h"
 #include "src/terrain.h"
 
@@ -180,6 +181,30 @@ std::size_t windowMismatches(const DemSource& source, const Product& product, st
     return bad;
 }
 
+/// A time-lapse of two frames (a morning and a low evening sun in the Americas) with a degree-1
+/// fit, as one result: sky_k, each frame's bands in order, then the fit's.
+ProductResult timelapseBands(const DemSource& s, const CellWindow& w, std::size_t stackDirections,
+                             const SearchRequest& search) {
+    TimelapseRequest r;
+    r.frames = instantsBetween(parseZonedInstant("2024-06-21T15:30:00Z", ""),
+                               parseZonedInstant("2024-06-22T02:30:00Z", ""), std::chrono::minutes(660), 10);
+    r.stackDirections = stackDirections;
+    r.previews = false;
+    r.fitDegree = 1;
+    r.search = search;
+    ProductResult out;
+    TimelapseSink sink;
+    const auto append = [&](const ProductResult& part) {
+        for (const ProductBand& b : part.bands) out.bands.push_back(b);
+    };
+    sink.sky = [&](ProductResult&& sky) { append(sky); };
+    sink.frame = [&](TimelapseFrame&& f) { append(f.lightmap); };
+    const TimelapseResult res = timelapseProduct(s, w, r, sink);
+    EXPECT_EQ(res.frames, 2u);
+    if (res.fit) append(*res.fit);
+    return out;
+}
+
 struct ProductCase {
     const char* name;
     Product run;
@@ -267,6 +292,9 @@ std::vector<ProductCase> productCases() {
              r.search = search;
              return static_cast<ProductResult>(sunhoursProduct(s, w, r));
          }},
+        {"timelapse", [=](const DemSource& s, const CellWindow& w) { return timelapseBands(s, w, 0, search); }},
+        {"timelapse_interpolated",
+         [=](const DemSource& s, const CellWindow& w) { return timelapseBands(s, w, 8, search); }},
     };
 }
 

@@ -220,6 +220,21 @@ TEST(TimeParse, PlainDates) {
     EXPECT_THROW(parseDate("23-01-01"), Error);
 }
 
+TEST(TimeParse, MonthsAndYearsAreTheirCalendarDays) {
+    const DateRange feb = parseMonth("2024-02");
+    EXPECT_EQ(formatDate(feb.first), "2024-02-01");
+    EXPECT_EQ(formatDate(feb.last), "2024-02-29");
+    EXPECT_EQ(formatDate(parseMonth("2023-02").last), "2023-02-28");
+    EXPECT_EQ(formatDate(parseMonth("2023-12").last), "2023-12-31");
+    const DateRange y = parseYear("2024");
+    EXPECT_EQ(formatDate(y.first), "2024-01-01");
+    EXPECT_EQ(formatDate(y.last), "2024-12-31");
+    EXPECT_EQ((y.last - y.first).count(), 365);
+    for (const char* bad : {"2024-13", "2024-6", "2024", "2024-06-01", ""})
+        EXPECT_THROW(parseMonth(bad), Error) << bad;
+    for (const char* bad : {"24", "2024-01", "year", ""}) EXPECT_THROW(parseYear(bad), Error) << bad;
+}
+
 TEST(TimeScales, JulianDayAndDecimalYear) {
     EXPECT_DOUBLE_EQ(julianDay(utc(2000, 1, 1, 12)), 2451545.0);
     EXPECT_DOUBLE_EQ(julianDay(utc(1970, 1, 1)), 2440587.5);

@@ -1,0 +1,353 @@
+"""demlight: light real terrain (DEMs) from Python.
+
+    import demlight
+    dem = demlight.open("samples/mount_st_helens_1980_usgs.dem")
+    r = demlight.sun(dem, time="2024-06-21T07:30", tz="America/Los_Angeles")
+    r.bands["sun_visibility"]          # numpy array, NaN = nodata
+    r.write("sun.tif")                 # what `demlight sun ... -o sun.tif` writes
+
+One function per raster command of the command line (horizon, sun, sky, aperture, light,
+irradiance, insolation, sunhours), taking a DEM (from demlight.open or demlight.from_array), a
+path, or a numpy array with transform= and crs=, and the command's options as keyword arguments:
+the same names (underscores for dashes), defaults, units and checks, parsed by the command
+line's own parser. Errors raise demlight.Error with the library's message. Full documentation:
+docs/python.md.
+"""
+
+import datetime as _datetime
+import functools as _functools
+import inspect as _inspect
+import json as _json
+import textwrap as _textwrap
+
+from . import _demlight
+
+__version__ = _demlight.version
+__all__ = ["Error", "Cancelled", "Dem", "Result", "open", "from_array", "COMMANDS"]
+
+Error = _demlight.Error
+Error.__doc__ = "Any failure demlight reports: bad input, bad option, unwritable output (the library's message)."
+Cancelled = _demlight.Cancelled
+Cancelled.__doc__ = "The work was stopped: a progress callback returned False."
+
+#: The raster commands, one function each.
+COMMANDS = tuple(_demlight.raster_commands())
+
+# Command-line options that are not keyword arguments: the output (Result.write takes it), the
+# notes of a terminal, and the DEM argument.
+_NOT_KEYWORDS = {"output", "of", "co", "verbose", "help", "quiet", "dem"}
+# Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
+_OPEN_KEYWORDS = ("z_unit", "z_factor")
+
+
+class Dem:
+    """A DEM opened for lighting (demlight.open, demlight.from_array).
+
+    Attributes: width, height (cells), transform (GDAL geotransform, 6 numbers), crs (WKT),
+    nodata (the band's nodata value or None), epsg, path (the file, or None for an array).
+    heights: the heights in metres as a read-only numpy array (rows, columns), NaN = nodata
+    (read from the file when first asked for). info(): what `demlight info --json` prints.
+    """
+
+    def __init__(self, handle):
+        self._dem = handle
+
+    width = property(lambda self: self._dem.width)
+    height = property(lambda self: self._dem.height)
+    transform = property(lambda self: self._dem.transform)
+    crs = property(lambda self: self._dem.crs)
+    nodata = property(lambda self: self._dem.nodata)
+    epsg = property(lambda self: self._dem.epsg)
+    path = property(lambda self: self._dem.path or None)
+
+    @property
+    def heights(self):
+        return self._dem.heights()
+
+    def info(self):
+        """What `demlight info DEM --json` prints, as a dict."""
+        return _json.loads(self._dem.info_json())
+
+    def __repr__(self):
+        return "<demlight.Dem %s, %d x %d cells>" % (self._dem.name, self.width, self.height)
+
+
+def open(path, z_unit=None, z_factor=None, progress=None):  # noqa: A001 (as rasterio.open)
+    """Opens a DEM: any raster GDAL reads (band 1), /vsizip/ and other virtual paths included.
+
+    z_unit: vertical unit of the heights instead of the band's own (m, ft, US survey foot, cm,
+    dm, mm, km); z_factor: metres per height unit instead (after the band's scale and offset).
+    progress: callback(fraction, stage) of the opening pass on large DEMs; returning False
+    stops it (demlight.Cancelled). Raises demlight.Error on a DEM demlight cannot light.
+    """
+    return Dem(_demlight.open(str(path), z_unit or "", float(z_factor or 0), progress))
+
+
+def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None, z_factor=None):
+    """A DEM from a 2-D numpy array of heights (rows, columns), as a file holding them reads.
+
+    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0); crs: WKT, or a
+    definition GDAL reads such as "EPSG:32610"; nodata: the value marking no data (NaN always
+    does); name: how outputs' DEMLIGHT_INPUT and messages name it. The values are converted to
+    Float32, as demlight reads every DEM.
+    """
+    return Dem(_demlight.from_array(heights, [float(v) for v in transform], str(crs), nodata, name,
+                                    z_unit or "", float(z_factor or 0)))
+
+
+def _as_dem(dem, transform, crs, nodata, options):
+    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array, with
+    the options that apply when a DEM is opened (z_unit, z_factor)."""
+    opening = {k: options.pop(k) for k in _OPEN_KEYWORDS if k in options}
+    if isinstance(dem, Dem):
+        if opening:
+            raise Error("%s: applies when the DEM is opened: demlight.open(path, %s=...)"
+                        % (", ".join(opening), next(iter(opening))))
+        if transform is not None or crs is not None:
+            raise Error("transform and crs are for numpy arrays; this DEM has its own")
+        return dem
+    if isinstance(dem, (str, bytes)) or hasattr(dem, "__fspath__"):
+        if transform is not None or crs is not None:
+            raise Error("transform and crs are for numpy arrays; a file has its own")
+        return open(dem, **opening)
+    if transform is None or crs is None:
+        raise Error("a numpy array needs transform= (GDAL geotransform) and crs=")
+    return from_array(dem, transform, crs, nodata=nodata, **opening)
+
+
+def _option_text(name, value):
+    if isinstance(value, _datetime.date):  # an aware datetime carries its offset; a naive one needs tz=
+        return value.isoformat()
+    if isinstance(value, _datetime.timedelta):
+        seconds = value.total_seconds()
+        if seconds != int(seconds):
+            raise Error("%s: %r is not a whole number of seconds" % (name, value))
+        return "%ds" % int(seconds)
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def _arguments(command, dem_label, options):
+    """The command line of `command` with these keyword options (None = the option's default)."""
+    spec = _options(command)
+    args = [command, dem_label, "-o", "python-result.tif"]
+    for name, value in options.items():
+        if name not in spec:
+            raise Error("demlight.%s: unknown option '%s' (options: %s)" % (command, name, ", ".join(sorted(spec))))
+        if value is None:
+            continue
+        flag = "--" + name.replace("_", "-")
+        if spec[name]["flag"]:
+            if value:
+                args.append(flag)
+        elif isinstance(value, (list, tuple)):
+            if spec[name]["expected"] > 1 and len(value) == spec[name]["expected"]:
+                args += [flag] + [_option_text(name, v) for v in value]
+            else:
+                args += ["%s=%s" % (flag, _option_text(name, v)) for v in value]
+        else:
+            args.append("%s=%s" % (flag, _option_text(name, value)))
+    return args
+
+
+def _command_line(command, dem, options):
+    """DEMLIGHT_COMMAND of a Python run: the call as Python code."""
+    what = repr(dem.path) if dem.path else dem._dem.name  # an array: its name
+    parts = [what] + ["%s=%r" % kv for kv in options.items()]
+    return "demlight.%s(%s)" % (command, ", ".join(parts))
+
+
+class Result:
+    """What a command computed: its bands and metadata, on the DEM's (or srcwin's) georeference.
+
+    bands: dict band name -> numpy array (rows, columns); Float32 bands hold NaN at nodata,
+    Byte bands (masks) their own nodata value. units: band name -> unit. metadata: the DEMLIGHT_*
+    items the command line writes (but DEMLIGHT_COMMAND, which write adds). transform, crs:
+    where the bands sit. rasters: the command's output rasters (horizon: the horizons and the
+    truncation mask, which write() puts in two files as the command line does).
+    """
+
+    def __init__(self, command, rasters, call, dem, options):
+        self.command = command
+        self.rasters = list(rasters)
+        self._call = call
+        self._dem = dem
+        self._options = dict(options)
+
+    @property
+    def bands(self):
+        out = {}
+        for r in self.rasters:
+            out.update(r.bands)
+        return out
+
+    @property
+    def units(self):
+        out = {}
+        for r in self.rasters:
+            out.update(r.units)
+        return out
+
+    @property
+    def metadata(self):
+        return dict(self.rasters[0].metadata)
+
+    transform = property(lambda self: self.rasters[0].transform)
+    crs = property(lambda self: self.rasters[0].crs)
+    nodata = property(lambda self: self.rasters[0].nodata)
+
+    def write(self, path, format="GTiff", creation_options=()):  # noqa: A002 (the command line's name)
+        """Writes the result as `demlight <command> ... -o path` does and returns the paths written.
+
+        format: "GTiff" (tiled, ZSTD) or "COG"; creation_options: GDAL KEY=VALUE items (-co).
+        Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
+        DEMLIGHT_COMMAND records the Python call.
+        """
+        return self._call.write(self.rasters, str(path), format, list(creation_options),
+                                _command_line(self.command, self._dem, self._options), self._dem._dem.path)
+
+    def to_xarray(self):
+        """The bands as an xarray.Dataset on x/y cell-centre coordinates; with rioxarray
+        installed, the CRS, transform and nodata are attached (ds.rio)."""
+        import numpy as np
+        import xarray as xr
+
+        gt = self.transform
+        first = next(iter(self.bands.values()))
+        rows, cols = first.shape
+        x = gt[0] + (np.arange(cols) + 0.5) * gt[1]
+        y = gt[3] + (np.arange(rows) + 0.5) * gt[5]
+        variables = {}
+        for raster in self.rasters:
+            for name, values in raster.bands.items():
+                attrs = {"units": raster.units[name], "nodata": raster.nodata}
+                variables[name] = xr.DataArray(values, dims=("y", "x"), coords={"y": y, "x": x}, attrs=attrs)
+        ds = xr.Dataset(variables, attrs=self.metadata)
+        try:
+            import rioxarray  # noqa: F401 (registers .rio)
+            from affine import Affine
+        except ImportError:
+            ds.attrs["crs_wkt"] = self.crs
+            ds.attrs["transform"] = tuple(gt)
+            return ds
+        ds = ds.rio.write_crs(self.crs)
+        ds = ds.rio.write_transform(Affine.from_gdal(*gt))
+        for raster in self.rasters:
+            for name in raster.bands:
+                ds[name] = ds[name].rio.write_nodata(raster.nodata, encoded=False)
+        return ds
+
+    def __repr__(self):
+        return "<demlight.Result %s: %s>" % (self.command, ", ".join(self.bands))
+
+
+@_functools.lru_cache(maxsize=None)
+def _options(command):
+    """Keyword name (aliases included) -> the command-line option's facts (names, description,
+    default, type, ...)."""
+    spec = {}
+    for o in _demlight.command_options(command):
+        if o["positional"]:
+            continue
+        keywords = [n.replace("-", "_") for n in o["names"]]
+        if keywords[0] in _NOT_KEYWORDS:
+            continue
+        for k in keywords:
+            spec[k] = dict(o, keyword=keywords[0], aliases=keywords[1:])
+    return spec
+
+
+def _run(command, dem, transform=None, crs=None, nodata=None, progress=None, **options):
+    call = _demlight.parse(_arguments(command, "DEM", options))
+    opened = _as_dem(dem, transform, crs, nodata, {k: options[k] for k in _OPEN_KEYWORDS if k in options})
+    rasters = call.compute(opened._dem, progress)
+    return Result(command, rasters, call, opened, {k: v for k, v in options.items() if k not in _OPEN_KEYWORDS})
+
+
+_TYPES = {"FLOAT": float, "UINT": int, "INT": int, "NUMBER": float}
+
+
+def _default(o):
+    text = o["default"]
+    if not text or o["flag"]:
+        return None
+    kind = _TYPES.get(o["type"].split(":")[0].strip(), str)  # "FLOAT:[0, 20]": the type, then its check
+    try:
+        return kind(text)
+    except ValueError:
+        return text
+
+
+def _docstring(command):
+    lines = [
+        "%s (demlight %s)." % (_demlight.command_description(command), command),
+        "",
+        "demlight.%s(dem, *, transform=None, crs=None, nodata=None, progress=None, **options) -> Result" % command,
+        "",
+        "dem: a demlight.Dem (demlight.open, demlight.from_array), a path GDAL opens, or a 2-D",
+        "numpy array of heights in metres with transform= (GDAL geotransform), crs= (WKT or",
+        "'EPSG:n') and nodata=. progress: callback(fraction, stage), called from the work's",
+        "threads with the GIL held; returning False raises demlight.Cancelled. Ctrl-C stops the",
+        "work (KeyboardInterrupt). The GIL is released while demlight computes.",
+        "",
+        "Options: those of `demlight %s` (its --help), with underscores for dashes; the same" % command,
+        "defaults, units and checks. Times: ISO 8601 strings with an offset or Z, local times with",
+        "tz=, or timezone-aware datetime objects; days: 'YYYY-MM-DD' or datetime.date; steps:",
+        "'10m', '90s' or datetime.timedelta. Lists (azimuth, srcwin) as Python sequences.",
+        "",
+    ]
+    seen = set()
+    for o in _demlight.command_options(command):
+        if o["positional"]:
+            continue
+        keywords = [n.replace("-", "_") for n in o["names"]]
+        if keywords[0] in _NOT_KEYWORDS or keywords[0] in seen:
+            continue
+        seen.add(keywords[0])
+        head = keywords[0]
+        if len(keywords) > 1:
+            head += " (also %s)" % ", ".join(keywords[1:])
+        if o["type"]:
+            head += " : %s" % o["type"].lower()
+            if o["expected"] > 1:
+                head += " x %d" % o["expected"]
+        if o["required"]:
+            head += ", required"
+        if o["default"]:
+            head += ", default %s" % o["default"]
+        lines.append(head)
+        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
+                                subsequent_indent="    ")
+    lines += ["", "Returns a demlight.Result: .bands, .units, .metadata, .write(path), .to_xarray().",
+              "Raises demlight.Error with the library's message (options named as keywords)."]
+    return "\n".join(lines)
+
+
+def _make_command(command):
+    def product(dem, *, transform=None, crs=None, nodata=None, progress=None, **options):
+        return _run(command, dem, transform=transform, crs=crs, nodata=nodata, progress=progress, **options)
+
+    product.__name__ = product.__qualname__ = command
+    product.__doc__ = _docstring(command)
+    params = [_inspect.Parameter("dem", _inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+    for name in ("transform", "crs", "nodata", "progress"):
+        params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=None))
+    seen = set(p.name for p in params)
+    for o in _demlight.command_options(command):
+        if o["positional"]:
+            continue
+        keyword = o["names"][0].replace("-", "_")
+        if keyword in _NOT_KEYWORDS or keyword in seen:
+            continue
+        seen.add(keyword)
+        params.append(_inspect.Parameter(keyword, _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
+    product.__signature__ = _inspect.Signature(params)
+    return product
+
+
+for _command in COMMANDS:
+    globals()[_command] = _make_command(_command)
+    __all__.append(_command)
+del _command
+

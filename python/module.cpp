@@ -1,0 +1,565 @@
+// demlight._demlight: the C++ side of the Python package (python/demlight/). DEMs opened from
+// files or made from numpy arrays; a raster command's keyword options parsed by the command
+// line's own parser (cli/) into a product call, so names, defaults, checks and messages are the
+// command's; results as numpy views; the command line's writers (one piece, or window by window
+// for demlight.dask). Work runs without the GIL; progress callbacks take it back.
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "geo/dem.h"
+#include "geo/dem_source.h"
+#include "geo/raster.h"
+#include "products/product.h"
+#include "products/tiles.h"
+#include "src/error.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace demlight::python {
+namespace {
+
+// ---- Errors and progress ------------------------------------------------------------------------
+
+/// A command-line spelling in a message as the Python keyword: "--max-distance" -> "max_distance".
+std::string keywordsForFlags(const std::string& message) {
+    static const std::regex flag("(^|[\\s'\"(])--?([a-z][a-z0-9]*(-[a-z0-9]+)*)");
+    std::string out;
+    std::smatch m;
+    std::string rest = message;
+    while (std::regex_search(rest, m, flag)) {
+        std::string name = m[2].str();
+        for (char& c : name)
+            if (c == '-') c = '_';
+        out += m.prefix().str() + m[1].str() + name;
+        rest = m.suffix().str();
+    }
+    return out + rest;
+}
+
+/// The library's message with a request field named as the keyword that sets it (the command
+/// line's flag for the field, spelt as a keyword).
+std::string fieldMessage(const FieldError& e) { return keywordsForFlags(cli::flagForField(e.field()) + e.detail()); }
+
+/// Runs library work without the GIL, and cancels it when Python asks: the progress callback
+/// raises or returns False, or a signal handler raises (Ctrl-C: KeyboardInterrupt). The raised
+/// exception is raised again once the library has unwound; a callback returning False raises
+/// demlight.Cancelled.
+class PythonProgress {
+public:
+    explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+
+    template <class Work>
+    auto run(Work&& work) -> decltype(work(ProgressFn{})) {
+        std::optional<decltype(work(ProgressFn{}))> result;
+        try {
+            py::gil_scoped_release release;
+            result.emplace(work(fn()));
+        } catch (const Cancelled&) {
+            if (!error_) throw;
+        }
+        if (error_) {
+            py::error_already_set e = std::move(*error_);
+            error_.reset();
+            throw e;
+        }
+        return std::move(*result);
+    }
+
+private:
+    /// Called from any thread of the library (one at a time: ProgressCounter serialises them).
+    ProgressFn fn() {
+        return [this](double fraction, const std::string& stage) {
+            py::gil_scoped_acquire gil;
+            if (error_) return false;
+            if (PyErr_CheckSignals() != 0) {
+                error_ = std::make_unique<py::error_already_set>();
+                return false;
+            }
+            if (callback_.is_none()) return true;
+            try {
+                const py::object answer = callback_(fraction, stage);
+                return answer.is_none() || answer.cast<bool>();
+            } catch (py::error_already_set& e) {
+                error_ = std::make_unique<py::error_already_set>(std::move(e));
+                return false;
+            }
+        };
+    }
+
+    py::object callback_;
+    std::unique_ptr<py::error_already_set> error_;
+};
+
+// ---- DEMs ------------------------------------------------------------------------------------
+
+/// A DEM as Python holds it: the source products read windows from, and how it was opened.
+struct PyDem {
+    std::shared_ptr<const DemSource> source;
+    /// The file it was opened from (empty for an array): DEMLIGHT_INPUT, and the input an output
+    /// must not overwrite.
+    std::string path;
+    mutable std::shared_ptr<const Dem> whole;  ///< the heights, read when first asked for
+
+    const Dem& geometry() const { return source->geometry(); }
+};
+
+/// A read-only numpy view of `grid`, keeping `owner` alive.
+template <class T, class Owner>
+py::array view(const Grid<T>& grid, const std::shared_ptr<Owner>& owner) {
+    auto* keep = new std::shared_ptr<Owner>(owner);
+    py::capsule base(keep, [](void* p) { delete static_cast<std::shared_ptr<Owner>*>(p); });
+    py::array a(py::dtype::of<T>(), {grid.height(), grid.width()}, {grid.width() * sizeof(T), sizeof(T)}, grid.data(),
+                base);
+    a.attr("setflags")(py::arg("write") = false);
+    return a;
+}
+
+py::tuple transformTuple(const GeoReference& ref) {
+    const auto& g = ref.geoTransform;
+    return py::make_tuple(g[0], g[1], g[2], g[3], g[4], g[5]);
+}
+
+GeoReference geoReference(const std::vector<double>& transform, const std::string& crs) {
+    if (transform.size() != 6)
+        throw Error("transform: expected GDAL's 6 numbers (x0, dx, 0, y0, 0, dy), got " +
+                    std::to_string(transform.size()));
+    GeoReference ref;
+    std::copy(transform.begin(), transform.end(), ref.geoTransform.begin());
+    ref.crsWkt = crs;
+    return ref;
+}
+
+HeightOptions heightOptions(const std::string& zUnit, double zFactor) {
+    HeightOptions h;
+    h.zUnit = zUnit;
+    h.zFactor = zFactor;
+    return h;
+}
+
+PyDem openPath(const std::string& path, const std::string& zUnit, double zFactor, py::object progress) {
+    PythonProgress p(std::move(progress));
+    const HeightOptions heights = heightOptions(zUnit, zFactor);
+    auto source = p.run([&](const ProgressFn& fn) { return std::make_shared<const DemSource>(DemSource::open(path, heights, fn)); });
+    return {std::move(source), path, nullptr};
+}
+
+PyDem fromArray(py::array_t<float, py::array::c_style | py::array::forcecast> heights, const std::vector<double>& transform,
+                const std::string& crs, std::optional<double> nodata, const std::string& name, const std::string& zUnit,
+                double zFactor) {
+    if (heights.ndim() != 2) throw Error("heights: expected a 2-D array (rows, columns), got " + std::to_string(heights.ndim()) + " dimensions");
+    Grid<float> values(static_cast<std::size_t>(heights.shape(1)), static_cast<std::size_t>(heights.shape(0)));
+    std::copy_n(heights.data(), values.size(), values.data());
+    const GeoReference ref = geoReference(transform, crs);
+    const HeightOptions h = heightOptions(zUnit, zFactor);
+    std::shared_ptr<const DemSource> source;
+    {
+        py::gil_scoped_release release;
+        source = std::make_shared<const DemSource>(DemSource(demFromArray(values, ref, nodata, name, h)));
+    }
+    return {std::move(source), std::string(), nullptr};
+}
+
+// ---- Results ---------------------------------------------------------------------------------
+
+/// One output raster of a product (a part of a command's result).
+using Raster = ProductResult;
+
+py::dict rasterBands(const std::shared_ptr<Raster>& r) {
+    py::dict out;
+    for (const ProductBand& b : r->bands)
+        out[py::str(b.name)] = b.values.empty() ? view(b.flags, r) : view(b.values, r);
+    return out;
+}
+
+/// State of a raster for pickling (demlight.dask moves window results from workers).
+py::tuple rasterState(const Raster& r) {
+    py::list bands;
+    for (const ProductBand& b : r.bands) {
+        const bool flags = b.values.empty();
+        py::array cells = flags ? py::array(py::dtype::of<std::uint8_t>(), {b.flags.height(), b.flags.width()}, b.flags.data())
+                                : py::array(py::dtype::of<float>(), {b.values.height(), b.values.width()}, b.values.data());
+        bands.append(py::make_tuple(b.name, b.unit, flags, static_cast<int>(b.resampling), cells));
+    }
+    return py::make_tuple(bands, r.metadata, transformTuple(r.ref), r.ref.crsWkt, r.nodata, r.flagNodata);
+}
+
+template <class T>
+Grid<T> gridOf(const py::array& a) {
+    const auto cells = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!cells || cells.ndim() != 2) throw Error("raster state: expected a 2-D band");
+    Grid<T> g(static_cast<std::size_t>(cells.shape(1)), static_cast<std::size_t>(cells.shape(0)));
+    std::copy_n(cells.data(), g.size(), g.data());
+    return g;
+}
+
+std::shared_ptr<Raster> rasterFromState(const py::tuple& t) {
+    auto r = std::make_shared<Raster>();
+    for (const py::handle item : t[0].cast<py::list>()) {
+        const auto b = item.cast<py::tuple>();
+        ProductBand band;
+        band.name = b[0].cast<std::string>();
+        band.unit = b[1].cast<std::string>();
+        band.resampling = static_cast<Resampling>(b[3].cast<int>());
+        if (b[2].cast<bool>())
+            band.flags = gridOf<std::uint8_t>(b[4].cast<py::array>());
+        else
+            band.values = gridOf<float>(b[4].cast<py::array>());
+        r->bands.push_back(std::move(band));
+    }
+    r->metadata = t[1].cast<std::map<std::string, std::string>>();
+    r->ref = geoReference(t[2].cast<std::vector<double>>(), t[3].cast<std::string>());
+    r->nodata = t[4].cast<double>();
+    r->flagNodata = t[5].cast<std::optional<double>>();
+    return r;
+}
+
+std::vector<const ProductResult*> pointers(const std::vector<std::shared_ptr<Raster>>& parts) {
+    std::vector<const ProductResult*> out;
+    for (const auto& p : parts) out.push_back(p.get());
+    return out;
+}
+
+// ---- Calls -----------------------------------------------------------------------------------
+
+/// A raster command's options parsed (the command line's parser and request builders) into a
+/// call on any DEM.
+struct PyCall {
+    cli::RasterCall call;
+    cli::CliContext ctx;  ///< quiet; what the command line's helpers are given
+
+    std::size_t halo(const PyDem& dem) const {
+        const Terrain& terrain = dem.geometry().terrain;
+        return haloCellsFor(terrain, planFor(call.search, terrain).maxDistanceM);
+    }
+    /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them; the
+    /// command line's messages about srcwin and tile_size name them as keywords.
+    cli::RasterRun plan(const PyDem& dem) const {
+        try {
+            return cli::planRasterRun(*dem.source, call.tiling, call.search, call.outputBands, ctx);
+        } catch (const FieldError&) {
+            throw;
+        } catch (const Error& e) {
+            throw Error(keywordsForFlags(e.what()));
+        }
+    }
+};
+
+/// The CLI arguments [command, DEM, -o, placeholder, options...] parsed into a PyCall.
+std::shared_ptr<PyCall> parseCall(const std::vector<std::string>& arguments) {
+    auto out = std::make_shared<PyCall>();
+    std::optional<cli::RasterCall> taken;
+    cli::CliContext ctx;
+    ctx.quiet = true;
+    ctx.takeCall = [&taken](const cli::RasterCall& c) { taken = c; };
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    try {
+        app.parse(cli::parserArguments(arguments));
+    } catch (const CLI::ParseError& e) {
+        throw Error(keywordsForFlags(e.what()));
+    } catch (const FieldError& e) {
+        throw Error(fieldMessage(e));
+    } catch (const Cancelled&) {
+        throw;
+    } catch (const Error& e) {
+        throw Error(keywordsForFlags(e.what()));
+    }
+    if (!taken) throw Error("'" + (arguments.empty() ? std::string() : arguments.front()) + "' is not a raster command");
+    out->call = std::move(*taken);
+    out->ctx.quiet = true;
+    return out;
+}
+
+/// Every band of `part` pasted into `into` at `at` (cells of `into`).
+void paste(ProductResult& into, const ProductResult& part, std::size_t col0, std::size_t row0) {
+    for (std::size_t k = 0; k < part.bands.size(); ++k) {
+        const ProductBand& from = part.bands[k];
+        ProductBand& to = into.bands[k];
+        const std::size_t cols = from.values.empty() ? from.flags.width() : from.values.width();
+        const std::size_t rows = from.values.empty() ? from.flags.height() : from.values.height();
+        for (std::size_t r = 0; r < rows; ++r) {
+            if (from.values.empty())
+                std::copy_n(&from.flags(0, r), cols, &to.flags(col0, row0 + r));
+            else
+                std::copy_n(&from.values(0, r), cols, &to.values(col0, row0 + r));
+        }
+    }
+}
+
+/// The command on its extent (the whole DEM or srcwin) in the tiles it plans (tile_size,
+/// memory_limit), pasted into one result per output raster: what the command line writes.
+std::vector<std::shared_ptr<Raster>> computeCall(const PyCall& c, const PyDem& dem, py::object progress) {
+    const cli::RasterRun run = c.plan(dem);
+    PythonProgress p(std::move(progress));
+    return p.run([&](const ProgressFn& fn) {
+        std::vector<std::shared_ptr<Raster>> out;
+        for (std::size_t i = 0; i < run.tiles.size(); ++i) {
+            const ProgressFn tileFn = run.tiles.size() == 1 ? fn : tileProgress(fn, i, run.tiles.size());
+            std::vector<ProductResult> parts = c.call.run(*dem.source, run.tiles[i], tileFn);
+            if (run.tiles.size() == 1) {
+                for (ProductResult& part : parts) out.push_back(std::make_shared<Raster>(std::move(part)));
+                break;
+            }
+            if (out.empty()) {
+                const std::size_t cols = run.extent.col1 - run.extent.col0, rows = run.extent.row1 - run.extent.row0;
+                for (const ProductResult& part : parts) {
+                    auto whole = std::make_shared<Raster>(part);
+                    whole->ref = run.ref;
+                    for (ProductBand& b : whole->bands) {
+                        if (b.values.empty())
+                            b.flags = Grid<std::uint8_t>(cols, rows);
+                        else
+                            b.values = Grid<float>(cols, rows);
+                    }
+                    out.push_back(std::move(whole));
+                }
+            }
+            for (std::size_t k = 0; k < parts.size(); ++k)
+                paste(*out[k], parts[k], run.tiles[i].col0 - run.extent.col0, run.tiles[i].row0 - run.extent.row0);
+        }
+        return out;
+    });
+}
+
+/// One window of the DEM (cells of the whole DEM), as a tile of the command's job.
+std::vector<std::shared_ptr<Raster>> computeWindow(const PyCall& c, const PyDem& dem, const std::vector<std::size_t>& w,
+                                                   py::object progress) {
+    if (w.size() != 4) throw Error("window: expected (col0, row0, col1, row1)");
+    const CellWindow window{w[0], w[1], w[2], w[3]};
+    PythonProgress p(std::move(progress));
+    return p.run([&](const ProgressFn& fn) {
+        std::vector<std::shared_ptr<Raster>> out;
+        for (ProductResult& part : c.call.run(*dem.source, window, fn)) out.push_back(std::make_shared<Raster>(std::move(part)));
+        return out;
+    });
+}
+
+cli::OutputOptions outputOptions(const std::string& path, const std::string& format, const std::vector<std::string>& co) {
+    cli::OutputOptions out;
+    out.path = path;
+    out.format = format;
+    out.creationOptions = co;
+    return out;
+}
+
+/// Writes a command's results to the files -o `path` names (horizon: two), as the command line
+/// does: all or none, DEMLIGHT_COMMAND = `commandLine`.
+std::vector<std::string> writeCall(const PyCall& c, const std::vector<std::shared_ptr<Raster>>& parts, const std::string& path,
+                                   const std::string& format, const std::vector<std::string>& co,
+                                   const std::string& commandLine, const std::string& inputPath) {
+    const std::vector<cli::RasterTarget> targets = c.call.targets(outputOptions(path, format, co));
+    if (targets.size() != parts.size()) throw Error("the result has " + std::to_string(parts.size()) + " rasters, the command writes " + std::to_string(targets.size()));
+    cli::CliContext ctx;
+    ctx.quiet = true;
+    ctx.commandLine = commandLine;
+    {
+        py::gil_scoped_release release;
+        for (const cli::RasterTarget& t : targets) cli::checkOutputPath(t.out, inputPath);
+        for (std::size_t k = 0; k < targets.size(); ++k) {
+            try {
+                cli::writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
+            } catch (const Error&) {
+                cli::removeOutputs(targets, k);  // a command's rasters are all written or none
+                throw;
+            }
+        }
+    }
+    std::vector<std::string> paths;
+    for (const auto& t : targets) paths.push_back(t.out.path);
+    return paths;
+}
+
+/// The command line's tiled writer: windows of the extent written into the files as they arrive,
+/// renamed at commit; dropped without commit, nothing is left.
+class PyWriter {
+public:
+    PyWriter(std::shared_ptr<PyCall> call, const PyDem& dem, const std::string& path, const std::string& format,
+             const std::vector<std::string>& co, const std::string& commandLine)
+        : call_(std::move(call)) {
+        ctx_.quiet = true;
+        ctx_.commandLine = commandLine;
+        run_ = call_->plan(dem);
+        targets_ = call_->call.targets(outputOptions(path, format, co));
+        for (const cli::RasterTarget& t : targets_) cli::checkOutputPath(t.out, dem.path);
+        writer_ = std::make_unique<cli::TiledWriter>(run_, targets_, ctx_, dem.path);
+    }
+    void write(const std::vector<std::size_t>& w, const std::vector<std::shared_ptr<Raster>>& parts) {
+        if (!writer_) throw Error("the writer is closed");
+        if (w.size() != 4) throw Error("window: expected (col0, row0, col1, row1)");
+        py::gil_scoped_release release;
+        writer_->write({w[0], w[1], w[2], w[3]}, pointers(parts));
+    }
+    std::vector<std::string> commit() {
+        if (!writer_) throw Error("the writer is closed");
+        {
+            py::gil_scoped_release release;
+            writer_->commit();
+            writer_.reset();
+        }
+        std::vector<std::string> paths;
+        for (const auto& t : targets_) paths.push_back(t.out.path);
+        return paths;
+    }
+    void abandon() { writer_.reset(); }
+
+private:
+    std::shared_ptr<PyCall> call_;
+    cli::CliContext ctx_;
+    cli::RasterRun run_;
+    std::vector<cli::RasterTarget> targets_;
+    std::unique_ptr<cli::TiledWriter> writer_;
+};
+
+// ---- Options of the commands, for the Python signatures and docstrings -------------------------
+
+py::list commandOptions(const std::string& command) {
+    cli::CliContext ctx;
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    CLI::App* cmd = app.get_subcommand(command);
+    py::list out;
+    for (const CLI::Option* o : cmd->get_options()) {
+        py::dict d;
+        d["names"] = o->get_lnames();
+        d["positional"] = o->get_lnames().empty();
+        d["description"] = o->get_description();
+        d["default"] = o->get_default_str();
+        d["type"] = o->get_type_name();
+        d["flag"] = o->get_expected_min() == 0;
+        d["expected"] = o->get_expected_max();
+        d["required"] = o->get_required();
+        out.append(d);
+    }
+    return out;
+}
+
+std::vector<std::string> rasterCommands() {
+    cli::CliContext ctx;
+    std::vector<std::string> out;
+    ctx.takeCall = [](const cli::RasterCall&) {};
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        // A raster command is one whose options include -o and --tile-size (the tiled products).
+        if (sub->get_option_no_throw("--tile-size") && sub->get_option_no_throw("--output")) out.push_back(sub->get_name());
+    }
+    return out;
+}
+
+std::string commandDescription(const std::string& command) {
+    cli::CliContext ctx;
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    return app.get_subcommand(command)->get_description();
+}
+
+}  // namespace
+}  // namespace demlight::python
+
+PYBIND11_MODULE(_demlight, m) {
+    using namespace demlight;
+    using namespace demlight::python;
+    m.doc() = "demlight's C++ library (the package demlight wraps it; see docs/python.md)";
+    m.attr("version") = DEMLIGHT_VERSION;
+
+    static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+    static py::exception<Cancelled> cancelled(m, "Cancelled", error.ptr());
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Cancelled& e) {
+            cancelled(e.what());
+        } catch (const FieldError& e) {
+            error(fieldMessage(e).c_str());
+        } catch (const Error& e) {
+            error(e.what());
+        }
+    });
+
+    py::class_<PyDem>(m, "Dem")
+        .def_property_readonly("width", [](const PyDem& d) { return d.source->width(); })
+        .def_property_readonly("height", [](const PyDem& d) { return d.source->height(); })
+        .def_property_readonly("path", [](const PyDem& d) { return d.path; })
+        .def_property_readonly("name", [](const PyDem& d) { return d.source->path(); })
+        .def_property_readonly("transform", [](const PyDem& d) { return transformTuple(d.geometry().band.ref); })
+        .def_property_readonly("crs", [](const PyDem& d) { return d.geometry().band.ref.crsWkt; })
+        .def_property_readonly("nodata", [](const PyDem& d) { return d.geometry().band.nodata; })
+        .def_property_readonly("epsg", [](const PyDem& d) { return d.geometry().crs.epsg; })
+        .def("heights",
+             [](const PyDem& d) {
+                 if (!d.whole) {
+                     std::shared_ptr<const Dem> whole;
+                     {
+                         py::gil_scoped_release release;
+                         whole = d.source->readWhole();
+                     }
+                     if (!d.whole) d.whole = std::move(whole);  // with the GIL: one thread sets it
+                 }
+                 return view(d.whole->terrain.heightsM, d.whole);
+             })
+        .def("info_json", [](const PyDem& d) { return cli::infoJson(d.path.empty() ? d.source->path() : d.path, *d.source); });
+
+    m.def("open", &openPath, py::arg("path"), py::arg("z_unit"), py::arg("z_factor"), py::arg("progress"));
+    m.def("from_array", &fromArray, py::arg("heights"), py::arg("transform"), py::arg("crs"), py::arg("nodata"),
+          py::arg("name"), py::arg("z_unit"), py::arg("z_factor"));
+
+    py::class_<Raster, std::shared_ptr<Raster>>(m, "Raster")
+        .def_property_readonly("bands", [](const std::shared_ptr<Raster>& r) { return rasterBands(r); })
+        .def_property_readonly("units",
+                               [](const Raster& r) {
+                                   py::dict d;
+                                   for (const auto& b : r.bands) d[py::str(b.name)] = b.unit;
+                                   return d;
+                               })
+        .def_property_readonly("metadata", [](const Raster& r) { return r.metadata; })
+        .def_property_readonly("transform", [](const Raster& r) { return transformTuple(r.ref); })
+        .def_property_readonly("crs", [](const Raster& r) { return r.ref.crsWkt; })
+        .def_property_readonly("nodata", [](const Raster& r) { return r.flagNodata.value_or(r.nodata); })
+        .def(py::pickle([](const Raster& r) { return rasterState(r); },
+                        [](const py::tuple& t) { return rasterFromState(t); }));
+
+    py::class_<PyCall, std::shared_ptr<PyCall>>(m, "Call")
+        .def_property_readonly("command", [](const PyCall& c) { return c.call.command; })
+        .def_property_readonly("z_unit", [](const PyCall& c) { return c.call.heights.zUnit; })
+        .def_property_readonly("z_factor", [](const PyCall& c) { return c.call.heights.zFactor; })
+        .def("halo", &PyCall::halo, py::arg("dem"))
+        .def("extent",
+             [](const PyCall& c, const PyDem& dem) {
+                 const CellWindow e = c.plan(dem).extent;
+                 return py::make_tuple(e.col0, e.row0, e.col1, e.row1);
+             })
+        .def("compute", &computeCall, py::arg("dem"), py::arg("progress"))
+        .def("compute_window", &computeWindow, py::arg("dem"), py::arg("window"), py::arg("progress"))
+        .def("write", &writeCall, py::arg("parts"), py::arg("path"), py::arg("format"), py::arg("creation_options"),
+             py::arg("command_line"), py::arg("input_path"));
+
+    py::class_<PyWriter>(m, "Writer")
+        .def(py::init<std::shared_ptr<PyCall>, const PyDem&, const std::string&, const std::string&,
+                      const std::vector<std::string>&, const std::string&>(),
+             py::arg("call"), py::arg("dem"), py::arg("path"), py::arg("format"), py::arg("creation_options"),
+             py::arg("command_line"))
+        .def("write", &PyWriter::write, py::arg("window"), py::arg("parts"))
+        .def("commit", &PyWriter::commit)
+        .def("abandon", &PyWriter::abandon);
+
+    m.def("parse", &parseCall, py::arg("arguments"));
+    m.def("keywords_for_flags", &keywordsForFlags, py::arg("text"));
+    m.def("command_options", &commandOptions, py::arg("command"));
+    m.def("command_description", &commandDescription, py::arg("command"));
+    m.def("raster_commands", &rasterCommands);
+    m.def("tiles", [](const std::vector<std::size_t>& extent, std::size_t cells) {
+        const std::vector<CellWindow> tiles = tilesOf({extent.at(0), extent.at(1), extent.at(2), extent.at(3)}, cells);
+        py::list out;
+        for (const CellWindow& t : tiles) out.append(py::make_tuple(t.col0, t.row0, t.col1, t.row1));
+        return out;
+    });
+}

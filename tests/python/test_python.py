@@ -1,0 +1,277 @@
+"""The Python package against the command line: numpy in equals file in equals the CLI's file,
+options and errors as docs/python.md says, progress, cancelling and the GIL."""
+
+import datetime
+import os
+import re
+import subprocess
+import sys
+import threading
+import time
+import zoneinfo
+
+import numpy as np
+import pytest
+
+from conftest import HELENS, LUXEMBOURG, REPO, ROCKY, raster_facts
+
+import demlight
+
+SUN_TIME = {"time": "2024-06-21T07:30", "tz": "America/Los_Angeles"}
+
+
+def same_cells(a, b):
+    """Equal cell for cell, NaN equal to NaN (bits of Float32 values)."""
+    return a.shape == b.shape and a.dtype == b.dtype and np.array_equal(a, b, equal_nan=a.dtype.kind == "f")
+
+
+def read_bands(path):
+    rasterio = pytest.importorskip("rasterio", reason="reading files back needs python3-rasterio (with python3-rioxarray)")
+
+    with rasterio.open(path) as ds:
+        return {ds.descriptions[i]: ds.read(i + 1) for i in range(ds.count)}, ds.nodata
+
+
+def test_package_is_this_build():
+    # The set-up command puts this build on /usr/bin/python3's path (scripts/build.sh writes a
+    # .pth); the command line it is compared with is this build's too.
+    assert demlight.__file__.startswith(str(REPO / "build")), demlight.__file__
+
+
+def test_readme_python_example_runs(tmp_path):
+    # The README's Python example, as a user runs it in a fresh shell: /usr/bin/python3 with no
+    # PYTHONPATH, in the repository.
+    readme = (REPO / "README.md").read_text()
+    block = re.search(r"```python\n(.*?)```", readme, re.S)
+    assert block, "README.md has no ```python example"
+    code = block.group(1).replace("x.tif", str(tmp_path / "x.tif"))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    out = subprocess.run(["/usr/bin/python3", "-c", code], cwd=REPO, env=env, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "sun_visibility" in out.stdout
+    assert (tmp_path / "x.tif").exists()
+
+
+def test_sun_file_in_equals_cli(tmp_path, cli):
+    r = demlight.sun(demlight.open(str(HELENS)), **SUN_TIME)
+    assert list(r.bands) == ["sun_visibility", "sun_irradiance"]
+    r.write(tmp_path / "py.tif")
+    cli("sun", HELENS, "-o", tmp_path / "cli.tif", "--time", SUN_TIME["time"], "--tz", SUN_TIME["tz"])
+    assert raster_facts(tmp_path / "py.tif") == raster_facts(tmp_path / "cli.tif")
+    # The numpy bands are the file's cells (NaN where the file holds its nodata value).
+    cells, nodata = read_bands(tmp_path / "cli.tif")
+    for name, values in r.bands.items():
+        assert same_cells(np.where(cells[name] == nodata, np.float32(np.nan), cells[name]), values), name
+
+
+def test_numpy_in_equals_file_in():
+    dem = demlight.open(str(HELENS))
+    from_file = demlight.sun(dem, **SUN_TIME)
+    from_array = demlight.sun(dem.heights, transform=dem.transform, crs=dem.crs, nodata=dem.nodata, **SUN_TIME)
+    for name, values in from_file.bands.items():
+        assert same_cells(values, from_array.bands[name]), name
+    meta_file, meta_array = from_file.metadata, from_array.metadata
+    assert meta_file.pop("DEMLIGHT_INPUT") == str(HELENS)
+    assert meta_array.pop("DEMLIGHT_INPUT") == "<array>"
+    assert meta_file == meta_array
+    assert from_array.transform == dem.transform and from_array.nodata == from_file.nodata
+
+
+def test_dem_object():
+    dem = demlight.open(str(LUXEMBOURG))
+    assert (dem.width, dem.height) == (95, 90)
+    heights = dem.heights
+    assert heights.shape == (90, 95) and heights.dtype == np.float32 and not heights.flags.writeable
+    info = dem.info()
+    assert info["width"] == 95 and info["height"] == 90 and info["path"] == str(LUXEMBOURG)
+    assert info["elevation_max_m"] == pytest.approx(float(np.nanmax(heights)))
+    assert "PROJCRS" in dem.crs or "GEOGCRS" in dem.crs
+    assert len(dem.transform) == 6 and dem.transform[5] < 0
+
+
+def test_every_command_equals_cli(tmp_path, cli):
+    runs = {
+        "horizon": (LUXEMBOURG, {"directions": 4}),
+        "sky": (ROCKY, {}),
+        "aperture": (LUXEMBOURG, {"sky_directions": 8}),
+        "light": (LUXEMBOURG, {"time": datetime.datetime(2024, 6, 21, 9, 30, tzinfo=datetime.timezone.utc)}),
+        "irradiance": (LUXEMBOURG, {"time": "2024-06-21T11:30:00+02:00", "linke": "3.5"}),
+        "insolation": (LUXEMBOURG, {"date": datetime.date(2024, 6, 21), "tz": "Europe/Luxembourg", "step": "30m"}),
+        "sunhours": (LUXEMBOURG, {"date": "2024-06-21", "tz": "Europe/Luxembourg",
+                                  "step": datetime.timedelta(minutes=30)}),
+    }
+    assert set(runs) | {"sun"} == set(demlight.COMMANDS)
+    flags = {
+        "horizon": ["--directions", "4"],
+        "sky": [],
+        "aperture": ["--sky-directions", "8"],
+        "light": ["--time", "2024-06-21T09:30:00Z"],
+        "irradiance": ["--time", "2024-06-21T11:30:00+02:00", "--linke", "3.5"],
+        "insolation": ["--date", "2024-06-21", "--tz", "Europe/Luxembourg", "--step", "30m"],
+        "sunhours": ["--date", "2024-06-21", "--tz", "Europe/Luxembourg", "--step", "30m"],
+    }
+    for command, (path, options) in runs.items():
+        written = getattr(demlight, command)(str(path), **options).write(tmp_path / (command + "_py.tif"))
+        cli(command, path, "-o", tmp_path / (command + "_cli.tif"), *flags[command])
+        for py_path in written:
+            cli_path = py_path.replace("_py.", "_cli.")
+            py_facts, cli_facts = raster_facts(py_path), raster_facts(cli_path)
+            if command == "horizon":  # names its mask file, which is another path
+                for facts in (py_facts, cli_facts):
+                    assert facts["metadata"].pop("DEMLIGHT_TRUNCATION_MASK").endswith(".truncated.tif")
+            assert py_facts == cli_facts, command
+
+
+def test_options_change_results_as_on_the_command_line(tmp_path, cli):
+    # A non-default search distance, quality and a window: the keyword names are the flags'.
+    r = demlight.sky(str(ROCKY), max_distance=2000.0, quality="full", srcwin=(10, 20, 100, 120))
+    r.write(tmp_path / "py.tif")
+    cli("sky", ROCKY, "-o", tmp_path / "cli.tif", "--max-distance", "2000", "--quality", "full",
+        "--srcwin", "10", "20", "100", "120")
+    assert raster_facts(tmp_path / "py.tif") == raster_facts(tmp_path / "cli.tif")
+    assert next(iter(r.bands.values())).shape == (120, 100)
+    default = demlight.sky(str(ROCKY))
+    assert r.metadata["DEMLIGHT_MAX_DISTANCE_M"] == "2000" != default.metadata["DEMLIGHT_MAX_DISTANCE_M"]
+
+
+def test_tiles_equal_one_piece():
+    one = demlight.sun(str(HELENS), **SUN_TIME)
+    tiled = demlight.sun(str(HELENS), tile_size=100, **SUN_TIME)
+    for name in one.bands:
+        assert same_cells(one.bands[name], tiled.bands[name]), name
+
+
+def test_aware_datetime_equals_string_with_zone():
+    when = datetime.datetime(2024, 6, 21, 7, 30, tzinfo=zoneinfo.ZoneInfo("America/Los_Angeles"))
+    a = demlight.sun(str(LUXEMBOURG), time=when)
+    b = demlight.sun(str(LUXEMBOURG), time="2024-06-21T07:30:00-07:00")
+    assert a.metadata == b.metadata
+    assert same_cells(a.bands["sun_visibility"], b.bands["sun_visibility"])
+
+
+def test_signature_and_help_name_every_cli_option(cli):
+    # Every long option of `demlight sun --help` is a keyword of demlight.sun (but the output's
+    # and -v), described in help(demlight.sun), with the default the command line shows.
+    import inspect
+
+    text = cli("sun", "--help").stdout
+    # "  --pressure FLOAT:[0, 5000]=1013.25": the flag, its type and check, "=" and its default.
+    options = re.findall(r"^\s+(?:-\w,)?--([a-z][a-z-]*)(.*)$", text, re.M)
+    params = inspect.signature(demlight.sun).parameters
+    doc = demlight.sun.__doc__
+    checked = 0
+    for flag, rest in options:
+        if flag in ("help", "output", "of", "co", "verbose"):
+            continue
+        keyword = flag.replace("-", "_")
+        assert keyword in params and keyword in doc, keyword
+        default_shown = re.search(r"(?<=\S)=(\S+)", rest)
+        if default_shown:
+            shown = default_shown.group(1)
+            default = params[keyword].default
+            assert (float(shown) == default) if isinstance(default, (int, float)) else shown == default, keyword
+            checked += 1
+    assert checked >= 8  # sun_diameter, pressure, temperature, model, refraction, threads, quality, ...
+    assert "Angular diameter of the sun disk (degrees)" in doc
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: demlight.sun(str(HELENS), time="2024-06-21T07:30"), ["tz"]),
+    (lambda: demlight.sun(str(HELENS), time="2024-06-21T07:30", tz="Mars/Olympus"), ["Mars/Olympus"]),
+    (lambda: demlight.sky(str(HELENS), max_distance=-5.0), ["max_distance"]),
+    (lambda: demlight.sky(str(HELENS), bogus=1), ["bogus", "max_distance"]),
+    (lambda: demlight.sky(str(HELENS), quality="best"), ["quality", "best"]),
+    (lambda: demlight.irradiance(str(HELENS), time="2024-06-21T12:00:00Z", linke="20"), ["linke", "20"]),
+    (lambda: demlight.horizon(str(HELENS)), ["azimuth", "directions"]),
+    (lambda: demlight.sky(str(HELENS), srcwin=(0, 0, 5000, 10)), ["srcwin", "327 x 468"]),
+    (lambda: demlight.sky(str(HELENS), tile_size="x"), ["tile_size", "'x'"]),
+    (lambda: demlight.sunhours(str(HELENS), date="2024-06-21"), ["tz"]),
+    (lambda: demlight.sky(str(HELENS), albedo_raster="no/such/albedo.tif"), ["albedo_raster", "no such file"]),
+    (lambda: demlight.sky("no/such/dem.tif"), ["no/such/dem.tif", "no such file"]),
+    (lambda: demlight.sky(np.zeros((10, 10), np.float32)), ["transform"]),
+    (lambda: demlight.sky(np.zeros((10, 10), np.float32), transform=(0, 30, 0, 0, 0, -30), crs=""),
+     ["<array>", "coordinate reference system"]),
+    (lambda: demlight.sky(demlight.open(str(HELENS)), z_unit="ft"), ["z_unit", "demlight.open"]),
+])
+def test_errors_name_keywords(call, words):
+    with pytest.raises(demlight.Error) as e:
+        call()
+    message = str(e.value)
+    for word in words:
+        assert word in message, message
+    assert "--" not in message, message
+
+
+def test_write_refuses_to_overwrite_the_input(tmp_path):
+    dem_path = tmp_path / "dem.tif"
+    dem_path.write_bytes(LUXEMBOURG.read_bytes())
+    r = demlight.sky(str(dem_path))
+    with pytest.raises(demlight.Error, match="overwrite the input"):
+        r.write(dem_path)
+
+
+def test_progress_reports_and_cancels():
+    seen = []
+    demlight.sky(str(ROCKY), progress=lambda f, stage: seen.append((f, stage)))
+    assert seen and all(0 <= f <= 1 for f, _ in seen)
+    with pytest.raises(demlight.Cancelled):
+        demlight.sky(str(ROCKY), progress=lambda f, stage: False)
+
+
+def test_exception_in_progress_propagates():
+    class Stop(Exception):
+        pass
+
+    def progress(fraction, stage):
+        raise Stop(stage)
+
+    with pytest.raises(Stop):
+        demlight.sky(str(ROCKY), progress=progress)
+
+
+def test_keyboard_interrupt_stops_the_work():
+    # Ctrl-C (SIGINT's handler raises KeyboardInterrupt) stops the work midway, not after it.
+    import _thread
+
+    seen = []
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        demlight.sky(str(HELENS), quality="full", sky_directions=512, progress=lambda f, stage: seen.append(f))
+    timer.join()
+    assert seen and max(seen) < 0.9, "the work ran to %.2f" % max(seen)
+
+
+def test_gil_released_while_computing():
+    # Another Python thread keeps running while demlight computes; were the GIL held, it would
+    # stall for the whole computation.
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.001)
+
+    worker = threading.Thread(target=count)
+    worker.start()
+    start = time.monotonic()
+    demlight.sky(str(HELENS), quality="full", sky_directions=64)
+    end = time.monotonic()
+    done.set()
+    worker.join()
+    during = [t for t in ticks if start < t < end]
+    gaps = np.diff([start] + during + [end])
+    assert end - start > 0.2, "the computation was too short to tell"
+    assert gaps.max() < (end - start) / 2, "the other thread stalled %.3f s of %.3f s" % (gaps.max(), end - start)
+
+
+def test_to_xarray_carries_crs_and_transform():
+    pytest.importorskip("rioxarray", reason="rioxarray (python3-rioxarray) attaches the CRS")
+    r = demlight.sun(str(HELENS), **SUN_TIME)
+    ds = r.to_xarray()
+    assert set(ds.data_vars) == set(r.bands)
+    assert tuple(ds.rio.transform().to_gdal()) == tuple(r.transform)
+    assert ds.rio.crs is not None and ds.rio.crs.to_wkt()
+    assert same_cells(ds["sun_visibility"].values, r.bands["sun_visibility"])
+    assert ds.sizes["x"] == 327 and ds.sizes["y"] == 468
