@@ -21,6 +21,9 @@ struct HorizonOptions {
     std::string method = "sweep";
 };
 
+/// The horizon raster's metadata item that names its truncation mask raster.
+constexpr const char* kTruncationMaskKey = "DEMLIGHT_TRUNCATION_MASK";
+
 std::string truncationPath(const std::string& outPath) {
     std::filesystem::path p(outPath);
     return (p.parent_path() / (p.stem().string() + ".truncated.tif")).string();
@@ -41,7 +44,7 @@ HorizonRequest horizonRequest(const HorizonOptions& o) {
 std::vector<RasterTarget> horizonTargets(const OutputOptions& out) {
     OutputOptions maskOut = out;
     maskOut.path = truncationPath(out.path);
-    return {{out, {{"DEMLIGHT_TRUNCATION_MASK", maskOut.path}}}, {maskOut, {{"DEMLIGHT_TRUNCATION_MASK", maskOut.path}}}};
+    return {{out, {{kTruncationMaskKey, maskOut.path}}}, {maskOut, {{kTruncationMaskKey, maskOut.path}}}};
 }
 
 /// Memory of a window per cell (for tile sizes): a horizon and a mask band per azimuth.
@@ -91,6 +94,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
 void registerHorizon(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<HorizonOptions>();
     CLI::App* cmd = app.add_subcommand("horizon", "Horizon elevation angle maps along true azimuths");
+    ctx.outputs[cmd->get_name()].companionKeys = {kTruncationMaskKey};
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
     auto* az = cmd->add_option("--azimuth", o->azimuthsDeg, "True azimuth(s), degrees clockwise from north (repeatable)")

@@ -51,6 +51,7 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
 void registerRender(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Picture of the lit DEM (PNG, JPEG, EXR, ...) at one instant");
+    ctx.outputs[cmd->get_name()].kind = "picture";
     addDemArgument(cmd, o->dem);
     cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg, .exr)")
         ->required()

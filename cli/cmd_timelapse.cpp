@@ -348,6 +348,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
 void registerTimelapse(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<TimelapseOptions>();
     CLI::App* cmd = app.add_subcommand("timelapse", "A lightmap and preview per instant, and an animated GIF");
+    ctx.outputs[cmd->get_name()].kind = "folder";
     addDemArgument(cmd, o->dem);
     cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing; must be empty unless --overwrite)")
         ->required()

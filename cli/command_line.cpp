@@ -71,6 +71,7 @@ void registerCommands(CLI::App& app, CliContext& ctx) {
     registerTimelapse(app, ctx);
     registerSunhours(app, ctx);
     registerSequence(app, ctx);
+    registerOptions(app, ctx);
     for (CLI::App* sub : app.get_subcommands({})) sub->footer(kExitCodesHelp);
 
     // Argument errors in the same form as the others, naming the command's own help.
@@ -99,6 +100,7 @@ std::optional<std::string> unknownCommandMessage(const CLI::App& app, const std:
     std::string names;
     for (const CLI::App* sub : app.get_subcommands({})) {
         if (sub->get_name() == *word) return std::nullopt;
+        if (sub->get_group().empty()) continue;  // hidden (options --json)
         names += (names.empty() ? "" : ", ") + sub->get_name();
     }
     return "demlight: error: unknown command '" + *word + "' (commands: " + names + ")";

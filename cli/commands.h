@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,14 @@
 namespace demlight::cli {
 
 struct RasterCall;
+
+/// What a command writes, where -o is not simply one GDAL raster.
+struct CommandOutputs {
+    /// What -o names: "folder", "picture"; empty: a GDAL raster (-o with --of) or a file.
+    std::string kind;
+    /// Metadata items of the -o raster that name further rasters written with it.
+    std::vector<std::string> companionKeys;
+};
 
 /// Shared state of one invocation: the full command line (recorded in output metadata) and
 /// whether to print progress.
@@ -23,6 +32,9 @@ struct CliContext {
     /// the raster commands then hand it their parsed options as a RasterCall (cli/common.h)
     /// instead of running.
     std::function<void(const RasterCall&)> takeCall;
+    /// What commands write beyond one GDAL raster at -o, by command name, for programs that drive
+    /// demlight (options --json, cli/cmd_options.cpp).
+    std::map<std::string, CommandOutputs> outputs;
 };
 
 void registerInfo(CLI::App& app, CliContext& ctx);
@@ -38,6 +50,8 @@ void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);
+/// The hidden `options --json` command: every other command's options as JSON.
+void registerOptions(CLI::App& app, CliContext& ctx);
 
 /// Makes `app` demlight's root command: --version, -q, every command above, and argument errors
 /// in demlight's one-line form (cli/command_line.cpp). main() parses with it, and so does the

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages demlight needs, only those that are missing (clang and its
-# runtime libraries: the asan preset and the libFuzzer targets; help2man: the man page).
+# runtime libraries: the asan preset and the libFuzzer targets; help2man: the man page; qgis,
+# python3-qgis and python3-pytest: the QGIS provider's tests, qgis/tests).
 # Runs apt-get as root, or through sudo when not root.
 set -euo pipefail
 
@@ -11,6 +12,7 @@ packages=(
   nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox python3 help2man
   pybind11-dev python3-dev python3-numpy python3-dask python3-distributed python3-rioxarray python3-pytest
   clang libclang-rt-dev
+  qgis python3-qgis
 )
 
 missing=()

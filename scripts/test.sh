@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs missing packages, then runs every test (GoogleTest through ctest, then pytest for the
-# Python package) in Release, runs the GoogleTest ones again, but for the real-DEM tests, under
-# AddressSanitizer + UBSan (the asan preset, clang), and runs each libFuzzer target for
-# FUZZ_SECONDS (default 60). CI runs exactly this; what each stage costs on 2 cores and which
-# tests the sanitizer stage leaves to Release: docs/testing.md.
+# Python package) in Release, checks cmake --install and the C++ consumer example
+# (scripts/check_install.sh), runs the QGIS provider's tests (qgis/tests: qgis_process against
+# the CLI), runs the GoogleTest ones again, but for the real-DEM tests, under AddressSanitizer +
+# UBSan (the asan preset, clang), and runs each libFuzzer target for FUZZ_SECONDS (default 60).
+# CI runs exactly this; what each stage costs on 2 cores and which tests the sanitizer stage
+# leaves to Release: docs/testing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,6 +22,12 @@ status=0
 /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python || status=$?
 if [ "$status" -eq 5 ]; then echo "pytest collected no tests in tests/python"; exit 1; fi
 [ "$status" -eq 0 ] || exit "$status"
+
+stage "Install: cmake --install, the installed CLI, the C++ consumer example"
+scripts/check_install.sh
+
+stage "QGIS provider: qgis_process against the CLI (qgis/tests)"
+PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider qgis/tests
 
 # Under the sanitizers the real-DEM tests (../shared/data/dem) would take a third of the time;
 # they run the code the synthetic tests and the bundled samples (Samples/*) run, on larger

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 
 namespace demlight {
 namespace {
@@ -248,6 +249,33 @@ TEST(CliOutputs, QuietAfterTheSubcommand) {
     const auto r = runDemlight("horizon " + kRocky + " -o " + out + " --azimuth 90 --threads 2 -q");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(out));
+}
+
+TEST(CliOutputs, OptionsJsonDescribesEveryCommandAsItsHelpDoes) {
+    // The QGIS provider builds its algorithms from this (docs/qgis.md); it is also parsed here
+    // so that the sanitizer stage runs it.
+    const auto r = runDemlight("options --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    std::map<std::string, nlohmann::json> commands;
+    for (const auto& c : j.at("commands")) commands[c.at("name").get<std::string>()] = c;
+    EXPECT_EQ(commands.size(), 13u);
+    EXPECT_FALSE(commands.contains("options"));
+    EXPECT_EQ(commands.at("sun").at("help").get<std::string>(), runDemlight("sun --help").out);
+    EXPECT_EQ(commands.at("sun").at("output"), "raster");
+    EXPECT_EQ(commands.at("timelapse").at("output"), "folder");
+    EXPECT_TRUE(commands.at("sunpos").at("output").is_null());
+    EXPECT_EQ(commands.at("horizon").at("companions"), nlohmann::json::array({"DEMLIGHT_TRUNCATION_MASK"}));
+    bool sawQuality = false;
+    for (const auto& o : commands.at("sky").at("options")) {
+        if (o.at("name") != "quality") continue;
+        sawQuality = true;
+        EXPECT_EQ(o.at("flags"), nlohmann::json::array({"--quality"}));
+        EXPECT_EQ(o.at("choices"), nlohmann::json::array({"auto", "full"}));
+        EXPECT_EQ(o.at("default"), "auto");
+    }
+    EXPECT_TRUE(sawQuality);
+    EXPECT_EQ(runDemlight("options").exitCode, 2);  // --json is required
 }
 
 TEST(CliOutputs, InfoJsonReportsMetricCellSizes) {

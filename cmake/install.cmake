@@ -1,0 +1,37 @@
+# cmake --install: the CLI (bin/demlight with the picture plugin it loads from its own folder),
+# and the C++ package: the static libraries, their headers under include/demlight/<folder>/ (the
+# sources include each other as "geo/dem_source.h") and a config for find_package(demlight)
+# that provides demlight::demlight (docs/cpp.md).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(DEMLIGHT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/demlight)
+
+# The libraries' one entry point for consumers: the products and everything they use. (The
+# target `demlight` is the CLI, so this one is exported under that name.)
+add_library(demlight_library INTERFACE)
+set_target_properties(demlight_library PROPERTIES EXPORT_NAME demlight)
+add_library(demlight::demlight ALIAS demlight_library)
+target_link_libraries(demlight_library INTERFACE demlight_products)
+
+install(TARGETS demlight_library demlight_products demlight_lighting demlight_geo demlight_core demlight_warnings
+        EXPORT demlightTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/demlight)
+foreach(folder src geo geo/plugin lighting products)
+  file(GLOB _headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${folder}/*.h)
+  install(FILES ${_headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/demlight/${folder})
+endforeach()
+
+install(EXPORT demlightTargets NAMESPACE demlight:: DESTINATION ${DEMLIGHT_INSTALL_CMAKEDIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/demlightConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/demlightConfig.cmake
+                              INSTALL_DESTINATION ${DEMLIGHT_INSTALL_CMAKEDIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/demlightConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/demlightConfig.cmake ${PROJECT_BINARY_DIR}/demlightConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/demlightDependencies.cmake
+        DESTINATION ${DEMLIGHT_INSTALL_CMAKEDIR})
+
+install(TARGETS demlight RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS demlight_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_BINDIR})

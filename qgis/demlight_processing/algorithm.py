@@ -1,0 +1,212 @@
+"""One Processing algorithm per demlight command, built from the command's own description
+(`demlight options --json`): its options become parameters, its help text the algorithm's help,
+and running it runs the CLI, so its outputs are the CLI's."""
+
+from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputRasterLayer,
+                       QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFileDestination, QgsProcessingParameterFolderDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
+                       QgsProcessingParameterRasterLayer, QgsProcessingParameterString)
+
+from . import cli
+
+#: The CLI's positional argument (the DEM, or sequence's FIT raster) and -o.
+INPUT = "INPUT"
+OUTPUT = "OUTPUT"
+_OUTPUT_OPTION = "output"
+
+# Options shown under "Advanced parameters" in the dialog: how the job runs rather than what it
+# computes (a presentation choice; every option stays available to qgis_process).
+_ADVANCED = {"z-unit", "z-factor", "co", "threads", "tolerance", "refraction", "verbose", "tile-size",
+             "memory-limit", "srcwin", "pressure", "temperature"}
+
+# Picture outputs (render): the formats the CLI picks from the extension (cli/cmd_render.cpp help).
+_PICTURE_FILTER = "PNG (*.png);;JPEG (*.jpg *.jpeg);;OpenEXR (*.exr)"
+
+# The CLI's metadata prefix; a companion raster's output is named by the rest of its key
+# (DEMLIGHT_TRUNCATION_MASK -> TRUNCATION_MASK).
+_METADATA_PREFIX = "DEMLIGHT_"
+
+
+def parameter_name(option):
+    """The Processing parameter of a CLI option: --sky-directions -> SKY_DIRECTIONS."""
+    if option["positional"]:
+        return INPUT
+    return option["name"].upper().replace("-", "_")
+
+
+def companion_output_name(key):
+    return key[len(_METADATA_PREFIX):] if key.startswith(_METADATA_PREFIX) else key
+
+
+def is_algorithm(command):
+    """Commands that read a raster and write files at -o become algorithms (not info, sunpos)."""
+    return command["output"] is not None and any(o["positional"] for o in command["options"])
+
+
+def _is_number(option):
+    return option["max_values"] == 1 and option["type"] in ("FLOAT", "INT", "UINT") and not option["choices"]
+
+
+def _is_integer(option):
+    return option["type"] in ("INT", "UINT")
+
+
+def _spelling(option):
+    """The option as the CLI's help names it first: --sky-directions, not its older --directions."""
+    long = "--" + option["name"]
+    return long if long in option["flags"] else "-" + option["name"]
+
+
+def _typed_default(option):
+    default = option["default"]
+    if default is None or not _is_number(option):
+        return default
+    return int(default) if _is_integer(option) else float(default)
+
+
+class DemlightAlgorithm(QgsProcessingAlgorithm):
+    """The demlight command `command` (one entry of `options --json`), run by `executable`."""
+
+    def __init__(self, command, executable):
+        super().__init__()
+        self._command = command
+        self._executable = executable
+
+    def createInstance(self):
+        return DemlightAlgorithm(self._command, self._executable)
+
+    def name(self):
+        return self._command["name"]
+
+    def displayName(self):
+        return f"{self._command['name']}: {self._command['description']}"
+
+    def shortDescription(self):
+        return self._command["description"]
+
+    def shortHelpString(self):
+        # HTML for the dialog; only what HTML requires is escaped, so qgis_process help prints
+        # the CLI's text as it is.
+        text = self._command["help"].replace("&", "&amp;").replace("<", "&lt;")
+        return "<pre>" + text + "</pre>"
+
+    def initAlgorithm(self, config=None):
+        for option in self._command["options"]:
+            parameter = self._parameter(option)
+            if option["name"] in _ADVANCED:
+                parameter.setFlags(parameter.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+            self.addParameter(parameter)
+        for key in self._command["companions"]:
+            self.addOutput(QgsProcessingOutputRasterLayer(companion_output_name(key),
+                                                          f"Raster named by {key} in {OUTPUT}'s metadata"))
+
+    def _parameter(self, option):
+        name, label, optional = parameter_name(option), option["description"], not option["required"]
+        if option["positional"]:
+            return QgsProcessingParameterRasterLayer(name, label)
+        if option["name"] == _OUTPUT_OPTION:
+            kind = self._command["output"]
+            if kind == "raster":
+                return QgsProcessingParameterRasterDestination(name, label)
+            if kind == "folder":
+                return QgsProcessingParameterFolderDestination(name, label)
+            return QgsProcessingParameterFileDestination(name, label, _PICTURE_FILTER if kind == "picture" else "")
+        if option["flag"]:
+            return QgsProcessingParameterBoolean(name, label, False, True)
+        if option["choices"] and option["max_values"] == 1:
+            # Static strings: qgis_process takes QUALITY=full, not the choice's index.
+            return QgsProcessingParameterEnum(name, label, option["choices"], False, option["default"], optional,
+                                              usesStaticStrings=True)
+        if _is_number(option):
+            kind = QgsProcessingParameterNumber.Integer if _is_integer(option) else QgsProcessingParameterNumber.Double
+            return QgsProcessingParameterNumber(name, label, kind, _typed_default(option), optional)
+        if option["max_values"] != 1:
+            label += " [values separated by spaces]"
+        return QgsProcessingParameterString(name, label, option["default"], False, optional)
+
+    def _arguments(self, parameters, context):
+        """The CLI command line for `parameters`; options left at the CLI's default are not
+        passed, so the command is the one a user would type."""
+        args = [self._executable, self._command["name"]]
+        outputs = {}
+        for option in self._command["options"]:
+            name = parameter_name(option)
+            if option["positional"]:
+                layer = self.parameterAsRasterLayer(parameters, name, context)
+                if layer is None:
+                    raise QgsProcessingException(f"{INPUT}: cannot open {parameters.get(name)!r} as a raster")
+                args.append(layer.source())
+                continue
+            flag = _spelling(option)
+            if option["name"] == _OUTPUT_OPTION:
+                if self._command["output"] == "raster":
+                    path = self.parameterAsOutputLayer(parameters, name, context)
+                elif self._command["output"] == "folder":
+                    path = self.parameterAsString(parameters, name, context)
+                else:
+                    path = self.parameterAsFileOutput(parameters, name, context)
+                outputs[OUTPUT] = path
+                args += [flag, path]
+                continue
+            if parameters.get(name) is None:
+                continue
+            if option["flag"]:
+                if self.parameterAsBoolean(parameters, name, context):
+                    args.append(flag)
+                continue
+            if _is_number(option):
+                value = (self.parameterAsInt if _is_integer(option) else self.parameterAsDouble)(parameters, name,
+                                                                                               context)
+                if value == _typed_default(option):
+                    continue
+                args += [flag, repr(value)]
+                continue
+            if option["choices"] and option["max_values"] == 1:
+                value = self.parameterAsEnumString(parameters, name, context)
+            else:
+                value = self.parameterAsString(parameters, name, context).strip()
+            if not value or value == option["default"]:
+                continue
+            if option["max_values"] == 1:
+                args += [flag, value]
+            elif option["max_values"] == -1:
+                for item in value.split():
+                    args += [flag, item]  # repeatable: one value per use
+            else:
+                args += [flag] + value.split()
+        return args, outputs
+
+    def processAlgorithm(self, parameters, context, feedback):
+        args, outputs = self._arguments(parameters, context)
+        feedback.pushCommandInfo(" ".join(args))
+        stage = [None]
+
+        def on_progress(name, percent):
+            if name != stage[0]:
+                stage[0] = name
+                feedback.setProgressText(name)
+            feedback.setProgress(percent)
+
+        def on_line(line):
+            if not line.startswith(cli.ERROR_PREFIX):  # errors go into the exception, once
+                feedback.pushConsoleInfo(line)
+
+        code, messages = cli.run(args, on_progress, on_line, feedback.isCanceled)
+        if feedback.isCanceled():
+            raise QgsProcessingException("demlight: cancelled")
+        if code != 0:
+            errors = [m for m in messages if m.startswith(cli.ERROR_PREFIX)] or messages
+            raise QgsProcessingException("\n".join(errors) or f"demlight exited with code {code}")
+        outputs.update(self._companions(outputs[OUTPUT]))
+        return outputs
+
+    def _companions(self, path):
+        """The rasters written with the -o raster, from the metadata items that name them."""
+        if not self._command["companions"]:
+            return {}
+        from osgeo import gdal
+        dataset = gdal.Open(path)
+        if dataset is None:
+            raise QgsProcessingException(f"{OUTPUT}: cannot open {path}")
+        return {companion_output_name(key): dataset.GetMetadataItem(key) for key in self._command["companions"]}

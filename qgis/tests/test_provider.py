@@ -1,0 +1,188 @@
+"""Tests of the QGIS Processing provider (qgis/demlight_processing, docs/qgis.md).
+
+The first tests need only the CLI: its option description, progress lines and cancellation as
+the provider reads them. The rest run qgis_process headless on an isolated QGIS profile (a
+temporary QGIS_CUSTOM_CONFIG_PATH, never the user's) and compare its outputs with the CLI's;
+they skip, saying so, when qgis_process or python3-qgis is missing.
+Run: python3 -m pytest -q qgis/tests (scripts/test.sh does)."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "qgis"))
+from demlight_processing import cli  # noqa: E402  (no QGIS import in this module)
+
+SAMPLE = os.path.join(REPO, "samples", "mount_st_helens_1980_usgs.dem")
+TIME, TZ = "2024-06-21T07:30", "America/Los_Angeles"
+
+
+def demlight_executable():
+    path = os.environ.get(cli.EXECUTABLE_ENV) or os.path.join(REPO, "build", "release", "cli", "demlight")
+    if not os.access(path, os.X_OK):
+        pytest.skip(f"no demlight CLI at {path}: build it (scripts/build.sh) or set {cli.EXECUTABLE_ENV}")
+    return path
+
+
+def qgis_process_program():
+    # Debian 12's /usr/bin/qgis_process wrapper passes --noversioncheck, which qgis_process 3.22
+    # rejects as an unknown command (QGIS issue 57683); the program it wraps works.
+    return shutil.which("qgis_process.bin") or shutil.which("qgis_process")
+
+
+def checksums(path):
+    """What must match between the CLI's and the provider's rasters: each band's checksum,
+    type, description, nodata and metadata, the georeference, and the DEMLIGHT_* metadata but
+    DEMLIGHT_COMMAND (the command line, which names the output path)."""
+    info = json.loads(subprocess.run(["gdalinfo", "-json", "-checksum", path], capture_output=True, text=True,
+                                     check=True).stdout)
+    metadata = dict(info.get("metadata", {}).get("", {}))
+    metadata.pop("DEMLIGHT_COMMAND")
+    bands = [{k: b.get(k) for k in ("checksum", "type", "description", "noDataValue", "metadata")}
+             for b in info["bands"]]
+    return {"size": info["size"], "geoTransform": info["geoTransform"], "crs": info["coordinateSystem"]["wkt"],
+            "metadata": metadata, "bands": bands}
+
+
+# ---- the CLI as the provider reads it ---------------------------------------------------------
+
+def test_options_describe_every_raster_command_with_its_help():
+    description = cli.load_commands(demlight_executable())
+    commands = {c["name"]: c for c in description["commands"]}
+    assert "options" not in commands  # hidden: it describes the others
+    help_text = subprocess.run([demlight_executable(), "sun", "--help"], capture_output=True, text=True,
+                               check=True).stdout
+    assert commands["sun"]["help"] == help_text
+    assert (commands["sun"]["output"], commands["horizon"]["output"]) == ("raster", "raster")
+    assert (commands["timelapse"]["output"], commands["render"]["output"]) == ("folder", "picture")
+    assert commands["horizon"]["companions"] == ["DEMLIGHT_TRUNCATION_MASK"]
+    assert commands["info"]["output"] is None
+    options = {o["name"]: o for o in commands["sun"]["options"]}
+    assert options["time"]["required"] and options["time"]["flags"] == ["--time"]
+    assert options["quality"]["choices"] == ["auto", "full"] and options["quality"]["default"] == "auto"
+    assert options["sun-diameter"]["type"] == "FLOAT" and float(options["sun-diameter"]["default"]) > 0
+    assert options["co"]["max_values"] == -1 and options["srcwin"]["min_values"] == 4
+    assert options["verbose"]["flag"] and options["DEM"]["positional"]
+
+
+def test_progress_lines_are_read_and_cancel_stops_the_cli(tmp_path):
+    out = tmp_path / "h.tif"
+    seen = []
+    # The brute-force reference takes seconds on the sample; cancel at its first progress line.
+    code, messages = cli.run([demlight_executable(), "horizon", SAMPLE, "-o", str(out), "--directions", "8",
+                              "--method", "reference"],
+                             lambda stage, percent: seen.append((stage, percent)), lambda line: None,
+                             lambda: bool(seen))
+    assert seen and seen[0][0].startswith("horizon")
+    assert code == 130, messages
+    assert not out.exists() and not list(tmp_path.iterdir())  # no partial or temporary file
+
+
+def test_progress_line_format():
+    assert cli.parse_progress("sun: 40 % after 1.2 s, ~2.0 s left") == ("sun", 40)
+    assert cli.parse_progress("horizon (sweep): 100 % after 0.5 s") == ("horizon (sweep)", 100)
+    assert cli.parse_progress("wrote sun.tif (band 1 sun_visibility, band 2 sun_irradiance)") is None
+
+
+# ---- qgis_process -----------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def dem(tmp_path_factory):
+    """A copy of the sample: QGIS writes statistics beside a raster layer it opens
+    (DEM.aux.xml), which must not land in samples/."""
+    return shutil.copy(SAMPLE, tmp_path_factory.mktemp("dem"))
+
+
+@pytest.fixture(scope="module")
+def qgis(tmp_path_factory):
+    """Runs qgis_process with the provider installed by qgis/install.sh into a temporary
+    profile: qgis(*args) -> CompletedProcess."""
+    program = qgis_process_program()
+    if program is None:
+        pytest.skip("qgis_process not found: install the Debian packages qgis and python3-qgis "
+                    "(scripts/install-deps.sh does)")
+    executable = demlight_executable()
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen",
+               QGIS_CUSTOM_CONFIG_PATH=str(tmp_path_factory.mktemp("qgis_config")))
+    env.pop(cli.EXECUTABLE_ENV, None)  # the provider must find the CLI the way install.sh recorded it
+    subprocess.run([os.path.join(REPO, "qgis", "install.sh"), "--executable", executable], env=env, check=True,
+                   capture_output=True)
+
+    def run(*args):
+        return subprocess.run([program, *args], env=env, capture_output=True, text=True, timeout=600)
+    return run
+
+
+def test_qgis_process_lists_the_raster_commands(qgis):
+    listing = qgis("list").stdout
+    listed = {line.split("\t")[1].split(":", 1)[1] for line in listing.splitlines()
+              if line.startswith("\tdemlight:")}
+    # The commands that write rasters, pictures or folders; not info and sunpos, which print.
+    assert listed == {"horizon", "sun", "sky", "aperture", "light", "irradiance", "insolation", "render",
+                      "timelapse", "sunhours", "sequence"}
+
+
+def test_qgis_process_help_is_the_cli_help(qgis):
+    text = qgis("help", "demlight:sun").stdout
+    cli_help = subprocess.run([demlight_executable(), "sun", "--help"], capture_output=True, text=True,
+                              check=True).stdout
+    assert cli_help.strip() in text
+    for parameter in ("INPUT", "OUTPUT", "TIME", "TZ", "QUALITY", "SUN_DIAMETER", "OF", "CO"):
+        assert f"\n{parameter}:" in text, parameter
+
+
+def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
+    ours = tmp_path / "qgis_sun.tif"
+    done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
+                "SUN_DIAMETER=1.5", f"OUTPUT={ours}")
+    assert done.returncode == 0, done.stdout + done.stderr
+    theirs = tmp_path / "cli_sun.tif"
+    subprocess.run([demlight_executable(), "-q", "sun", dem, "-o", str(theirs), "--time", TIME, "--tz", TZ,
+                    "--quality", "full", "--of", "COG", "--sun-diameter", "1.5"], check=True)
+    assert checksums(str(ours)) == checksums(str(theirs))
+
+
+def test_qgis_process_horizon_returns_both_rasters(qgis, dem, tmp_path):
+    # (Not OUTPUT=TEMPORARY_OUTPUT: qgis_process removes its temporary folder when it exits.)
+    done = qgis("--json", "run", "demlight:horizon", "--", f"INPUT={dem}", "AZIMUTH=10 200",
+                f"OUTPUT={tmp_path / 'qgis_h.tif'}")
+    assert done.returncode == 0, done.stdout + done.stderr
+    results = json.loads(done.stdout)["results"]
+    assert results == {"OUTPUT": str(tmp_path / "qgis_h.tif"), "TRUNCATION_MASK": str(tmp_path / "qgis_h.truncated.tif")}
+    theirs = tmp_path / "cli_h.tif"
+    subprocess.run([demlight_executable(), "-q", "horizon", dem, "-o", str(theirs), "--azimuth", "10",
+                    "--azimuth", "200"], check=True)
+    for ours, cli_path in ((results["OUTPUT"], theirs), (results["TRUNCATION_MASK"], tmp_path / "cli_h.truncated.tif")):
+        a, b = checksums(ours), checksums(str(cli_path))
+        # Each names its own mask file.
+        assert a["metadata"].pop("DEMLIGHT_TRUNCATION_MASK") == results["TRUNCATION_MASK"]
+        assert b["metadata"].pop("DEMLIGHT_TRUNCATION_MASK") == str(tmp_path / "cli_h.truncated.tif")
+        assert a == b
+
+
+def test_qgis_process_timelapse_writes_its_folder(qgis, dem, tmp_path):
+    ours = tmp_path / "qgis_day"
+    done = qgis("run", "demlight:timelapse", "--", f"INPUT={dem}", "DATE=2024-06-21", f"TZ={TZ}", "STEP=6h",
+                "FORMATS=tif", f"OUTPUT={ours}")
+    assert done.returncode == 0, done.stdout + done.stderr
+    theirs = tmp_path / "cli_day"
+    subprocess.run([demlight_executable(), "-q", "timelapse", dem, "-o", str(theirs), "--date", "2024-06-21",
+                    "--tz", TZ, "--step", "6h", "--formats", "tif"], check=True)
+    assert sorted(os.listdir(ours)) == sorted(os.listdir(theirs))
+    frames = [f for f in os.listdir(theirs) if f.endswith(".tif")]
+    assert frames
+    for f in frames:
+        assert checksums(str(ours / f)) == checksums(str(theirs / f)), f
+
+
+def test_qgis_process_reports_the_cli_error(qgis, dem, tmp_path):
+    done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", "TIME=2024-06-21T07:30",
+                f"OUTPUT={tmp_path / 'no_zone.tif'}")
+    assert done.returncode != 0
+    assert "has no zone" in done.stdout + done.stderr
+    assert not list(tmp_path.iterdir())
