@@ -70,7 +70,7 @@ nlohmann::json describeCommand(const CLI::App& cmd, const CliContext& ctx) {
     nlohmann::json j;
     j["name"] = cmd.get_name();
     j["description"] = cmd.get_description();
-    j["help"] = cmd.help();
+    j["help"] = cmd.help(cmd.get_parent() ? cmd.get_parent()->get_name() : std::string());  // "Usage: demlight sun ..."
     nlohmann::json options = nlohmann::json::array();
     bool writesRaster = false, hasOutput = false;
     for (const CLI::Option* opt : cmd.get_options()) {
