@@ -76,8 +76,14 @@ ProgressFn ProgressBar::callback() {
 void ProgressBar::report(double fraction, const std::string& stage) {
     std::lock_guard<std::mutex> lock(mutex_);
     const double nowS = clock_();
-    if (!inStage_ || stage != stage_) startStage(stage);
+    // A stage whose count goes on from where the last one stopped (the next tile of a tiled job,
+    // "tile 3/8: sky" after "tile 2/8: sky") is the same count under a new name: it keeps the
+    // clock, so the time left is the whole job's.
+    const bool continues = inStage_ && fraction > 0 && fraction >= lastFraction_ && lastFraction_ < 1;
+    if (!inStage_ || (stage != stage_ && !continues)) startStage(stage);
+    stage_ = stage;
     lastReportS_ = nowS;
+    lastFraction_ = fraction;
     const double elapsedS = nowS - stageStartS_;
     if (isTerminal_) {
         drawBar(fraction, elapsedS);

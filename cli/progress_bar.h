@@ -78,6 +78,7 @@ private:
     std::string stage_;
     double stageStartS_ = 0;
     double lastReportS_ = 0;
+    double lastFraction_ = 0;
     int linesStep_ = 0;  // the highest multiple of kLineStepPercent already written
 };
 

@@ -111,6 +111,22 @@ TEST(ProgressBar, ANewStageStartsTheCountAndTheClockAfresh) {
     EXPECT_EQ(lines[19], "sunhours: 100 % after 10 s");
 }
 
+// Tiles of one job (products/tiles.h tileProgress) report the job's fraction under a stage named
+// by the tile: the clock and the ten-per-cent lines run over the whole job, not per tile.
+TEST(ProgressBar, TilesOfOneJobKeepTheJobsClock) {
+    Harness h(true, false, 0);
+    for (int tile = 0; tile < 4; ++tile)
+        for (int i = 1; i <= 5; ++i) {
+            const double f = (tile + i / 5.0) / 4.0;
+            h.report(f, "tile " + std::to_string(tile + 1) + "/4: sky", tile * 10.0 + i * 2.0);
+        }
+    const std::vector<std::string> lines = h.lines();
+    ASSERT_EQ(lines.size(), 10u) << h.text();
+    EXPECT_EQ(lines[0], "tile 1/4: sky: 10 % after 4.0 s, ~36 s left");
+    EXPECT_EQ(lines[2], "tile 2/4: sky: 30 % after 12 s, ~28 s left");
+    EXPECT_EQ(lines[9], "tile 4/4: sky: 100 % after 40 s");
+}
+
 TEST(ProgressBar, OnATerminalRedrawsOneLineWithTheTimeLeft) {
     Harness h(true, true);
     h.report(0.01, "sun", 2.0);  // under 2 %: no estimate
