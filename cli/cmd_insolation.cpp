@@ -47,7 +47,7 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
 }
 
 /// Bands of the output: beam, diffuse, reflected, global.
-constexpr std::size_t kInsolationBands = 4;
+constexpr std::size_t kInsolationBands = 5;  // beam, diffuse, reflected, global, sun_hours
 
 RasterCall insolationCall(const InsolationOptions& o) {
     return singleRasterCall(
