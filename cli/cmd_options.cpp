@@ -58,6 +58,7 @@ nlohmann::json describeOption(const CLI::Option& opt) {
     const auto [least, most] = valueCount(opt);
     j["flag"] = most == 0;  // takes no value
     describeType(opt.get_type_name(), j);
+    j["type_name"] = opt.get_type_name();  // as --help shows it, with its check: "FLOAT:[0, 20]"
     j["min_values"] = least;
     j["max_values"] = most;
     nlohmann::json excludes = nlohmann::json::array();
@@ -93,19 +94,23 @@ nlohmann::json describeCommand(const CLI::App& cmd, const CliContext& ctx) {
 
 }  // namespace
 
+std::string optionsJson(const CLI::App& app, const CliContext& ctx) {
+    nlohmann::json commands = nlohmann::json::array();
+    for (const CLI::App* sub : app.get_subcommands({}))
+        if (!sub->get_group().empty()) commands.push_back(describeCommand(*sub, ctx));
+    nlohmann::json root;
+    root["version"] = DEMLIGHT_VERSION;
+    root["commands"] = commands;
+    return root.dump(1);
+}
+
 void registerOptions(CLI::App& app, CliContext& ctx) {
     auto json = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand("options", "Every command's options as JSON, for programs that drive demlight");
     cmd->group("");  // hidden from demlight --help and from the list of commands
     cmd->add_flag("--json", *json, "Print JSON (the only form)")->required();
     cmd->callback([json, &app, &ctx] {  // holds the flag's storage as long as the command
-        nlohmann::json commands = nlohmann::json::array();
-        for (const CLI::App* sub : app.get_subcommands({}))
-            if (!sub->get_group().empty()) commands.push_back(describeCommand(*sub, ctx));
-        nlohmann::json root;
-        root["version"] = DEMLIGHT_VERSION;
-        root["commands"] = commands;
-        std::cout << root.dump(1) << "\n";
+        std::cout << optionsJson(app, ctx) << "\n";
     });
 }
 

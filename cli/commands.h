@@ -52,6 +52,9 @@ void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);
 /// The hidden `options --json` command: every other command's options as JSON.
 void registerOptions(CLI::App& app, CliContext& ctx);
+/// What `demlight options --json` prints: every listed command of `app` (built by registerCommands
+/// with `ctx`) with its options, defaults and help, as JSON text (docs/commands.md).
+std::string optionsJson(const CLI::App& app, const CliContext& ctx);
 
 /// Makes `app` demlight's root command: --version, -q, every command above, and argument errors
 /// in demlight's one-line form (cli/command_line.cpp). main() parses with it, and so does the

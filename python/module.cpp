@@ -421,25 +421,11 @@ private:
 
 // ---- Options of the commands, for the Python signatures and docstrings -------------------------
 
-py::list commandOptions(const std::string& command) {
+std::string optionsJson() {
     cli::CliContext ctx;
     CLI::App app;
     cli::registerCommands(app, ctx);
-    CLI::App* cmd = app.get_subcommand(command);
-    py::list out;
-    for (const CLI::Option* o : cmd->get_options()) {
-        py::dict d;
-        d["names"] = o->get_lnames();
-        d["positional"] = o->get_lnames().empty();
-        d["description"] = o->get_description();
-        d["default"] = o->get_default_str();
-        d["type"] = o->get_type_name();
-        d["flag"] = o->get_expected_min() == 0;
-        d["expected"] = o->get_expected_max();
-        d["required"] = o->get_required();
-        out.append(d);
-    }
-    return out;
+    return cli::optionsJson(app, ctx);
 }
 
 std::vector<std::string> rasterCommands() {
@@ -556,7 +542,7 @@ PYBIND11_MODULE(_demlight, m) {
 
     m.def("parse", &parseCall, py::arg("arguments"));
     m.def("keywords_for_flags", &keywordsForFlags, py::arg("text"));
-    m.def("command_options", &commandOptions, py::arg("command"));
+    m.def("options_json", &optionsJson);
     m.def("command_description", &commandDescription, py::arg("command"));
     m.def("raster_commands", &rasterCommands);
     m.def("tiles", [](const std::vector<std::size_t>& extent, std::size_t cells) {

@@ -243,11 +243,28 @@ class Result:
 
 
 @_functools.lru_cache(maxsize=None)
+def _command_options(command):
+    """The options of `demlight COMMAND` as `demlight options --json` describes them: long names,
+    description, default ("" for none), type as --help shows it, flag, values per use, required."""
+    for c in _json.loads(_demlight.options_json())["commands"]:
+        if c["name"] == command:
+            return [{"names": [f[2:] for f in o["flags"] if f.startswith("--")],
+                     "positional": o["positional"],
+                     "description": o["description"],
+                     "default": o["default"] or "",
+                     "type": o["type_name"],
+                     "flag": o["flag"],
+                     "expected": o["max_values"],
+                     "required": o["required"]} for o in c["options"]]
+    raise Error("no command '%s'" % command)
+
+
+@_functools.lru_cache(maxsize=None)
 def _options(command):
     """Keyword name (aliases included) -> the command-line option's facts (names, description,
     default, type, ...)."""
     spec = {}
-    for o in _demlight.command_options(command):
+    for o in _command_options(command):
         if o["positional"]:
             continue
         keywords = [n.replace("-", "_") for n in o["names"]]
@@ -298,7 +315,7 @@ def _docstring(command):
         "",
     ]
     seen = set()
-    for o in _demlight.command_options(command):
+    for o in _command_options(command):
         if o["positional"]:
             continue
         keywords = [n.replace("-", "_") for n in o["names"]]
@@ -334,7 +351,7 @@ def _make_command(command):
     for name in ("transform", "crs", "nodata", "progress"):
         params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=None))
     seen = set(p.name for p in params)
-    for o in _demlight.command_options(command):
+    for o in _command_options(command):
         if o["positional"]:
             continue
         keyword = o["names"][0].replace("-", "_")
