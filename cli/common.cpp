@@ -177,9 +177,10 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
     }
     std::size_t tile = 0;
     const std::size_t halo = haloCellsFor(dem.geometry().terrain, planFor(search, dem.geometry().terrain).maxDistanceM);
+    const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
+    setRasterCacheBytes(rasterCacheBytes(limit));  // streamed outputs' blocks count in the budget
     if (tiling.tileSize == "auto") {
-        const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
-        tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit);
+        tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit - rasterCacheBytes(limit));
     } else {
         std::size_t used = 0;
         unsigned long long n = 0;

@@ -758,4 +758,9 @@ void RasterSink::commit() {
     st.file.reset();
 }
 
+void setRasterCacheBytes(double bytes) {
+    detail::ensureGdal();
+    GDALSetCacheMax64(static_cast<GIntBig>(std::max(bytes, 0.0)));
+}
+
 }  // namespace demlight

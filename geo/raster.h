@@ -125,6 +125,11 @@ struct WriteOptions {
 /// every reader mistakes for a picture.
 void checkRasterPath(const std::string& path);
 
+/// Caps GDAL's block cache at `bytes`. The cache holds the blocks of rasters being read and
+/// written until they go to disk; GDAL's default is 5 % of the machine's memory, which a tiled
+/// run streaming gigabytes of output fills whatever its memory budget.
+void setRasterCacheBytes(double bytes);
+
 /// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success
 /// (geo/output_file.h); a failure or a cancel leaves neither `path` changed nor a temporary file.
 /// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path` that is not

@@ -46,6 +46,8 @@ std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, 
     return std::min(whole, std::max(kSmallestTile, static_cast<std::size_t>(std::max(side, 0.0))));
 }
 
+double rasterCacheBytes(double memoryBytes) { return std::min(memoryBytes / 8, 256.0 * (1 << 20)); }
+
 double defaultMemoryLimitBytes() {
     const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
     if (pages <= 0 || pageSize <= 0) return 4e9;

@@ -29,6 +29,10 @@ double productBytesPerCell(std::size_t outputBands);
 std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, double bytesPerCell,
                                double memoryBytes);
 
+/// GDAL's block cache a run allows itself out of a memory budget of `memoryBytes`: an eighth,
+/// at most 256 MiB (the rest sizes the tiles).
+double rasterCacheBytes(double memoryBytes);
+
 /// Half of this machine's physical memory (bytes): --memory-limit's default.
 double defaultMemoryLimitBytes();
 
