@@ -147,6 +147,28 @@ def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
     assert checksums(str(ours)) == checksums(str(theirs))
 
 
+def test_readme_qgis_example_runs_as_written(qgis, dem, tmp_path):
+    """The README's qgis_process line, its relative paths in a fresh folder holding dem.tif (a copy
+    of the sample), gives what the CLI gives with the same options."""
+    import shlex
+    readme = open(os.path.join(REPO, "README.md"), encoding="utf-8").read()
+    line = next(l for l in readme.splitlines() if "qgis_process.bin run demlight:" in l)
+    words = shlex.split(line)
+    words = words[words.index(next(w for w in words if w.endswith("qgis_process.bin"))) + 1:]
+    shutil.copy(dem, tmp_path / "dem.tif")
+    args = []
+    for w in words:
+        key, eq, value = w.partition("=")
+        args.append(f"{key}={tmp_path / value}" if key in ("INPUT", "OUTPUT") and eq else w)
+    done = qgis(*args)
+    assert done.returncode == 0, done.stdout + done.stderr
+    params = dict(w.split("=", 1) for w in words if "=" in w)
+    theirs = tmp_path / "cli.tif"
+    subprocess.run([demlight_executable(), "-q", words[1].split(":")[1], str(tmp_path / "dem.tif"), "-o", str(theirs),
+                    "--time", params["TIME"], "--tz", params["TZ"]], check=True)
+    assert checksums(str(tmp_path / params["OUTPUT"])) == checksums(str(theirs))
+
+
 def test_qgis_process_horizon_returns_both_rasters(qgis, dem, tmp_path):
     # (Not OUTPUT=TEMPORARY_OUTPUT: qgis_process removes its temporary folder when it exits.)
     done = qgis("--json", "run", "demlight:horizon", "--", f"INPUT={dem}", "AZIMUTH=10 200",
