@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -130,7 +132,8 @@ TEST(CommandsDoc, DocumentsEveryMetadataKeyAndBandWritten) {
     namespace fs = std::filesystem;
     const std::string doc = readText(kDocsDir + "/commands.md");
     ASSERT_FALSE(doc.empty());
-    const fs::path dir = fs::temp_directory_path() / "demlight_commands_doc";
+    // Named by process: two runs of the suite at once (CI beside a developer's) never share it.
+    const fs::path dir = fs::temp_directory_path() / ("demlight_commands_doc_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
