@@ -104,10 +104,13 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
     Dem dem = openDem(path, heights);
     const std::size_t width = dem.band.width, height = dem.band.height;
     HeightStats stats;
+    SteepSteps steps;
     const std::size_t stripRows = stripRowsFor(width);
     for (std::size_t row0 = 0; row0 < height; row0 += stripRows) {
         const CellWindow strip{0, row0, width, std::min(height, row0 + stripRows)};
-        stats.add(heightsInMetres(readRasterWindow(path, strip), path, dem.heights));
+        const Grid<float> rows = heightsInMetres(readRasterWindow(path, strip), path, dem.heights);
+        stats.add(rows);
+        steps.add(rows, row0, dem.terrain.cellWidthM, dem.terrain.cellHeightM);
         if (progress && stripRows < height &&
             !progress(static_cast<double>(strip.row1) / static_cast<double>(height), "reading DEM"))
             throw Cancelled();
@@ -117,7 +120,7 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
     s.derived_ = std::make_shared<Derived>();
     const Terrain& t = dem.terrain;
     s.frame_ = std::make_shared<const GridFrame>(
-        GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence, stats.lo, stats.hi});
+        GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence, stats.lo, stats.hi, steps.share()});
     s.meanHeightM_ = stats.mean();
     s.validCells_ = stats.valid;
     dem.band.nodataCount = width * height - stats.valid;

@@ -34,6 +34,14 @@ namespace demlight {
 /// Horizon angle given to a cell that sees no terrain in range (degrees).
 inline constexpr double kNoHorizonDeg = -90.0;
 
+/// The reference's ray-march step as a share of the smaller side of the start cell; the sweep's
+/// near field samples the same points.
+inline constexpr double kReferenceStepOfCell = 0.25;
+
+/// Largest HorizonParams::nearFieldSteps (the near field's cost grows with it, its benefit
+/// flattens out well before: docs/accuracy.md).
+inline constexpr int kMaxNearFieldSteps = 32;
+
 struct HorizonParams {
     /// True azimuth of the search (degrees clockwise from true north); any finite value, reduced
     /// to [0, 360) by wrapAzimuthDeg so 0 and 360 give identical bits.
@@ -65,6 +73,16 @@ struct HorizonParams {
     /// horizon accuracy table has both); sky and aperture integrals, which average many
     /// directions, use it.
     bool nearestLine = false;
+    /// Sweep only: the exact near field, in line steps (one cell along the scan direction's
+    /// major axis). Terrain nearer than this is sampled on the ray from the cell's own centre,
+    /// at the reference's quarter-cell steps on the bilinear surface; the scan lines' hulls then
+    /// answer only for terrain at least this many steps away, queried with the cell's own
+    /// height. Walls, roof edges and cliffs next to a cell are where interpolating two scan lines
+    /// half a cell beside it fails (a street cell takes part of the roof's horizon), so surface
+    /// models need more steps than terrain (docs/accuracy.md). 0 = the line-interpolated model of
+    /// earlier versions: no near field, the query height interpolated from the lines. Must be
+    /// <= kMaxNearFieldSteps.
+    int nearFieldSteps = 0;
     /// Sweep only: the true azimuth (degrees, unwrapped values allowed) wanted at the centre of
     /// cell (col, row) when it varies over the grid, as the sun's does across a large DEM; empty
     /// = azimuthDeg everywhere. Regions are then split until each region's straight direction is

@@ -14,9 +14,6 @@ namespace demlight {
 
 namespace {
 
-/// Ray-march step as a fraction of the smaller side of the start cell.
-constexpr double kStepFractionOfCell = 0.25;
-
 
 /// Bilinear height at fractional cell coordinates (cell centres at integers); nodata corners are
 /// dropped and the remaining weights renormalised; NaN when no corner with weight is valid.
@@ -53,7 +50,7 @@ public:
             out.angleDeg = std::numeric_limits<float>::quiet_NaN();
             return out;
         }
-        const double stepM = kStepFractionOfCell * std::min(t_.cellWidthM[row], t_.cellHeightM[row]);
+        const double stepM = kReferenceStepOfCell * std::min(t_.cellWidthM[row], t_.cellHeightM[row]);
         const double maxX = static_cast<double>(t_.width()) - 0.5;
         const double maxY = static_cast<double>(t_.height()) - 0.5;
         double x = static_cast<double>(col), y = static_cast<double>(row), d = 0.0;

@@ -181,15 +181,19 @@ struct RangeLog {
         long chunk;
         std::size_t pointsBefore;  // points.size() when the cell was served: the farther points
         float* cell;
+        /// Delayed serving: the cell's chunk is one past the walk's (it lies within nearFieldSteps
+        /// after a chunk boundary), so the farther points it may see end before the chunk's
+        /// nearest ones; resolved one by one (limitRangePass).
+        bool straddles;
     };
     /// points[0, nPoints) and queries[0, nQueries) are in use; sized once per block (at most
-    /// one point and two queries per line step) so the walk appends without capacity checks.
+    /// two points and two queries per line step) so the walk appends without capacity checks.
     std::vector<Point> points;
     std::vector<Query> queries;
     std::size_t nPoints = 0, nQueries = 0;
-    void reset(std::size_t steps) {
-        if (points.size() < steps) points.resize(steps);
-        if (queries.size() < 2 * steps) queries.resize(2 * steps);
+    void reset(std::size_t capacity) {
+        if (points.size() < capacity) points.resize(capacity);
+        if (queries.size() < 2 * capacity) queries.resize(2 * capacity);
         nPoints = nQueries = 0;
     }
 };
@@ -206,6 +210,8 @@ struct LineState {
     /// Range-limited sweeps: the previous chunk's final hull is kept at buf[prevLo, prevHi) (the
     /// current one starts after it), and the vertex its last tangent touched.
     std::size_t prevLo, prevHi, prevHint;
+    /// Delayed serving (nearFieldSteps > 0): the current hull's vertex the line's last tangent touched.
+    std::size_t hint;
 };
 
 /// The curved-earth tangent (slope of the sight line) from a cell at (sigmaQ, gQ) to a line
@@ -262,6 +268,16 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
     double maxG = -std::numeric_limits<double>::infinity();
     for (std::size_t qi = log.nQueries; qi-- > 0;) {
         const RangeLog::Query* q = &log.queries[qi];
+        if (q->straddles) {
+            // Its points are the walk's chunk's from q->sigmaM - L up to pointsBefore; a nearer
+            // cell of its chunk may have put nearer ones into the hull, so scan them directly
+            // (at most nearFieldSteps cells per line and chunk get here).
+            float& cell = *q->cell;
+            const double limit = q->sigmaM - maxDistanceM;
+            for (std::size_t i = q->pointsBefore; i-- > 0 && pts[i].sigmaM >= limit;)
+                cell = std::max(cell, rangeSlope(pts[i].g, pts[i].sigmaM, q->gCell, q->sigmaM, invR));
+            continue;
+        }
         if (q->chunk != chunk) {
             chunk = q->chunk;
             top = 0;
@@ -309,6 +325,7 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
 struct LineGeometry {
     bool xMajor;
     bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
+    long delay = 0;    // HorizonParams::nearFieldSteps: cells are served this many steps behind the walk
     int farSign;
     double slope;
     std::size_t majorSize, minorSize;
@@ -408,7 +425,9 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 RangeLog* logs) {
     const std::size_t W = t.width();
     const float* H = t.heightsM.data();
-    const std::size_t lineCapacity = static_cast<std::size_t>(std::abs(geo.mFar - geo.mNear)) + 1;
+    // With a near field a line also takes a point where it crosses a grid line between steps.
+    const std::size_t lineCapacity =
+        (geo.delay > 0 ? 2 : 1) * (static_cast<std::size_t>(std::abs(geo.mFar - geo.mNear)) + 1);
     const std::size_t nLines = static_cast<std::size_t>(kEnd - kBegin);
     if (scratch.size() < nLines * lineCapacity) scratch.resize(nLines * lineCapacity);
     constexpr bool limited = Limited;
@@ -447,10 +466,88 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         const long k = kBegin + static_cast<long>(b);
         const double edgeArc = sigmaTable ? 0.0 : arcAt(geo, static_cast<double>(k + geo.base[edge]) + geo.frac[edge]);
         lines[b] = {scratch.data() + b * lineCapacity, 0, 0, edgeArc, 0, maxDistanceM, limited ? &logs[b] : nullptr,
-                    0, 0, 0};
+                    0, 0, 0, 0};
         if (limited) logs[b].reset(lineCapacity);
     }
-    for (long m = mStart;; m += mStep) {
+    // With a near field (geo.delay steps), a cell is served `delay` steps after the walk passed
+    // it, from the hulls of the samples walked so far: its scan lines' terrain at least `delay`
+    // steps away, queried at the cell's own height (the near field is the combine pass's).
+    const long delay = geo.delay;
+    auto serveDelayed = [&](long mc) {
+        if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
+        const long baseC = geo.base[static_cast<std::size_t>(mc)];
+        const double fracC = geo.frac[static_cast<std::size_t>(mc)];
+        for (std::size_t b = 0; b < nLines; ++b) {
+            LineState& line = lines[b];
+            const long n0 = kBegin + static_cast<long>(b) + baseC;
+            if (n0 < minorWin0 - 1 || n0 >= minorWin1) continue;
+            long servedCell[2] = {fracC > 0.0 ? n0 + 1 : n0, n0};
+            int nServed = fracC > 0.0 ? 2 : 1;
+            if (geo.nearestLine) {
+                servedCell[0] = fracC > 0.5 ? n0 + 1 : n0;
+                nServed = 1;
+            }
+            const double sigmaC = sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(mc)]
+                                             : lineDistance(geo, line.edgeArcM, static_cast<double>(n0) + fracC, mc);
+            const double dropC = sigmaC * sigmaC * halfInvR;
+            // Range limit: the chunk of the cell against the walk's (line.chunk, whose points the
+            // hull [lo, hi) holds; [prevLo, prevHi) holds the chunk before it).
+            const long chunkC = limited ? static_cast<long>(std::floor(sigmaC / maxDistanceM)) : 0;
+            float* const servedPlane[2] = {planeA, planeB};
+            for (int s = 0; s < nServed; ++s) {
+                const long j = servedCell[s];
+                if (j < minorWin0 || j >= minorWin1) continue;
+                const std::size_t idx = index(mc, j);
+                const float hc = H[idx];
+                if (std::isnan(hc)) continue;
+                const double gCell = static_cast<double>(hc) - dropC;
+                float value = -std::numeric_limits<float>::infinity();
+                float* cell = servedPlane[s] + idx;
+                const bool hullInRange = !limited || chunkC == line.chunk;
+                if (line.lo < line.hi && (hullInRange || chunkC == line.chunk + 1)) {
+                    const std::size_t v = tangentVertex(line.buf, line.lo, line.hi,
+                                                        std::clamp(line.hint, line.lo, line.hi - 1), sigmaC, gCell);
+                    line.hint = v;
+                    const HullPoint& pv = line.buf[v];
+                    if (hullInRange) {
+                        value = static_cast<float>((pv.g - gCell) / (sigmaC - pv.sigmaM) - sigmaC * invR);
+                    } else if (pv.sigmaM >= sigmaC - maxDistanceM) {
+                        // The walk's chunk is the cell's previous one: its tangent is the answer
+                        // when in range, else the cell is left to the exact pass.
+                        value = rangeSlope(pv.g, pv.sigmaM, gCell, sigmaC, invR);
+                    } else {
+                        line.log->queries[line.log->nQueries++] = {sigmaC, gCell, chunkC, line.log->nPoints, cell,
+                                                                   true};
+                    }
+                }
+                *cell = value;
+                // The previous chunk, as for the undelayed walk below.
+                if (Limited && hullInRange && line.prevLo < line.prevHi) {
+                    const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint, sigmaC,
+                                                        gCell);
+                    line.prevHint = v;
+                    const HullPoint& pv = line.buf[v];
+                    const float bound = rangeSlope(pv.g, pv.sigmaM, gCell, sigmaC, invR);
+                    if (bound > value) {
+                        if (pv.sigmaM >= sigmaC - maxDistanceM) {
+                            *cell = bound;
+                        } else {
+                            line.log->queries[line.log->nQueries++] = {sigmaC, gCell, chunkC, line.log->nPoints,
+                                                                       cell, false};
+                        }
+                    }
+                }
+            }
+        }
+    };
+    // The cells within `delay` steps of the walk's start have no sample that far beyond them
+    // (the walk starts at the DEM's far edge, or beyond every cell this block serves).
+    bool served = false;
+    for (long i = 0; delay > 0 && i < delay && !served; ++i) {
+        serveDelayed(mStart + i * mStep);
+        served = mStart + i * mStep == mServeNear;
+    }
+    for (long m = mStart; !served; m += mStep) {
         const long base = geo.base[static_cast<std::size_t>(m)];
         const double frac = geo.frac[static_cast<std::size_t>(m)];
         // Fetch the heights and output cells of a step kPrefetchSteps ahead. Along rows (Y-major)
@@ -489,6 +586,60 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         bool allNodata = anyInside;
         for (long j = std::max(nLo, n0First); allNodata && j <= std::min(nHi - 1, n0Last + 1); ++j)
             allNodata = std::isnan(H[index(m, j)]);
+        // With a near field, the far field follows the bilinear surface between steps too: where
+        // the lines cross a grid line of the minor axis between the previous step and this one
+        // (the same crossing for every line, at fraction tc of the step), each takes a point
+        // there, linear between the two cells on that grid line; that is where a wall's top edge
+        // along the major axis lies. Pushed before this step's samples (it is farther).
+        if (delay > 0 && m != mStart) {
+            const long prev = m - mStep;
+            const long basePrev = geo.base[static_cast<std::size_t>(prev)];
+            const double fracPrev = geo.frac[static_cast<std::size_t>(prev)];
+            if (frac > 0.0 && fracPrev > 0.0 && basePrev != base) {
+                const long n = std::max(basePrev, base);
+                const double yPrev = static_cast<double>(basePrev) + fracPrev, yNow = static_cast<double>(base) + frac;
+                const double tc = (static_cast<double>(n) - yPrev) / (yNow - yPrev);
+                const bool bothSteps = prev >= mLo && prev < geo.majorHi;
+                for (std::size_t b = 0; bothSteps && b < nLines; ++b) {
+                    LineState& line = lines[b];
+                    const long j = kBegin + static_cast<long>(b) + n;
+                    if (j < nLo || j >= nHi) continue;
+                    const float hPrev = H[index(prev, j)], hNow = H[index(m, j)];
+                    const float h = std::isnan(hPrev) ? hNow : std::isnan(hNow) ? hPrev
+                                  : static_cast<float>((1.0 - tc) * hPrev + tc * hNow);
+                    if (std::isnan(h)) continue;
+                    const double sigma =
+                        sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(prev)] +
+                                         tc * (geo.sigmaAt[static_cast<std::size_t>(m)] -
+                                               geo.sigmaAt[static_cast<std::size_t>(prev)])
+                                   : lineDistance(geo, line.edgeArcM, static_cast<double>(j), m);
+                    if (limited && sigma >= line.nextChunkM) {
+                        const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
+                        if (chunk == line.chunk + 1) {
+                            line.prevLo = line.lo;
+                            line.prevHi = line.hi;
+                            line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
+                            line.lo = line.hi;
+                        } else {
+                            line.prevLo = line.prevHi = line.lo = line.hi = 0;
+                        }
+                        line.chunk = chunk;
+                        line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
+                    }
+                    const double g = static_cast<double>(h) - sigma * sigma * halfInvR;
+                    std::size_t top = line.hi;
+                    while (top - line.lo >= 2) {
+                        const HullPoint& v1 = line.buf[top - 1];
+                        const HullPoint& v2 = line.buf[top - 2];
+                        if ((v2.g - g) * (sigma - v1.sigmaM) < (v1.g - g) * (sigma - v2.sigmaM)) break;
+                        --top;
+                    }
+                    if (limited) line.log->points[line.log->nPoints++] = {sigma, g, line.chunk};
+                    line.hi = top;
+                    line.buf[line.hi++] = {sigma, g};
+                }
+            }
+        }
         // Where every line is off the terrain's cells or every cell is nodata there is nothing
         // to sample or serve (distances need no walking: they are a function of position).
         if (anyInside && !allNodata) {
@@ -552,7 +703,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // frac) into plane A, cell n0 (line above it, weight 1-frac) into plane B; on an
                 // exact hit (frac == 0) cell n0 into plane A.
                 // (n0 in [minorWin0 - 1, minorWin1 - 1]: n1 or n0 is a window cell.)
-                if (inWindow && n0 >= minorWin0 - 1 && n0 < minorWin1) {
+                if (delay == 0 && inWindow && n0 >= minorWin0 - 1 && n0 < minorWin1) {
                     long servedCell[2] = {frac > 0.0 ? n1 : n0, n0};
                     float* const servedPlane[2] = {planeA, planeB};
                     int nServed = frac > 0.0 ? 2 : 1;
@@ -593,7 +744,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                                     *cell = bound;
                                 } else {
                                     line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk,
-                                                                               line.log->nPoints, cell};
+                                                                               line.log->nPoints, cell, false};
                                 }
                             }
                         }
@@ -607,7 +758,12 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
             }
         }
-        if (m == mServeNear) break;
+        if (delay == 0) {
+            if (m == mServeNear) break;
+        } else {
+            serveDelayed(m + delay * mStep);
+            if (m + delay * mStep == mServeNear) break;
+        }
     }
     if (limited) {
         for (std::size_t b = 0; b < nLines; ++b) limitRangePass(logs[b], maxDistanceM, invR, scratch);
@@ -615,9 +771,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
 }
 
 LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, const SweepRegion& region,
-                          double maxDistanceM, bool nearestLine) {
+                          double maxDistanceM, bool nearestLine, int nearFieldSteps) {
     LineGeometry geo;
     geo.nearestLine = nearestLine;
+    geo.delay = nearFieldSteps;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
     const double major = geo.xMajor ? region.dirCol : region.dirRow;
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
@@ -710,22 +867,202 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
     return geo;
 }
 
+/// The near field's first steps are sampled at the reference's quarter cells (walls and roof
+/// edges next to the cell); beyond them only where the ray crosses grid lines.
+constexpr long kDenseNearSteps = 2;
+
+/// One point of the near field's stencil: the ray from a cell centre, `dc` columns and `dr` rows
+/// away, at distance d; its bilinear taps (offsets from the cell, weights > 0, padded to four
+/// with zero-weight copies of the first so every point costs the same).
+struct NearPoint {
+    double dc, dr;
+    float invDistance, drop;  // 1/d (1/metres) and d/(2 R_eff): slope = (h - h0)/d - d/(2 R_eff)
+    long tapCol[4], tapRow[4];
+    float weight[4];
+    int taps;  // 2 when the point lies on a grid line (weights 2 and 3 zero), else 4
+};
+
+/// The near field's points for cells of full-grid row `row`: the reference's quarter-cell steps
+/// along the region's direction up to `delay` line steps (or maxDistanceM), the same offsets for
+/// every cell of the row.
+void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row, double maxDistanceM, double invR,
+                 std::vector<NearPoint>& out) {
+    out.clear();
+    const double stepM = kReferenceStepOfCell * std::min(g.cellWidthM[row], g.cellHeightM[row]);
+    const double lineStepM = geo.stepLengthM[row];
+    const double reachM = std::min(static_cast<double>(geo.delay) * lineStepM, maxDistanceM);
+    const double denseM = std::min(static_cast<double>(std::min<long>(geo.delay, kDenseNearSteps)) * lineStepM, reachM);
+    // Distances (metres) of the points: quarter cells up to denseM, and where the ray crosses a
+    // grid line of either axis (the bilinear surface is linear along those lines).
+    thread_local std::vector<double> ds;
+    ds.clear();
+    for (long k = 1;; ++k) {
+        const double d = static_cast<double>(k) * stepM;
+        if (d > denseM) break;
+        ds.push_back(d);
+    }
+    // The crossings are taken in the dense part too: a wall's top edge (a line of cell centres)
+    // is then sampled exactly wherever the ray meets it.
+    const double absSlope = std::abs(geo.slope);
+    for (long m = 1; static_cast<double>(m) * lineStepM <= reachM; ++m) ds.push_back(static_cast<double>(m) * lineStepM);
+    if (absSlope > 0.0) {
+        for (long n = 1; static_cast<double>(n) / absSlope * lineStepM <= reachM; ++n)
+            ds.push_back(static_cast<double>(n) / absSlope * lineStepM);
+    }
+    std::sort(ds.begin(), ds.end());
+    ds.erase(std::unique(ds.begin(), ds.end()), ds.end());
+    for (const double d : ds) {
+        const double major = geo.farSign * d / lineStepM, minor = geo.slope * major;
+        NearPoint p;
+        p.dc = geo.xMajor ? major : minor;
+        p.dr = geo.xMajor ? minor : major;
+        p.invDistance = static_cast<float>(1.0 / d);
+        p.drop = static_cast<float>(0.5 * d * invR);
+        const double c0 = std::floor(p.dc), r0 = std::floor(p.dr);
+        const double fx = p.dc - c0, fy = p.dr - r0;
+        const double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        int n = 0;
+        for (int t = 0; t < 4; ++t) {
+            if (!(w[t] > 0.0)) continue;
+            p.tapCol[n] = static_cast<long>(c0) + (t & 1);
+            p.tapRow[n] = static_cast<long>(r0) + (t >> 1);
+            p.weight[n] = static_cast<float>(w[t]);
+            ++n;
+        }
+        for (int t = n; t < 4; ++t) {
+            p.tapCol[t] = p.tapCol[0];
+            p.tapRow[t] = p.tapRow[0];
+            p.weight[t] = 0.0f;
+        }
+        p.taps = n <= 2 ? 2 : 4;
+        out.push_back(p);
+    }
+}
+
+/// The near-field slope of one cell where the fast loop cannot serve it (a tap on nodata or
+/// beyond the terrain): the reference's rule at each point, heights clamped to the full grid's
+/// outer cell centres, nodata taps dropped and the rest reweighted, the march ending where the
+/// ray leaves the full grid. (col, row) are on the full grid; taps beyond the terrain count as
+/// nodata (a served cell's halo holds every point within its search distance).
+float nearFieldAt(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t col, std::size_t row,
+                  const std::vector<NearPoint>& stencil) {
+    const float h0 = t.heightsM(col - cells.col0, row - cells.row0);
+    const double maxX = static_cast<double>(g.width) - 1, maxY = static_cast<double>(g.height) - 1;
+    float best = -std::numeric_limits<float>::infinity();
+    for (const NearPoint& p : stencil) {
+        double x = static_cast<double>(col) + p.dc, y = static_cast<double>(row) + p.dr;
+        if (x < -0.5 || x > maxX + 0.5 || y < -0.5 || y > maxY + 0.5) break;
+        x = std::clamp(x, 0.0, maxX);
+        y = std::clamp(y, 0.0, maxY);
+        const auto c0 = static_cast<std::size_t>(x), r0 = static_cast<std::size_t>(y);
+        const std::size_t c1 = std::min(c0 + 1, g.width - 1), r1 = std::min(r0 + 1, g.height - 1);
+        const double fx = x - static_cast<double>(c0), fy = y - static_cast<double>(r0);
+        const double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        const std::size_t tc[4] = {c0, c1, c0, c1}, tr[4] = {r0, r0, r1, r1};
+        double sum = 0, weight = 0;
+        for (int k = 0; k < 4; ++k) {
+            if (!(w[k] > 0.0) || tc[k] < cells.col0 || tc[k] >= cells.col1 || tr[k] < cells.row0 ||
+                tr[k] >= cells.row1)
+                continue;
+            const float v = t.heightsM(tc[k] - cells.col0, tr[k] - cells.row0);
+            if (std::isnan(v)) continue;
+            sum += w[k] * (static_cast<double>(v) - h0);
+            weight += w[k];
+        }
+        if (!(weight > 0.0)) continue;
+        best = std::max(best, static_cast<float>(sum / weight * p.invDistance - p.drop));
+    }
+    return best;
+}
+
+/// One stencil point for cells [begin, end) of a row: the bilinear height relative to the
+/// cell's own (fused multiply-adds in a fixed order), its slope max-ed into `best`, and `flag` set
+/// where a tap is nodata (NaN). Taps = 2 skips the zero-weight taps 2 and 3.
+template <int Taps>
+void nearPointRow(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
+                  const float* __restrict t2, const float* __restrict t3, const NearPoint& p,
+                  float* __restrict best, std::uint8_t* __restrict flag, long begin, long end) {
+    const float w0 = p.weight[0], w1 = p.weight[1], w2 = p.weight[2], w3 = p.weight[3];
+    const float invD = p.invDistance, drop = p.drop;
+    for (long i = begin; i < end; ++i) {
+        const float h = h0[i];
+        float v = w0 * (t0[i] - h);
+        v = std::fma(w1, t1[i] - h, v);
+        if constexpr (Taps == 4) {
+            v = std::fma(w2, t2[i] - h, v);
+            v = std::fma(w3, t3[i] - h, v);
+        }
+        const float slope = std::fma(v, invD, -drop);
+        flag[i] |= static_cast<std::uint8_t>(v != v);
+        best[i] = slope > best[i] ? slope : best[i];
+    }
+}
+
+/// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
+/// (-inf where the near field holds no terrain). Cells whose taps are all valid heights inside
+/// the terrain take the vectorised loop (heights relative to the cell's own, fused multiply-adds
+/// in a fixed order, so a cell gets the same bits whichever loop or tile it is in); the rest
+/// nearFieldAt.
+void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t row,
+                  const CellWindow& w, const std::vector<NearPoint>& stencil, std::vector<float>& out,
+                  std::vector<std::uint8_t>& bad) {
+    const std::size_t cols = w.col1 - w.col0, W = t.width();
+    out.assign(cols, -std::numeric_limits<float>::infinity());
+    bad.assign(cols, 0);
+    long dcMin = 0, dcMax = 0, drMin = 0, drMax = 0;
+    for (const NearPoint& p : stencil) {
+        for (int k = 0; k < 4; ++k) {
+            dcMin = std::min(dcMin, p.tapCol[k]);
+            dcMax = std::max(dcMax, p.tapCol[k]);
+            drMin = std::min(drMin, p.tapRow[k]);
+            drMax = std::max(drMax, p.tapRow[k]);
+        }
+    }
+    // Window columns whose taps all lie inside the terrain (terrain coordinates: col - cells.col0).
+    const long r = static_cast<long>(row - cells.row0);
+    const bool rowsInside = r + drMin >= 0 && r + drMax < static_cast<long>(t.height());
+    const long c0 = static_cast<long>(w.col0 - cells.col0);
+    const long fastBegin = rowsInside ? std::clamp(-dcMin - c0, 0L, static_cast<long>(cols)) : static_cast<long>(cols);
+    const long fastEnd = rowsInside ? std::clamp(static_cast<long>(W) - dcMax - c0, fastBegin, static_cast<long>(cols))
+                                    : fastBegin;
+    const float* H = t.heightsM.data();
+    const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
+    float* __restrict best = out.data();
+    std::uint8_t* __restrict flag = bad.data();
+    for (const NearPoint& p : stencil) {
+        const float* tap[4];
+        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
+        if (p.taps == 2) {  // on a grid line: the taps with weight are the first two
+            nearPointRow<2>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, fastBegin, fastEnd);
+        } else {
+            nearPointRow<4>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, fastBegin, fastEnd);
+        }
+    }
+    for (long i = 0; i < static_cast<long>(cols); ++i) {
+        if (i >= fastBegin && i < fastEnd && !flag[i]) continue;
+        const std::size_t col = w.col0 + static_cast<std::size_t>(i);
+        if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) continue;
+        out[static_cast<std::size_t>(i)] = nearFieldAt(t, g, cells, col, row, stencil);
+    }
+}
+
 /// combineRow's two-line case without flags, branch-free so the compiler vectorises it: the
 /// tangents of the two lines bracketing each cell (plane A weighted frac, plane B 1 - frac;
 /// either one alone where the other met no terrain; plane A alone where frac = 0, plane B then
 /// holding nothing of this region) into a horizon angle. frac is per cell along X-major lines
 /// (fracs[col]) and one value per row along Y-major ones. Plane A is NaN where the sweep served
 /// nothing (nodata cells: reset to NaN, never served), and the angle stays NaN there.
-template <bool XMajor>
+template <bool XMajor, bool Near>
 void combineTwoLines(float* __restrict planeA, const float* __restrict planeB, const double* __restrict fracs,
-                     double rowFrac, std::size_t cols) {
+                     double rowFrac, const float* __restrict near, std::size_t cols) {
     const float none = -std::numeric_limits<float>::infinity();
     for (std::size_t col = 0; col < cols; ++col) {
         const double frac = XMajor ? fracs[col] : rowFrac;
         const float a = planeA[col], b = planeB[col];
         const auto mixed = static_cast<float>(frac * a + (1.0 - frac) * b);
         const float both = a == none ? b : b != none ? mixed : a;
-        const float slope = frac > 0.0 ? both : a;
+        float slope = frac > 0.0 ? both : a;
+        if constexpr (Near) slope = near[col] > slope ? near[col] : slope;  // NaN (nodata) stays
         const auto angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
         planeA[col] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
     }
@@ -735,9 +1072,10 @@ void combineTwoLines(float* __restrict planeA, const float* __restrict planeB, c
 /// truncation flag from the distance to the DEM edge along the region's direction. Plane A is
 /// NaN at nodata cells (never served), so their angle stays NaN. Both loops are branch-free.
 /// `row` and `w` are on the full grid; the planes and flags cover the terrain's cells.
-void combineRow(const LineGeometry& geo, double maxDistanceM, std::size_t W, std::size_t row,
-                const CellWindow& w, const CellWindow& terrainCells, float* planeA, const float* planeB,
-                std::uint8_t* truncated) {
+void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridRef& g, double maxDistanceM,
+                double invR, std::size_t row, const CellWindow& w, const CellWindow& terrainCells, float* planeA,
+                const float* planeB, std::uint8_t* truncated) {
+    const std::size_t W = terrain.width();
     const std::size_t offset = (row - terrainCells.row0) * W + (w.col0 - terrainCells.col0), cols = w.col1 - w.col0;
     if (truncated) {
         // Truncated where the DEM edge along the region direction is nearer than maxDistanceM.
@@ -753,19 +1091,35 @@ void combineRow(const LineGeometry& geo, double maxDistanceM, std::size_t W, std
             for (std::size_t i = 0; i < cols; ++i) flags[i] = std::min(major, minor[i]) * stepM < maxDistanceM;
         }
     }
+    const float* near = nullptr;
+    if (geo.delay > 0) {
+        thread_local std::vector<NearPoint> stencil;
+        thread_local std::vector<float> nearSlopes;
+        thread_local std::vector<std::uint8_t> bad;
+        nearStencil(geo, g, row, maxDistanceM, invR, stencil);
+        nearFieldRow(terrain, g, terrainCells, row, w, stencil, nearSlopes, bad);
+        near = nearSlopes.data();
+    }
     if (geo.nearestLine) {
         // One line per cell: plane A holds the tangents.
         const float none = -std::numeric_limits<float>::infinity();
         float* a = planeA + offset;
         for (std::size_t i = 0; i < cols; ++i) {
-            const float slope = a[i];
+            float slope = a[i];
+            if (near) slope = near[i] > slope ? near[i] : slope;
             const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
             a[i] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
         }
     } else if (geo.xMajor) {
-        combineTwoLines<true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, cols);
+        if (near) {
+            combineTwoLines<true, true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, near, cols);
+        } else {
+            combineTwoLines<true, false>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, near, cols);
+        }
+    } else if (near) {
+        combineTwoLines<false, true>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, cols);
     } else {
-        combineTwoLines<false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], cols);
+        combineTwoLines<false, false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, cols);
     }
 }
 
@@ -797,6 +1151,9 @@ void validateHorizonParams(const Terrain& terrain, const HorizonParams& p) {
     if (!(p.directionToleranceDeg >= 0.0))
         throw Error("horizon: direction tolerance must be >= 0 degrees (0 = automatic), got " +
                     std::to_string(p.directionToleranceDeg));
+    if (p.nearFieldSteps < 0 || p.nearFieldSteps > kMaxNearFieldSteps)
+        throw Error("horizon: near field must be 0 to " + std::to_string(kMaxNearFieldSteps) + " steps, got " +
+                    std::to_string(p.nearFieldSteps));
     if (p.window) {
         const CellWindow& w = *p.window;
         if (w.col0 >= w.col1 || w.row0 >= w.row1 || w.col1 > terrain.width() || w.row1 > terrain.height())
@@ -878,7 +1235,8 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
     if (!params.nearestLine) reset(planeB, std::numeric_limits<float>::quiet_NaN());
 
     for (const SweepRegion& region : regions) {
-        const LineGeometry geo = makeGeometry(full, cells, region, params.maxDistanceM, params.nearestLine);
+        const LineGeometry geo = makeGeometry(full, cells, region, params.maxDistanceM, params.nearestLine,
+                                              params.nearFieldSteps);
         const long nLines = geo.kLast - geo.kFirst + 1;
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
@@ -903,7 +1261,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         });
         if (progress) progress->throwIfCancelled();
         parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
-            combineRow(geo, params.maxDistanceM, terrain.width(), row, w, cells, out.angleDeg.data(), planeB.data(),
+            combineRow(geo, terrain, full, params.maxDistanceM, invR, row, w, cells, out.angleDeg.data(), planeB.data(),
                        params.truncationFlags ? out.truncated.data() : nullptr);
         }, 16);
         if (progress) {

@@ -155,6 +155,20 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     const double minCell = std::min(g.cellWidthM[g.height / 2], g.cellHeightM[g.height / 2]);
     const double rEff = kEarthRadiusM / (1.0 - budget.refraction);
 
+    const double steepShare = g.steepStepShare();
+    const bool surfaceModel = steepShare >= kSurfaceModelSteepShare;
+    plan.nearFieldSteps = surfaceModel || quality == Quality::Full ? kSurfaceNearFieldSteps : kTerrainNearFieldSteps;
+    std::ostringstream nearWhy;
+    nearWhy.precision(3);
+    if (budget.nearFieldSteps >= 0) {
+        plan.nearFieldSteps = budget.nearFieldSteps;
+        nearWhy << "near_field_steps=" << plan.nearFieldSteps << " (given)";
+    } else {
+        nearWhy << "near_field_steps=" << plan.nearFieldSteps << " (" << 100 * steepShare
+                << " % of neighbour steps steeper than 45 deg: " << (surfaceModel ? "a surface model" : "terrain")
+                << (quality == Quality::Full ? "; full" : "")
+                << "; horizons over the nearest steps from each cell's own centre)";
+    }
     if (quality == Quality::Full) {
         plan.maxDistanceM = std::max(diagonal, minCell);
         plan.curvature = true;
@@ -167,7 +181,8 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                         describe("direction_tolerance_deg", plan.directionToleranceDeg, "full"),
                         describe("sky_directions", plan.skyDirections, "full"),
                         "sky_scan_lines=two (full: each cell between its two bracketing lines)",
-                        describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), "full")};
+                        describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), "full"),
+                        nearWhy.str()};
         plan.expectedError = sweepExpectedError(terrain, -90);
         applyUserDistance(terrain, budget, plan);
         return plan;
@@ -205,7 +220,8 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     describe("sky_directions", plan.skyDirections, "measured sky error budget"),
                     "sky_scan_lines=nearest (sky and aperture integrals: one scan line per cell; their "
                     "error stays within the sky error budget)",
-                    describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), lattice.str())};
+                    describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), lattice.str()),
+                    nearWhy.str()};
     plan.expectedError = sweepExpectedError(terrain, budget.lowestElevationDeg);
     if (budget.toleranceDeg > kDefaultToleranceDeg) {
         // Measured at the default budget. A looser one lets auto add up to the tolerance to
@@ -227,6 +243,7 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
     p.refraction = refraction;
     p.directionToleranceDeg = plan.directionToleranceDeg;
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
+    p.nearFieldSteps = plan.nearFieldSteps;
     p.threads = threads;
     return p;
 }
@@ -241,6 +258,7 @@ SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, 
     p.directionToleranceDeg = plan.directionToleranceDeg;
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : 0.0;
+    p.nearFieldSteps = plan.nearFieldSteps;
     return p;
 }
 

@@ -22,6 +22,16 @@ enum class Quality { Auto, Full };
 Quality parseQuality(std::string_view name);
 std::string_view qualityName(Quality q);
 
+/// A scene with at least this share of steep neighbour steps (SteepSteps: slopes over 45 deg
+/// between adjacent cells) is a surface model: walls and roof edges, not terrain. The project's
+/// terrain DEMs measure 0–1.6 %, its surface models 11–32 %.
+inline constexpr double kSurfaceModelSteepShare = 0.05;
+/// Near field of the sweeps on terrain and on surface models (line steps): each is the smallest
+/// that meets the horizon targets on its kind of scene, measured against the reference
+/// (docs/accuracy.md, "Surface models").
+inline constexpr int kTerrainNearFieldSteps = 4;
+inline constexpr int kSurfaceNearFieldSteps = 16;
+
 /// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h).
 inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections);
 /// Directions used by `full`.
@@ -43,6 +53,8 @@ struct QualityBudget {
     /// > 0: the search distance the user gave (--max-distance), used as is; the other choices
     /// (curvature) and the expected error's scope follow from it.
     double maxDistanceM = 0;
+    /// >= 0: the near field the user gave (HorizonParams::nearFieldSteps), used as is.
+    int nearFieldSteps = -1;
 };
 
 /// The horizon error a plan states (DEMLIGHT_EXPECTED_ERROR_DEG): the sweep's measured |error|
@@ -81,6 +93,10 @@ struct ScenePlan {
     bool integralNearestLine = true;
     /// The search distance was given by the user (--max-distance), not chosen by the plan.
     bool userDistance = false;
+    /// HorizonParams::nearFieldSteps of every sweep: kSurfaceNearFieldSteps on surface models
+    /// (SteepSteps share at least kSurfaceModelSteepShare) and under full, else
+    /// kTerrainNearFieldSteps.
+    int nearFieldSteps = 0;
     std::size_t sunLatticeStepCells = 64;  ///< SPA evaluated every this many cells
     ExpectedError expectedError;           ///< what the horizons of this plan are within
     /// One line per choice, "name=value (why)", for metadata and --verbose.

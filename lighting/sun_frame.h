@@ -38,6 +38,8 @@ struct SunFrameParams {
     /// docs/bench/auto_vs_full.csv, sun rows' notes;
     /// docs/measurements.md#lightingsun_frameh-sunframeparamsnearestline).
     bool nearestLine = false;
+    /// As HorizonParams::nearFieldSteps (the scene plan's).
+    int nearFieldSteps = 0;
     int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.
     SunSweepStrategy strategy = SunSweepStrategy::Cheapest;

@@ -46,6 +46,12 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
     budget.lowestElevationDeg = kDefaultLowestElevationDeg;
     budget.refraction = search.refraction;
     budget.maxDistanceM = search.maxDistanceM.value_or(0.0);
+    if (search.nearFieldSteps) {
+        if (*search.nearFieldSteps < 0 || *search.nearFieldSteps > kMaxNearFieldSteps)
+            throw FieldError("nearFieldSteps", " " + std::to_string(*search.nearFieldSteps) + ": must be in [0, " +
+                                                   std::to_string(kMaxNearFieldSteps) + "]");
+        budget.nearFieldSteps = *search.nearFieldSteps;
+    }
     return planScene(terrain, search.quality, budget);
 }
 

@@ -60,6 +60,9 @@ struct SearchRequest {
     Quality quality = Quality::Auto;
     /// Horizon error budget of Quality::Auto (degrees).
     double toleranceDeg = kDefaultToleranceDeg;
+    /// Near field of the sweeps (HorizonParams::nearFieldSteps, 0 to kMaxNearFieldSteps); none =
+    /// the scene plan's.
+    std::optional<int> nearFieldSteps;
 };
 
 /// The scene plan (lighting/quality.h) of a request on a terrain; the request's maxDistanceM

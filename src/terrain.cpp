@@ -122,8 +122,30 @@ Terrain cropTerrain(const Terrain& t, std::size_t col0, std::size_t row0, std::s
 std::shared_ptr<const GridFrame> frameOf(const Terrain& t) {
     if (t.frame) return t.frame;
     const auto [lo, hi] = heightRangeM(t.heightsM);
+    SteepSteps steps;
+    steps.add(t.heightsM, 0, t.cellWidthM, t.cellHeightM);
     return std::make_shared<const GridFrame>(
-        GridFrame{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, lo, hi});
+        GridFrame{t.width(), t.height(), t.cellWidthM, t.cellHeightM, t.convergence, lo, hi, steps.share()});
+}
+
+void SteepSteps::add(const Grid<float>& rows, std::size_t row0, const std::vector<double>& cellWidthM,
+                     const std::vector<double>& cellHeightM) {
+    const std::size_t w = rows.width();
+    for (std::size_t r = 0; r < rows.height(); ++r) {
+        const float* z = rows.rowPtr(r);
+        const std::size_t row = row0 + r;
+        const double across = cellWidthM[row];
+        // Between this row and the one above: the mean of their cell heights apart.
+        const double down = row > 0 ? 0.5 * (cellHeightM[row] + cellHeightM[row - 1]) : 0.0;
+        const bool above = row > 0 && lastRow_.size() == w;
+        for (std::size_t c = 0; c < w; ++c) {
+            if (std::isnan(z[c])) continue;
+            ++valid;
+            if (c + 1 < w && !std::isnan(z[c + 1]) && std::abs(z[c + 1] - z[c]) > across) ++steep;
+            if (above && !std::isnan(lastRow_[c]) && std::abs(lastRow_[c] - z[c]) > down) ++steep;
+        }
+        lastRow_.assign(z, z + w);
+    }
 }
 
 Terrain tileOf(const Terrain& t, const CellWindow& w) { return tileOf(t, w, frameOf(t)); }
@@ -153,6 +175,13 @@ FullGridRef fullGrid(const Terrain& t) {
 std::pair<float, float> FullGridRef::heightRangeM() const {
     if (terrain.frame) return {terrain.frame->lowM, terrain.frame->highM};
     return demlight::heightRangeM(terrain.heightsM);
+}
+
+double FullGridRef::steepStepShare() const {
+    if (terrain.frame) return terrain.frame->steepStepShare;
+    SteepSteps steps;
+    steps.add(terrain.heightsM, 0, terrain.cellWidthM, terrain.cellHeightM);
+    return steps.share();
 }
 
 double FullGridRef::minCellM() const {
