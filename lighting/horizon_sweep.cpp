@@ -574,6 +574,25 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
             }
         }
+        // Delayed serving reads and writes the cells `delay` steps ahead of the walk: fetch
+        // those kPrefetchSteps ahead of that (both planes: two lines serve each cell).
+        if (const long servedAhead = m + mStep * (delay + kPrefetchSteps);
+            delay > 0 && servedAhead >= mLo && servedAhead < geo.majorHi) {
+            const long servedBase = geo.base[static_cast<std::size_t>(servedAhead)];
+            const long j0 = std::max(nLo, kBegin + servedBase - 1);
+            const long j1 = std::min(nHi - 1, kEnd + servedBase + 1);
+            const long stride = XMajor ? 1 : kFloatsPerCacheLine;
+            for (long j = j0; j <= j1; j += stride) {
+                __builtin_prefetch(H + index(servedAhead, j));
+                __builtin_prefetch(planeA + index(servedAhead, j), 1);
+                if (!geo.nearestLine) __builtin_prefetch(planeB + index(servedAhead, j), 1);
+            }
+            if (j0 <= j1) {
+                __builtin_prefetch(H + index(servedAhead, j1));
+                __builtin_prefetch(planeA + index(servedAhead, j1), 1);
+                if (!geo.nearestLine) __builtin_prefetch(planeB + index(servedAhead, j1), 1);
+            }
+        }
         // Skip steps where every line of the block lies outside the grid.
         const long n0First = kBegin + base, n0Last = kEnd - 1 + base;
         const bool anyInside = n0Last >= nLo - 1 && n0First <= nHi - 1;
@@ -914,8 +933,12 @@ void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row,
     for (const double d : ds) {
         const double major = geo.farSign * d / lineStepM, minor = geo.slope * major;
         NearPoint p;
-        p.dc = geo.xMajor ? major : minor;
-        p.dr = geo.xMajor ? minor : major;
+        // A crossing lands on its grid line up to rounding: put it there, so that it takes the
+        // two taps of that line and not a third of weight 1e-16 (which a void beside it would
+        // reweight to the whole height).
+        const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-9 ? std::round(v) : v; };
+        p.dc = snap(geo.xMajor ? major : minor);
+        p.dr = snap(geo.xMajor ? minor : major);
         p.invDistance = static_cast<float>(1.0 / d);
         p.drop = static_cast<float>(0.5 * d * invR);
         const double c0 = std::floor(p.dc), r0 = std::floor(p.dr);
@@ -939,8 +962,8 @@ void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row,
     }
 }
 
-/// The near-field slope of one cell where the fast loop cannot serve it (a tap on nodata or
-/// beyond the terrain): the reference's rule at each point, heights clamped to the full grid's
+/// The near-field slope of one cell whose stencil reaches beyond the terrain (the DEM's edge):
+/// the reference's rule at each point, heights clamped to the full grid's
 /// outer cell centres, nodata taps dropped and the rest reweighted, the march ending where the
 /// ray leaves the full grid. (col, row) are on the full grid; taps beyond the terrain count as
 /// nodata (a served cell's halo holds every point within its search distance).
@@ -1039,10 +1062,29 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         }
     }
     for (long i = 0; i < static_cast<long>(cols); ++i) {
-        if (i >= fastBegin && i < fastEnd && !flag[i]) continue;
+        const bool fast = i >= fastBegin && i < fastEnd;
+        if (fast && !flag[i]) continue;
         const std::size_t col = w.col0 + static_cast<std::size_t>(i);
         if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) continue;
-        out[static_cast<std::size_t>(i)] = nearFieldAt(t, g, cells, col, row, stencil);
+        if (!fast) {
+            out[static_cast<std::size_t>(i)] = nearFieldAt(t, g, cells, col, row, stencil);
+            continue;
+        }
+        // Taps inside the terrain, some on voids: the same rule as nearFieldAt (void taps dropped,
+        // the rest reweighted) on the stencil's taps, which need no clamping here.
+        const float h = h0[i];
+        float slopeBest = -std::numeric_limits<float>::infinity();
+        for (const NearPoint& p : stencil) {
+            float sum = 0, weight = 0;
+            for (int k = 0; k < p.taps; ++k) {
+                const float v = h0[i + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k]];
+                if (std::isnan(v) || !(p.weight[k] > 0.0f)) continue;
+                sum = std::fma(p.weight[k], v - h, sum);
+                weight += p.weight[k];
+            }
+            if (weight > 0.0f) slopeBest = std::max(slopeBest, std::fma(sum / weight, p.invDistance, -p.drop));
+        }
+        out[static_cast<std::size_t>(i)] = slopeBest;
     }
 }
 

@@ -78,8 +78,19 @@ double cellAspectRatio(const Terrain& t) {
     return ratio;
 }
 
+/// Surface models (SteepSteps share >= kSurfaceModelSteepShare) with the surface near field:
+/// the horizon targets for them, which tests/urban_test.cpp enforces on the shared surface
+/// models (measured there: median 0.030-0.035, p99 2.58-2.63 deg over every horizon).
+constexpr double kSurfaceMedianErrorDeg = 0.05;
+constexpr double kSurfaceP99ErrorDeg = 3.0;
+constexpr const char* kSurfaceErrorSource =
+    "sweep vs whole-DEM reference on two city and dune-edge surface models, tests/urban_test.cpp";
+
 ExpectedError sweepExpectedError(const Terrain& t, double aboveElevationDeg) {
     const bool anisotropic = cellAspectRatio(t) >= kAnisotropicCellRatio;
+    if (!anisotropic && fullGrid(t).steepStepShare() >= kSurfaceModelSteepShare) {
+        return ExpectedError{kSurfaceMedianErrorDeg, kSurfaceP99ErrorDeg, aboveElevationDeg, kSurfaceErrorSource};
+    }
     ExpectedError e;
     e.medianDeg = anisotropic ? kAnisotropicMedianErrorDeg : kSweepMedianErrorDeg;
     e.p99Deg = anisotropic ? kAnisotropicP99ErrorDeg : kSweepP99ErrorDeg;

@@ -14,6 +14,7 @@
 #include "lighting/aperture.h"
 #include "lighting/directions.h"
 #include "lighting/horizon.h"
+#include "lighting/quality.h"
 #include "lighting/sky.h"
 #include "lighting/surface.h"
 
@@ -141,8 +142,10 @@ TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     HorizonParams p;
     p.maxDistanceM = std::min(defaultMaxDistanceM(t), 0.25 * sideM);
     p.threads = kThreads;
-    // As `demlight sky` sweeps under --quality auto (ScenePlan::integralNearestLine).
+    // As `demlight sky` sweeps under --quality auto (ScenePlan::integralNearestLine, and the
+    // plan's near field: the surface models' on the DSMs).
     p.nearestLine = true;
+    p.nearFieldSteps = planScene(t, Quality::Auto, QualityBudget{}).nearFieldSteps;
 
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<RefCell> ref = reference(t, normals, p);
@@ -203,9 +206,12 @@ TEST_P(SkyRealDem, DirectionsVsDenseReference) {
 INSTANTIATE_TEST_SUITE_P(SharedDems, SkyRealDem,
                          ::testing::Values(Case{"N44W072.hgt", 400, 400},
                                            Case{"big_tujunga_srtm30m_utm11.tif", 600, 500},
-                                           Case{"svalbard_longyearbyen_npi_dtm20.tif", 600, 500}),
+                                           Case{"svalbard_longyearbyen_npi_dtm20.tif", 600, 500},
+                                           Case{"../dsm/nyc_ccny_harlem_1m_dsm.tif"},
+                                           Case{"../dsm/ahn_monster_westland_nl_0p5m_dsm.tif"}),
                          [](const ::testing::TestParamInfo<Case>& param) {
-                             std::string name = param.param.file.substr(0, param.param.file.find('.'));
+                             const std::string file = param.param.file.substr(param.param.file.rfind('/') + 1);
+                             std::string name = file.substr(0, file.find('.'));
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
                          });

@@ -133,6 +133,27 @@ TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
     }
 }
 
+TEST_P(TiledSweep, NearFieldTilesToo) {
+    // The near field's delayed hull queries, grid-line crossings and per-row stencils, with and
+    // without a range limit whose chunks begin inside some cells' near fields.
+    const Case c = GetParam();
+    const auto t = caseTerrain(c);
+    if (!t) GTEST_SKIP() << c.dem << " absent";
+    for (const int steps : {4, 16}) {
+        for (const double azimuth : {37.0, 143.5, 270.0}) {
+            for (const double distance : {2500.0, std::numeric_limits<double>::infinity()}) {
+                HorizonParams p;
+                p.azimuthDeg = azimuth;
+                p.maxDistanceM = distance;
+                p.nearFieldSteps = steps;
+                p.threads = 2;
+                EXPECT_EQ(tiledMismatches(*t, p, c.sweepTiles[0]), 0u)
+                    << c.dem << " near field " << steps << " azimuth " << azimuth << " distance " << distance;
+            }
+        }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(RealDems, TiledSweep, ::testing::ValuesIn(kCases),
                          [](const auto& testInfo) { return demTestName(testInfo.param.dem); });
 INSTANTIATE_TEST_SUITE_P(Samples, TiledSweep, ::testing::ValuesIn(kSamples),
