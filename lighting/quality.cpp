@@ -207,7 +207,9 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     plan.curvature = curvatureDeg >= kCurvatureShareOfTolerance * budget.toleranceDeg;
     plan.directionToleranceDeg = 0;  // the sweep's automatic rule ...
     plan.directionToleranceFloorDeg = std::min(budget.toleranceDeg, kMaxDirectionFloorDeg);  // ... or the budget
-    plan.skyDirections = kAutoSkyDirections;
+    // Surface models: walls make the horizon change fast with azimuth, and 16 sectors miss
+    // it (sky_K off by 0.009 even from reference horizons); 64 meet the sky budget there.
+    plan.skyDirections = surfaceModel ? kFullSkyDirections : kAutoSkyDirections;
     plan.integralNearestLine = true;
     plan.sunLatticeStepCells = kAutoSunLatticeCells;
     std::ostringstream why;
@@ -228,7 +230,9 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     "direction off by theta changes a horizon by about theta |dh/dA| at any distance; "
                     "sky and aperture integrals: at least 1/16 of their sector width, over the whole DEM "
                     "unless a range limit saves sweep work)",
-                    describe("sky_directions", plan.skyDirections, "measured sky error budget"),
+                    describe("sky_directions", plan.skyDirections,
+                             surfaceModel ? "measured sky error budget on surface models"
+                                          : "measured sky error budget"),
                     "sky_scan_lines=nearest (sky and aperture integrals: one scan line per cell; their "
                     "error stays within the sky error budget)",
                     describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), lattice.str()),

@@ -32,7 +32,8 @@ inline constexpr double kSurfaceModelSteepShare = 0.05;
 inline constexpr int kTerrainNearFieldSteps = 4;
 inline constexpr int kSurfaceNearFieldSteps = 16;
 
-/// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h).
+/// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h); on
+/// surface models kFullSkyDirections (the sky budget needs them there: docs/accuracy.md).
 inline constexpr int kAutoSkyDirections = static_cast<int>(kDefaultSkyDirections);
 /// Directions used by `full`.
 inline constexpr int kFullSkyDirections = 64;

@@ -371,6 +371,7 @@ TEST_P(SurfaceModel, HorizonsMeetTheTargetsAgainstTheReference) {
     if (!dem) GTEST_SKIP() << "shared surface model not found: " << GetParam();
     const ScenePlan plan = planScene(*dem, Quality::Auto, QualityBudget{});
     ASSERT_EQ(plan.nearFieldSteps, kSurfaceNearFieldSteps) << "a surface model by its steep steps";
+    EXPECT_EQ(plan.skyDirections, kFullSkyDirections) << "sky integrals of a surface model need more sectors";
     const HorizonParams p = planHorizonParams(plan, kDefaultRefraction, 2);
     const DsmStats st = compareWithReference(*dem, p, 1500);
     std::cout << GetParam() << ": " << st.count << " horizons, median " << st.median << " deg, p99 " << st.p99
