@@ -4,6 +4,7 @@
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "products/sunhours.h"
+#include "products/timelapse.h"
 #include "src/error.h"
 
 #include <optional>
@@ -21,6 +22,7 @@ struct SunhoursOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     double albedo = kDefaultAlbedo;
     std::optional<std::size_t> skyDirections;
+    std::string horizonMode = "auto";
 };
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
@@ -35,6 +37,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     r.sunDiameterDeg = o.sunDiameterDeg;
     r.albedo = o.albedo;
     r.skyDirections = o.skyDirections;
+    if (o.horizonMode != "auto") r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
     r.search = o.search.request;
     return r;
 }
@@ -42,12 +45,17 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 /// Bands of the output: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 constexpr std::size_t kSunhoursBands = 5;
 
+/// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions.
+std::size_t sunhoursGrids(std::size_t stackDirections) { return kSunhoursBands + stackDirections; }
+
 RasterCall sunhoursCall(const SunhoursOptions& o) {
-    return singleRasterCall(
-        "sunhours", o.dem, o.tiling, o.search.request, kSunhoursBands,
-        [request = sunhoursRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
-            return sunhoursProduct(dem, w, request, p);
-        });
+    SunhoursRequest request = sunhoursRequest(o);
+    // The memory of tiles assumes an explicit stack's directions, else the exact mode's bands.
+    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request,
+                            sunhoursGrids(request.stackDirections.value_or(0)),
+                            [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+                                return sunhoursProduct(dem, w, request, p);
+                            });
 }
 
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
@@ -55,16 +63,22 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunhoursBands, ctx);
+    // The mode once for the whole DEM (every tile would choose the same), so tiles are sized for it.
+    SunhoursRequest chosen = request;
+    chosen.stackDirections = chooseSunhoursStack(dem, request);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(*chosen.stackDirections), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
-        [&](const CellWindow& w, const ProgressFn& p) { return sunhoursProduct(dem, w, request, p); },
+        [&](const CellWindow& w, const ProgressFn& p) { return sunhoursProduct(dem, w, chosen, p); },
         [](const SunhoursResult& s) { return std::vector<const ProductResult*>{&s}; });
     const double seconds = secondsSince(start);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(r.instants) + " instants every " + o.step + ", " + std::to_string(r.instantsSwept) +
-                  " with the sun up, " + formatSeconds(seconds) + " compute");
+                  " with the sun up, horizons " +
+                  (r.stackDirections > 0 ? "interpolated from " + std::to_string(r.stackDirections) + " directions"
+                                         : std::string("swept exactly per instant")) +
+                  ", " + formatSeconds(seconds) + " compute");
 }
 
 }  // namespace
@@ -86,6 +100,12 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
+    cmd->add_option("--horizon-mode", o->horizonMode,
+                    "auto (with --quality auto: interpolated:64 when the instants with the sun up make it cheaper, "
+                    "else exact; full: exact), exact (a sweep per instant along its sun azimuth) or "
+                    "interpolated[:N] (N directions swept once, horizons interpolated in azimuth; N = 64 by default; "
+                    "the sky term then uses the N directions)")
+        ->capture_default_str();
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(sunhoursCall(*o)) : runSunhours(*o, ctx); });

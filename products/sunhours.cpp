@@ -39,8 +39,29 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
     return s;
 }
 
+/// Costs of the two horizon modes in units of one exact sun frame (computeSunFrame at a mid-day
+/// sun), measured on the 1201² and 3601² SRTM tiles (docs/performance.md, "Sun hours: exact or
+/// interpolated"): one direction of the stack (two scan lines, out to the lowest sun's shadows),
+/// one interpolated instant (sunLightFromStack), and one sky direction that the stack saves.
+constexpr double kStackSweepCost = 1.0;
+constexpr double kStackInstantCost = 0.5;
+constexpr double kSkySweepCost = 0.5;
+
+/// Instants with the sun up somewhere on the DEM, as integrateSunHours counts them (the sun
+/// field's highest elevation at or above kSunDownElevationDeg), from a lattice of the DEM's four
+/// corners: the elevation is monotonic enough across a DEM that its corners bound it.
+std::size_t instantsWithSunUp(const DemSource& source, const std::vector<UtcInstant>& instants) {
+    const std::size_t wholeStep = std::max(source.width(), source.height());
+    std::size_t up = 0;
+    for (UtcInstant t : instants)
+        if (computeSunField(source, t, SolarSite{}, SpaOptions{}, wholeStep).elevationRange().second >=
+            kSunDownElevationDeg)
+            ++up;
+    return up;
+}
+
 SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const ScenePlan& plan,
-                               const SunhoursRequest& r, const ProgressFn& progress) {
+                               const SunhoursRequest& r, std::size_t stackDirections, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     // Each instant's sun on the whole DEM, read by this window (the same bits on its cells).
     const auto fieldAt = [&](UtcInstant when, const SolarSite& site) {
@@ -54,13 +75,23 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     const SolarSite site;  // default pressure and temperature; position from each lattice node
     const Normals normals = computeNormals(t, r.search.threads);
 
-    // Sky term once: it does not depend on the sun's position.
-    const std::size_t skyDirections = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams hp = integralParams(r.search, plan, t, skyDirections);
+    // Sky term once: it does not depend on the sun's position. With a stack, from the stack's
+    // directions (which also give every instant's sun horizons), as the time-lapse does.
+    const std::size_t skyDirections =
+        stackDirections > 0 ? stackDirections : r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams hp = stackDirections > 0 ? stackHorizonParams(r.search, plan, t, r.sunDiameterDeg)
+                                                 : integralParams(r.search, plan, t, skyDirections);
     SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
-    ProgressCounter skyCounter(progress, "sky", t.heightsM.size() * skyDirections);
-    sweepDirections(t, hp, skyDirections, [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); },
-                    &skyCounter);
+    ProgressCounter skyCounter(progress, stackDirections > 0 ? "horizons" : "sky", t.heightsM.size() * skyDirections);
+    HorizonStack stack;
+    if (stackDirections > 0) {
+        stack = computeHorizonStack(t, stackDirections, hp, &skyCounter);
+        for (std::size_t i = 0; i < stackDirections; ++i) skyAcc.addDirection(i, stack.angleDeg[i]);
+        params.stack = &stack;
+    } else {
+        sweepDirections(t, hp, skyDirections,
+                        [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); }, &skyCounter);
+    }
     const Grid<float> skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
 
     ProgressCounter counter(progress, "sunhours", seq.instants.size());
@@ -100,6 +131,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
         {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
         {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_HORIZON_MODE", stackDirections > 0 ? "interpolated:" + std::to_string(stackDirections) : "exact"},
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
         {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
         {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
@@ -112,6 +144,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     static_cast<ProductResult&>(out) = makeResult(dem, "sunhours", meta);
     out.instants = seq.instants.size();
     out.instantsSwept = maps.instantsSwept;
+    out.stackDirections = stackDirections;
     const std::string zone = r.zone.describe();
     out.bands = {
         {"sun_hours", "hours of direct sun weighted by visibility (h)", std::move(maps.sunHours), {}},
@@ -132,6 +165,20 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
 
 }  // namespace
 
+std::size_t chooseSunhoursStack(const DemSource& source, const SunhoursRequest& request) {
+    if (request.stackDirections) return *request.stackDirections;
+    if (request.search.quality == Quality::Full) return 0;
+    const Sequence seq = makeSequence(localDay(request.firstDay, request.zone), localDay(request.lastDay, request.zone),
+                                      request.zone, request.step);
+    const auto up = static_cast<double>(instantsWithSunUp(source, seq.utc));
+    const auto n = static_cast<double>(kDefaultStackDirections);
+    const auto sky = static_cast<double>(
+        request.skyDirections.value_or(static_cast<std::size_t>(planFor(request.search, source.geometry().terrain).skyDirections)));
+    const double exact = up + sky * kSkySweepCost;
+    const double interpolated = n * kStackSweepCost + up * kStackInstantCost;
+    return interpolated < exact ? kDefaultStackDirections : 0;
+}
+
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
     if (request.lastDay < request.firstDay)
@@ -144,8 +191,11 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
+    if (request.stackDirections && *request.stackDirections != 0 && (*request.stackDirections < 4 || *request.stackDirections > 720))
+        throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
+    const std::size_t stackDirections = chooseSunhoursStack(source, request);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
@@ -158,7 +208,7 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
     }
     return onWindow<SunhoursResult>(source, window, halo,
-                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, progress); });
+                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, stackDirections, progress); });
 }
 
 }  // namespace demlight

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -170,6 +171,67 @@ TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
     const RasterSummary mask = inspectRaster((dir / "h.truncated.tif").string());
     EXPECT_EQ(mask.dataTypes[0], "Byte");
     EXPECT_EQ(mask.descriptions[1], "truncated_azimuth=123.5");
+}
+
+/// `gdalinfo -json PATH` parsed (the reader users run; GDAL's own view of the file).
+nlohmann::json gdalinfoJson(const std::string& path) {
+    std::FILE* pipe = popen(("gdalinfo -json '" + path + "' 2>/dev/null").c_str(), "r");
+    if (!pipe) return {};
+    const std::string text = testing::readAll(pipe);
+    pclose(pipe);
+    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+}
+
+// --ot Int16: horizons in 16-bit fixed point that every reader applying GDAL's scale and offset
+// reads as degrees, within half a step of the Float32 output (the rounding is the only change),
+// nodata exactly at the same cells, negative (downhill) horizons kept. One piece as GTiff, and
+// in tiles as COG (the streamed file is read back and rewritten at commit).
+TEST(CliOutputs, HorizonInt16IsDegreesInFixedPointWithinHalfAStep) {
+    const fs::path dir = freshDir("demlight_cli_horizon_int16");
+    const std::string f32 = (dir / "f32.tif").string(), i16 = (dir / "i16.tif").string(),
+                      cog = (dir / "i16cog.tif").string();
+    const std::string common = "-q horizon " + kHelens + " --azimuth 0 123.5 --threads 2 --max-distance 3000 -o ";
+    ASSERT_EQ(runDemlight(common + f32).exitCode, 0);
+    const auto r = runDemlight(common + i16 + " --ot Int16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_EQ(runDemlight(common + cog + " -ot Int16 -of COG --tile-size 173").exitCode, 0);
+
+    const std::vector<Grid<float>> reference = readRasterBands(f32);
+    for (const std::string& path : {i16, cog}) {
+        const nlohmann::json info = gdalinfoJson(path);
+        ASSERT_TRUE(info.contains("bands")) << path;
+        ASSERT_EQ(info["bands"].size(), 2u);
+        const std::vector<Grid<float>> raw = readRasterBands(path);  // stored integers, nodata as NaN
+        for (std::size_t b = 0; b < 2; ++b) {
+            const nlohmann::json& band = info["bands"][b];
+            EXPECT_EQ(band["type"], "Int16");
+            EXPECT_EQ(band["noDataValue"], -32768);
+            EXPECT_EQ(band["unit"], "deg");
+            const double scale = band.value("scale", 1.0), offset = band.value("offset", 0.0);
+            EXPECT_NEAR(scale, 90.0 / 32767.0, 1e-12);  // the signed -90..90 deg range
+            EXPECT_EQ(offset, 0.0);
+            std::size_t voids = 0, negative = 0;
+            double worst = 0;
+            for (std::size_t k = 0; k < raw[b].size(); ++k) {
+                const float want = reference[b].data()[k], stored = raw[b].data()[k];
+                ASSERT_EQ(std::isnan(want), std::isnan(stored)) << path << " cell " << k;
+                if (std::isnan(want)) {
+                    ++voids;
+                    continue;
+                }
+                worst = std::max(worst, std::abs(stored * scale + offset - want));
+                if (want < -0.01f) {
+                    ++negative;
+                    EXPECT_LT(stored, 0.0f) << k;
+                }
+            }
+            EXPECT_EQ(voids, 4151u);  // exactly the DEM's nodata cells
+            EXPECT_GT(negative, 1000u);
+            EXPECT_LE(worst, scale / 2 * (1 + 1e-4)) << path << " band " << b + 1;  // float rounding of the input
+        }
+    }
+    EXPECT_EQ(inspectRaster(cog).imageStructure.at("LAYOUT"), "COG");
+    EXPECT_EQ(inspectRaster((dir / "i16.truncated.tif").string()).dataTypes[0], "Byte");
 }
 
 // --date in a zone far from the DEM's (UTC at 122 W): the day's sunset falls after that zone's
