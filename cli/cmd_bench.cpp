@@ -36,7 +36,7 @@ struct BenchOptions {
 /// The chart (gnuplot): median error against time per cell and direction, log-log, one colour
 /// per method family, the Pareto front joined, peers as large squares, the reference (error 0)
 /// at the floor. Labels sit on alternate sides by row so that neighbours do not overlap.
-constexpr const char* kChartScript = R"(# Drawn by demlight bench from bench.csv; rerun: gnuplot -e "csv='bench.csv'; out='bench.png'; term='png'" bench.gnuplot
+constexpr const char* kChartScript = R"gp(# Drawn by demlight bench from bench.csv; rerun: gnuplot -e "csv='bench.csv'; out='bench.png'; term='png'" bench.gnuplot
 floor = 1e-3
 set datafile separator comma
 if (term eq 'svg') { set terminal svg size 1100,700 font "DejaVu Sans,12" } else { set terminal pngcairo size 1100,700 font "DejaVu Sans,11" }
@@ -61,7 +61,7 @@ plot front using 5:(e($6)) with lines lw 2 lc rgb "#d62728" title "Pareto front"
      '' skip 1 using 5:(fam("reference")) with points pt 9 ps 1.8 lc rgb "#2ca02c" title "demlight reference (sample)", \
      '' skip 1 using 5:(strcol(1) ne "sweep" && strcol(1) ne "reference" ? e($6) : NaN) with points pt 5 ps 2 lc rgb "#ff7f0e" title "peers", \
      '' skip 1 using 5:(e($6)):(@lab) with labels left offset 1,(side($0) * 0.8) font ",9" noenhanced notitle
-)";
+)gp";
 
 std::string shellQuote(const std::string& s) {
     std::string q = "'";
