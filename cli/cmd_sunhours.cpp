@@ -22,7 +22,7 @@ struct SunhoursOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     double albedo = kDefaultAlbedo;
     std::optional<std::size_t> skyDirections;
-    std::string horizonMode = "auto";
+    std::string horizonMode = "exact";
 };
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
@@ -37,7 +37,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     r.sunDiameterDeg = o.sunDiameterDeg;
     r.albedo = o.albedo;
     r.skyDirections = o.skyDirections;
-    if (o.horizonMode != "auto") r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
+    r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
     r.search = o.search.request;
     return r;
 }
@@ -50,9 +50,8 @@ std::size_t sunhoursGrids(std::size_t stackDirections) { return kSunhoursBands +
 
 RasterCall sunhoursCall(const SunhoursOptions& o) {
     SunhoursRequest request = sunhoursRequest(o);
-    // The memory of tiles assumes an explicit stack's directions, else the exact mode's bands.
-    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request,
-                            sunhoursGrids(request.stackDirections.value_or(0)),
+    // The memory of tiles counts the stack's directions too.
+    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request, sunhoursGrids(request.stackDirections),
                             [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
                                 return sunhoursProduct(dem, w, request, p);
                             });
@@ -63,14 +62,12 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    // The mode once for the whole DEM (every tile would choose the same), so tiles are sized for it.
-    SunhoursRequest chosen = request;
-    chosen.stackDirections = chooseSunhoursStack(dem, request);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(*chosen.stackDirections), ctx);
+    // Tiles are sized for the bands and the stack's directions.
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(request.stackDirections), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
-        [&](const CellWindow& w, const ProgressFn& p) { return sunhoursProduct(dem, w, chosen, p); },
+        [&](const CellWindow& w, const ProgressFn& p) { return sunhoursProduct(dem, w, request, p); },
         [](const SunhoursResult& s) { return std::vector<const ProductResult*>{&s}; });
     const double seconds = secondsSince(start);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
@@ -101,10 +98,9 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
     cmd->add_option("--horizon-mode", o->horizonMode,
-                    "auto (with --quality auto: interpolated:64 when the instants with the sun up make it cheaper, "
-                    "else exact; full: exact), exact (a sweep per instant along its sun azimuth) or "
-                    "interpolated[:N] (N directions swept once, horizons interpolated in azimuth; N = 64 by default; "
-                    "the sky term then uses the N directions)")
+                    "exact (default: a sweep per instant along its sun azimuth) or interpolated[:N] (N directions "
+                    "swept once, 4..720, 64 by default; each instant's horizons interpolated in azimuth, and the "
+                    "sky term from the same N directions; close to exact, not the same bits)")
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);

@@ -39,27 +39,6 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
     return s;
 }
 
-/// Costs of the two horizon modes in units of one exact sun frame (computeSunFrame at a mid-day
-/// sun), measured on the 1201² and 3601² SRTM tiles (docs/performance.md, "Sun hours: exact or
-/// interpolated"): one direction of the stack (two scan lines, out to the lowest sun's shadows),
-/// one interpolated instant (sunLightFromStack), and one sky direction that the stack saves.
-constexpr double kStackSweepCost = 1.0;
-constexpr double kStackInstantCost = 0.5;
-constexpr double kSkySweepCost = 0.5;
-
-/// Instants with the sun up somewhere on the DEM, as integrateSunHours counts them (the sun
-/// field's highest elevation at or above kSunDownElevationDeg), from a lattice of the DEM's four
-/// corners: the elevation is monotonic enough across a DEM that its corners bound it.
-std::size_t instantsWithSunUp(const DemSource& source, const std::vector<UtcInstant>& instants) {
-    const std::size_t wholeStep = std::max(source.width(), source.height());
-    std::size_t up = 0;
-    for (UtcInstant t : instants)
-        if (computeSunField(source, t, SolarSite{}, SpaOptions{}, wholeStep).elevationRange().second >=
-            kSunDownElevationDeg)
-            ++up;
-    return up;
-}
-
 SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const ScenePlan& plan,
                                const SunhoursRequest& r, std::size_t stackDirections, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
@@ -165,20 +144,6 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
 
 }  // namespace
 
-std::size_t chooseSunhoursStack(const DemSource& source, const SunhoursRequest& request) {
-    if (request.stackDirections) return *request.stackDirections;
-    if (request.search.quality == Quality::Full) return 0;
-    const Sequence seq = makeSequence(localDay(request.firstDay, request.zone), localDay(request.lastDay, request.zone),
-                                      request.zone, request.step);
-    const auto up = static_cast<double>(instantsWithSunUp(source, seq.utc));
-    const auto n = static_cast<double>(kDefaultStackDirections);
-    const auto sky = static_cast<double>(
-        request.skyDirections.value_or(static_cast<std::size_t>(planFor(request.search, source.geometry().terrain).skyDirections)));
-    const double exact = up + sky * kSkySweepCost;
-    const double interpolated = n * kStackSweepCost + up * kStackInstantCost;
-    return interpolated < exact ? kDefaultStackDirections : 0;
-}
-
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
     if (request.lastDay < request.firstDay)
@@ -191,11 +156,11 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
-    if (request.stackDirections && *request.stackDirections != 0 && (*request.stackDirections < 4 || *request.stackDirections > 720))
-        throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
+    if (request.stackDirections != 0 && (request.stackDirections < 4 || request.stackDirections > 720))
+        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or 4..720");
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
-    const std::size_t stackDirections = chooseSunhoursStack(source, request);
+    const std::size_t stackDirections = request.stackDirections;
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.

@@ -29,19 +29,12 @@ struct SunhoursRequest {
     double albedo = kDefaultAlbedo;  ///< C of the sky term's interreflection
     /// Directions of the sky term; none = the plan's.
     std::optional<std::size_t> skyDirections;
-    /// How each instant's sun horizons are found: 0 = an exact sweep along its own azimuth;
-    /// N = interpolated in azimuth from N directions swept once (interpolatedSunHorizons; the
-    /// stack also gives the sky term, over its N sectors); none = chosen (chooseSunhoursStack).
-    std::optional<std::size_t> stackDirections;
+    /// How each instant's sun horizons are found: 0 (the default) = an exact sweep along its own
+    /// azimuth; N = interpolated in azimuth from N directions swept once (sunLightFromStack, the
+    /// `interpolated:N` horizon mode; the stack also gives the sky term, over its N sectors).
+    std::size_t stackDirections = 0;
     SearchRequest search;
 };
-
-/// What the request runs: 0 (exact sweeps) or N (a stack of N directions). An explicit
-/// stackDirections is taken as is; otherwise --quality full runs exact sweeps, and auto a stack
-/// of kDefaultStackDirections when its sweeps cost less than one exact sweep per instant with
-/// the sun up somewhere on the DEM (counted on the corners of the DEM, which bound its sun),
-/// by the measured costs of docs/performance.md ("Sun hours: exact or interpolated").
-std::size_t chooseSunhoursStack(const DemSource& source, const SunhoursRequest& request);
 
 struct SunhoursResult : ProductResult {
     std::size_t instants = 0, instantsSwept = 0;
