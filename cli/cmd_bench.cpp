@@ -35,13 +35,14 @@ struct BenchOptions {
 
 /// The chart (gnuplot): median error against time per cell and direction, log-log, one colour
 /// per method family, the Pareto front joined, peers as large squares, the reference (error 0)
-/// at the floor. Labels sit on alternate sides by row so that neighbours do not overlap.
+/// at the floor, each point labelled with its method and directions.
 constexpr const char* kChartScript = R"gp(# Drawn by demlight bench from bench.csv; rerun: gnuplot -e "csv='bench.csv'; out='bench.png'; term='png'" bench.gnuplot
 floor = 1e-3
+if (!exists("name")) name = csv
 set datafile separator comma
 if (term eq 'svg') { set terminal svg size 1100,700 font "DejaVu Sans,12" } else { set terminal pngcairo size 1100,700 font "DejaVu Sans,11" }
 set output out
-set title sprintf("%s: horizon error against time (error 0 drawn at %g deg)", name) noenhanced
+set title sprintf("%s: horizon error against time (error 0 drawn at %g deg)", name, floor) noenhanced
 set logscale xy
 set xlabel "time per cell and direction (ns, whole crop)"
 set ylabel "median |horizon - reference| (deg)"
@@ -55,12 +56,11 @@ e(x) = x > floor ? x : floor
 fam(f) = strcol(1) eq f ? e($6) : NaN
 front = "< awk -F, 'NR > 1 && $9 == 1' " . csv . " | sort -t, -k5,5g"
 lab = 'sprintf("%s N=%d", strcol(2), $3)'
-side(r) = (int(r) % 2) ? -1 : 1
 plot front using 5:(e($6)) with lines lw 2 lc rgb "#d62728" title "Pareto front", \
      csv skip 1 using 5:(fam("sweep")) with points pt 7 ps 1.4 lc rgb "#1f77b4" title "demlight sweep", \
      '' skip 1 using 5:(fam("reference")) with points pt 9 ps 1.8 lc rgb "#2ca02c" title "demlight reference (sample)", \
      '' skip 1 using 5:(strcol(1) ne "sweep" && strcol(1) ne "reference" ? e($6) : NaN) with points pt 5 ps 2 lc rgb "#ff7f0e" title "peers", \
-     '' skip 1 using 5:(e($6)):(@lab) with labels left offset 1,(side($0) * 0.8) font ",9" noenhanced notitle
+     '' skip 1 using 5:(e($6)):(@lab) with labels left offset 1,0.6 font ",9" noenhanced notitle
 )gp";
 
 std::string shellQuote(const std::string& s) {
@@ -73,9 +73,15 @@ bool onPath(const std::string& tool) {
     return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
 }
 
-/// GRASS r.horizon on the crop (written to DIR/peers/crop.tif): `directions` compass azimuths
-/// (-c, degrees -d), the scene's search distance; its module time alone, then each map exported
-/// and sampled at the scene's cells. Empty when GRASS is missing or fails (the note says why).
+/// GRASS r.horizon on the crop (written to DIR/peers/crop.tif): `directions` azimuths, the
+/// scene's search distance; its module time alone, then each map exported and sampled at the
+/// scene's cells. Empty when GRASS is missing or fails (the note says why).
+///
+/// r.horizon's raster mode names each map basename_ANGLE with ANGLE counterclockwise from east
+/// (000 = east, 090 = north), the decimal point as '_', with or without its -c flag (checked with
+/// GRASS 8.2: -c does not rename the maps); its directions are true directions (it corrects for
+/// the projection, as demlight's azimuths do). So a map's compass azimuth is 90 - ANGLE. Its
+/// maxdistance is in metres on any grid (its manual).
 std::optional<BenchRow> grassRow(const BenchScene& scene, std::size_t directions, const fs::path& dir, std::string& why) {
     if (!onPath("grass")) {
         why = "GRASS (grass) is not installed; Debian: apt-get install grass-core";
@@ -87,17 +93,15 @@ std::optional<BenchRow> grassRow(const BenchScene& scene, std::size_t directions
     WriteOptions w;
     w.nodata = -32768;
     writeRaster(crop.string(), {{&scene.crop.terrain.heightsM, nullptr, "height", "m"}}, scene.crop.band.ref, w);
-    // r.horizon takes its distance in map units: metres, or degrees on a lat/lon grid (the
-    // crop's middle row's cell height in degrees and metres converts).
     const Terrain& t = scene.crop.terrain;
-    const double metresPerUnit = scene.crop.crs.geographic ? t.cellHeightM[t.height() / 2] / std::abs(scene.crop.band.ref.geoTransform[5]) : 1.0;
-    const double distance = std::isfinite(scene.maxDistanceM) ? scene.maxDistanceM / metresPerUnit : 1e9;
+    const double distance = std::isfinite(scene.maxDistanceM) ? scene.maxDistanceM : 1e9;
     const fs::path timeFile = peers / "grass_seconds.txt";
+    const double stepDeg = 360.0 / static_cast<double>(directions);
     const std::string script =
         "set -e; r.external input=" + shellQuote(crop.string()) + " output=dem --quiet --overwrite; g.region raster=dem; "
-        "s=$(date +%s.%N); r.horizon -d -c elevation=dem step=" + formatNumber(360.0 / static_cast<double>(directions)) +
+        "s=$(date +%s.%N); r.horizon -d elevation=dem step=" + formatNumber(stepDeg) +
         " maxdistance=" + formatNumber(distance) + " output=hor --quiet --overwrite; e=$(date +%s.%N); "
-        "echo \"$e - $s\" | bc > " + shellQuote(timeFile.string()) + "; "
+        "awk -v s=\"$s\" -v e=\"$e\" 'BEGIN { printf \"%.6f\\n\", e - s }' > " + shellQuote(timeFile.string()) + "; "
         "for m in $(g.list type=raster pattern='hor_*'); do r.out.gdal input=$m output=" + shellQuote(peers.string()) +
         "/$m.tif format=GTiff type=Float32 --quiet --overwrite -c; done";
     const std::string command = "grass --tmp-location " + shellQuote(crop.string()) + " --exec bash -c " + shellQuote(script) +
@@ -110,22 +114,34 @@ std::optional<BenchRow> grassRow(const BenchScene& scene, std::size_t directions
     row.family = "GRASS r.horizon";
     row.method = "r.horizon";
     std::ifstream(timeFile) >> row.seconds;
-    // The maps are named hor_<compass azimuth> with the decimal point as '_'; in azimuth order.
-    std::vector<std::pair<double, fs::path>> maps;
+    if (!(row.seconds > 0)) {
+        why = "GRASS r.horizon: no module time in " + timeFile.string();
+        return std::nullopt;
+    }
+    // Each map at its place among the even compass azimuths (k * step from north, clockwise).
+    std::vector<fs::path> maps(directions);
+    std::size_t found = 0;
     for (const auto& entry : fs::directory_iterator(peers)) {
         const std::string stem = entry.path().stem().string();
         if (!stem.starts_with("hor_") || entry.path().extension() != ".tif") continue;
         std::string number = stem.substr(4);
         std::replace(number.begin(), number.end(), '_', '.');
-        maps.emplace_back(std::stod(number), entry.path());
+        const double compass = std::fmod(450.0 - std::stod(number), 360.0);
+        const double k = std::round(compass / stepDeg);
+        const auto index = static_cast<std::size_t>(k) % directions;
+        if (std::abs(compass - k * stepDeg) > 1e-3 || !maps[index].empty()) {
+            why = "GRASS r.horizon wrote an unexpected map " + stem;
+            return std::nullopt;
+        }
+        maps[index] = entry.path();
+        ++found;
     }
-    std::sort(maps.begin(), maps.end());
-    if (maps.size() != directions) {
-        why = "GRASS r.horizon wrote " + std::to_string(maps.size()) + " maps for " + std::to_string(directions) + " directions";
+    if (found != directions) {
+        why = "GRASS r.horizon wrote " + std::to_string(found) + " maps for " + std::to_string(directions) + " directions";
         return std::nullopt;
     }
     std::vector<std::vector<float>> atSample;
-    for (const auto& [azimuth, path] : maps) {
+    for (const fs::path& path : maps) {
         const RasterBand band = readRasterBand(path.string());
         std::vector<float> v;
         for (const CellIndex& c : scene.sample) v.push_back(band.values(c.col, c.row));
@@ -134,7 +150,7 @@ std::optional<BenchRow> grassRow(const BenchScene& scene, std::size_t directions
     scoreHorizons(scene, directions, atSample, row);
     const double cells = static_cast<double>(t.width() * t.height());
     row.nsPerCellPerDirection = row.seconds / cells / static_cast<double>(directions) * 1e9;
-    row.notes = "module time of r.horizon alone (one process, all directions); grid north = true north assumed";
+    row.notes = "module time of r.horizon alone (one process, all directions)";
     return row;
 }
 
@@ -219,8 +235,17 @@ void registerBench(CLI::App& app, CliContext& ctx) {
         ->check(finiteRange(1, 100))
         ->capture_default_str();
     cmd->add_flag("--peers", o->peers, "Also time and score GRASS r.horizon on the same crop, directions and distance");
-    cmd->add_option("--peer-directions", o->peerDirections, "Directions of the peers' run")
-        ->check(finiteRange(1, 360))
+    cmd->add_option("--peer-directions", o->peerDirections, "Directions of the peers' run (a multiple of 4)")
+        ->check(finiteRange(4, 360))
+        // r.horizon's directions run counterclockwise from east: they are the even compass
+        // azimuths of the sweeps only when north is one of them.
+        ->check(CLI::Validator(
+            [](const std::string& s) {
+                return s.find_first_not_of("0123456789") == std::string::npos && std::stoul(s) % 4 == 0
+                           ? std::string()
+                           : "must be a multiple of 4";
+            },
+            "multiple of 4"))
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     o->search.request.threads = 1;  // one core by default: comparable with r.horizon's one
