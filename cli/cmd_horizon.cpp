@@ -19,7 +19,15 @@ struct HorizonOptions {
     std::vector<double> azimuthsDeg;
     int directions = 0;
     std::string method = "sweep";
+    std::string dataType = "Float32";  ///< --ot: Float32 or Int16 (fixed point, horizonFixedPoint)
 };
+
+/// The output options of the horizons: -o, -of, -co, and --ot Int16 as fixed point.
+OutputOptions horizonOutput(const HorizonOptions& o) {
+    OutputOptions out = o.out;
+    if (o.dataType == "Int16") out.fixedPoint = horizonFixedPoint();
+    return out;
+}
 
 /// The horizon raster's metadata item that names its truncation mask raster.
 constexpr const char* kTruncationMaskKey = "DEMLIGHT_TRUNCATION_MASK";
@@ -44,6 +52,7 @@ HorizonRequest horizonRequest(const HorizonOptions& o) {
 std::vector<RasterTarget> horizonTargets(const OutputOptions& out) {
     OutputOptions maskOut = out;
     maskOut.path = truncationPath(out.path);
+    maskOut.fixedPoint.reset();  // a Byte mask either way
     return {{out, {{kTruncationMaskKey, maskOut.path}}}, {maskOut, {{kTruncationMaskKey, maskOut.path}}}};
 }
 
@@ -68,7 +77,7 @@ RasterCall horizonCall(const HorizonOptions& o) {
 
 void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const HorizonRequest request = horizonRequest(o);
-    const std::vector<RasterTarget> targets = horizonTargets(o.out);
+    const std::vector<RasterTarget> targets = horizonTargets(horizonOutput(o));
     checkOutputPath(targets[0].out, o.dem.path);
     checkOutputPath(targets[1].out.path, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
@@ -84,7 +93,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const std::size_t bands = request.azimuthsDeg.size();
     const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.width() * dem.height() * bands);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands) + (bands == 1 ? " horizon band" : " horizon bands") +
-                  ", degrees) and " + targets[1].out.path + " (truncation mask); max distance " +
+                  (o.dataType == "Int16" ? ", degrees in 16-bit fixed point" : ", degrees") + ") and " + targets[1].out.path + " (truncation mask); max distance " +
                   formatDistance(result.maxDistanceM) + "; " + formatSeconds(seconds) + " compute, " +
                   formatNumber(std::round(nsPerCellDir * 10) / 10) + " ns per cell per direction");
 }
@@ -106,6 +115,11 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
     addTilingOptions(cmd, o->tiling);
     cmd->add_option("--method", o->method, "sweep (fast, default) or reference (brute-force ray march)")
         ->check(CLI::IsMember({"sweep", "reference"}))
+        ->capture_default_str();
+    cmd->add_option("--ot", o->dataType,
+                    "Horizon band type (also -ot): Float32, or Int16 = 16-bit fixed point, -90..90 deg in steps of "
+                    "0.00275 deg with GDAL scale/offset (readers get degrees), half the size")
+        ->check(CLI::IsMember({"Float32", "Int16"}))
         ->capture_default_str();
     cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(horizonCall(*o)) : runHorizon(*o, ctx); });
 }

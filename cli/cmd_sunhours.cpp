@@ -4,6 +4,7 @@
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "products/sunhours.h"
+#include "products/timelapse.h"
 #include "src/error.h"
 
 #include <optional>
@@ -21,6 +22,7 @@ struct SunhoursOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     double albedo = kDefaultAlbedo;
     std::optional<std::size_t> skyDirections;
+    std::string horizonMode = "exact";
 };
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
@@ -35,6 +37,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     r.sunDiameterDeg = o.sunDiameterDeg;
     r.albedo = o.albedo;
     r.skyDirections = o.skyDirections;
+    r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
     r.search = o.search.request;
     return r;
 }
@@ -42,12 +45,16 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 /// Bands of the output: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 constexpr std::size_t kSunhoursBands = 5;
 
+/// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions.
+std::size_t sunhoursGrids(std::size_t stackDirections) { return kSunhoursBands + stackDirections; }
+
 RasterCall sunhoursCall(const SunhoursOptions& o) {
-    return singleRasterCall(
-        "sunhours", o.dem, o.tiling, o.search.request, kSunhoursBands,
-        [request = sunhoursRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
-            return sunhoursProduct(dem, w, request, p);
-        });
+    SunhoursRequest request = sunhoursRequest(o);
+    // The memory of tiles counts the stack's directions too.
+    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request, sunhoursGrids(request.stackDirections),
+                            [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
+                                return sunhoursProduct(dem, w, request, p);
+                            });
 }
 
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
@@ -55,7 +62,8 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunhoursBands, ctx);
+    // Tiles are sized for the bands and the stack's directions.
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(request.stackDirections), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -64,7 +72,10 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const double seconds = secondsSince(start);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(r.instants) + " instants every " + o.step + ", " + std::to_string(r.instantsSwept) +
-                  " with the sun up, " + formatSeconds(seconds) + " compute");
+                  " with the sun up, horizons " +
+                  (r.stackDirections > 0 ? "interpolated from " + std::to_string(r.stackDirections) + " directions"
+                                         : std::string("swept exactly per instant")) +
+                  ", " + formatSeconds(seconds) + " compute");
 }
 
 }  // namespace
@@ -86,6 +97,11 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
+    cmd->add_option("--horizon-mode", o->horizonMode,
+                    "exact (default: a sweep per instant along its sun azimuth) or interpolated[:N] (N directions "
+                    "swept once, 4..720, 64 by default; each instant's horizons interpolated in azimuth, and the "
+                    "sky term from the same N directions; close to exact, not the same bits)")
+        ->capture_default_str();
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(sunhoursCall(*o)) : runSunhours(*o, ctx); });

@@ -71,6 +71,7 @@ void registerCommands(CLI::App& app, CliContext& ctx) {
     registerTimelapse(app, ctx);
     registerSunhours(app, ctx);
     registerSequence(app, ctx);
+    registerBench(app, ctx);
     registerOptions(app, ctx);
     for (CLI::App* sub : app.get_subcommands({})) sub->footer(kExitCodesHelp);
 
@@ -85,9 +86,9 @@ void registerCommands(CLI::App& app, CliContext& ctx) {
 }
 
 std::vector<std::string> parserArguments(std::vector<std::string> args) {
-    // GDAL spells these with one dash (-of COG, -co KEY=VALUE); accept both spellings.
+    // GDAL spells these with one dash (-of COG, -co KEY=VALUE, -ot Int16); accept both spellings.
     for (auto& a : args)
-        if (a == "-of" || a == "-co") a = "-" + a;
+        if (a == "-of" || a == "-co" || a == "-ot") a = "-" + a;
     std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
     return args;
 }

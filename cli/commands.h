@@ -50,6 +50,7 @@ void registerRender(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);
+void registerBench(CLI::App& app, CliContext& ctx);
 /// The hidden `options --json` command: every other command's options as JSON.
 void registerOptions(CLI::App& app, CliContext& ctx);
 /// What `demlight options --json` prints: every listed command of `app` (built by registerCommands

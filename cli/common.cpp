@@ -139,6 +139,7 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     WriteOptions w;
     w.format = out.format;
     w.creationOptions = out.creationOptions;
+    w.fixedPoint = out.fixedPoint;
     w.nodata = result.flagNodata.value_or(result.nodata);
     w.metadata = result.metadata;
     w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
@@ -231,6 +232,7 @@ void TiledWriter::write(std::size_t target, const CellWindow& tile, const Produc
         WriteOptions w;
         w.format = targets_[target].out.format;
         w.creationOptions = targets_[target].out.creationOptions;
+        w.fixedPoint = targets_[target].out.fixedPoint;
         w.nodata = part.flagNodata.value_or(part.nodata);
         w.metadata = part.metadata;
         w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;

@@ -28,6 +28,8 @@ struct OutputOptions {
     std::string path;
     std::string format = "GTiff";
     std::vector<std::string> creationOptions;
+    /// Float32 bands stored as 16-bit fixed point instead (a command's --ot Int16).
+    std::optional<FixedPoint16> fixedPoint;
 };
 void addOutputOptions(CLI::App* cmd, OutputOptions& o);
 

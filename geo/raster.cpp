@@ -70,8 +70,34 @@ void describeDataset(GDALDataset& ds, const GeoReference& ref, const WriteOption
         GDALRasterBand* out = ds.GetRasterBand(static_cast<int>(i) + 1);
         out->SetDescription(bands[i].description.c_str());
         if (!bands[i].unit.empty()) out->SetUnitType(bands[i].unit.c_str());
-        if (type == GDT_Float32 || (options.nodata >= 0 && options.nodata <= 255)) out->SetNoDataValue(options.nodata);
+        if (type == GDT_Int16) {
+            out->SetNoDataValue(options.fixedPoint->nodata);
+            out->SetScale(options.fixedPoint->scale);
+            out->SetOffset(options.fixedPoint->offset);
+        } else if (type == GDT_Float32 || (options.nodata >= 0 && options.nodata <= 255)) {
+            out->SetNoDataValue(options.nodata);
+        }
     }
+}
+
+/// The stored type of a raster's bands (TIFF needs one for all): Byte when every band is a mask,
+/// else Float32, or Int16 with WriteOptions::fixedPoint.
+GDALDataType storedType(const std::vector<OutputBand>& bands, const WriteOptions& options) {
+    if (std::all_of(bands.begin(), bands.end(), [](const OutputBand& b) { return b.values == nullptr; })) return GDT_Byte;
+    return options.fixedPoint ? GDT_Int16 : GDT_Float32;
+}
+
+/// `count` cells of a Float32 band from cell `first` in 16-bit fixed point (FixedPoint16).
+const std::int16_t* fixedCells(const OutputBand& b, std::size_t first, std::size_t count, const FixedPoint16& fixed,
+                               std::vector<std::int16_t>& buffer) {
+    buffer.resize(count);
+    const float* v = b.values->data() + first;
+    const double limit = kFixedPoint16Max;
+    for (std::size_t i = 0; i < count; ++i)
+        buffer[i] = std::isnan(v[i]) ? fixed.nodata
+                                     : static_cast<std::int16_t>(std::lround(
+                                           std::clamp((static_cast<double>(v[i]) - fixed.offset) / fixed.scale, -limit, limit)));
+    return buffer.data();
 }
 
 /// `count` cells of a band from cell `first` as Float32 to write: the band's own values when
@@ -142,10 +168,12 @@ GeoReference readGeoReference(GDALDataset& ds, const std::string& path) {
 constexpr std::size_t kWriteStripRows = 256;
 
 /// GDAL default creation options per driver; user options override by key.
-std::vector<std::string> creationOptions(const WriteOptions& options, bool floatData) {
+std::vector<std::string> creationOptions(const WriteOptions& options, GDALDataType type) {
     std::vector<std::string> defaults;
+    const bool floatData = type == GDT_Float32;
     if (options.format == "COG") {
-        defaults = {"COMPRESS=DEFLATE", floatData ? "PREDICTOR=YES" : "PREDICTOR=NO",
+        // Fixed-point horizons are smooth integers: the horizontal-difference predictor helps.
+        defaults = {"COMPRESS=DEFLATE", type == GDT_Byte ? "PREDICTOR=NO" : "PREDICTOR=YES",
                     "NUM_THREADS=ALL_CPUS", "BIGTIFF=IF_SAFER"};
     } else if (options.format == "GTiff") {
         // ZSTD level 1 with the predictor compresses Float32 lightmaps as well as DEFLATE level 6
@@ -493,10 +521,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         fs::equivalent(fs::path(path), fs::path(inputPath), ec))
         throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
 
-    // Every band is stored in one data type (TIFF needs that): Byte only if all are masks.
-    const bool allMasks = std::all_of(bands.begin(), bands.end(),
-                                      [](const OutputBand& b) { return b.values == nullptr; });
-    const GDALDataType type = allMasks ? GDT_Byte : GDT_Float32;
+    const GDALDataType type = storedType(bands, options);
     const auto shapeOf = [](const OutputBand& b) {
         return b.values ? std::pair(b.values->width(), b.values->height())
                         : std::pair(b.mask->width(), b.mask->height());
@@ -511,7 +536,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
     if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
     validateUserCreationOptions(driver, options);
-    const std::vector<std::string> co = creationOptions(options, type == GDT_Float32);
+    const std::vector<std::string> co = creationOptions(options, type);
     CPLStringList coList;
     for (const auto& kv : co) coList.AddString(kv.c_str());
 
@@ -571,6 +596,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     const bool replaceNan = !std::isnan(options.nodata);
     const auto nodataF = static_cast<float>(options.nodata);
     std::vector<float> buffer;
+    std::vector<std::int16_t> fixedBuffer;
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
         GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
@@ -588,6 +614,11 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                 err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
                                     const_cast<std::uint8_t*>(b.mask->rowPtr(r0)), static_cast<int>(width),
                                     static_cast<int>(rows), GDT_Byte, 0, 0);
+            } else if (type == GDT_Int16) {
+                const std::int16_t* data = fixedCells(b, r0 * width, rows * width, *options.fixedPoint, fixedBuffer);
+                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
+                                    const_cast<std::int16_t*>(data), static_cast<int>(width), static_cast<int>(rows),
+                                    GDT_Int16, 0, 0);
             } else {
                 const float* data = floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
                 err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
@@ -670,8 +701,8 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
     const std::size_t cols = w.col1 - w.col0, rows = w.row1 - w.row0;
     if (w.col1 > st.width || w.row1 > st.height || cols == 0 || rows == 0)
         throw Error("internal: window outside the output '" + st.path + "'");
-    const bool allMasks = std::all_of(bands.begin(), bands.end(), [](const OutputBand& b) { return !b.values; });
-    const GDALDataType type = allMasks ? GDT_Byte : GDT_Float32;
+    const GDALDataType type = storedType(bands, st.options);
+    const bool allMasks = type == GDT_Byte;
     if (!st.ds) {
         // The streamed file: a tiled GeoTIFF (the COG layout needs the whole raster; it is made
         // from this file at commit).
@@ -683,7 +714,7 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
         }
         validateUserCreationOptions(gtiff, streamed);
         CPLStringList co;
-        for (const auto& kv : creationOptions(streamed, type == GDT_Float32)) co.AddString(kv.c_str());
+        for (const auto& kv : creationOptions(streamed, type)) co.AddString(kv.c_str());
         detail::takeGdalError();
         st.ds.reset(gtiff->Create(st.file->path().c_str(), static_cast<int>(st.width), static_cast<int>(st.height),
                                   static_cast<int>(bands.size()), type, co.List()));
@@ -697,6 +728,7 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
     const bool replaceNan = !std::isnan(st.options.nodata);
     const auto nodataF = static_cast<float>(st.options.nodata);
     std::vector<float> buffer;
+    std::vector<std::int16_t> fixedBuffer;
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
         GDALRasterBand* out = st.ds->GetRasterBand(static_cast<int>(i) + 1);
@@ -705,6 +737,11 @@ void RasterSink::write(const CellWindow& w, const std::vector<OutputBand>& bands
             err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
                                 static_cast<int>(rows), const_cast<std::uint8_t*>(b.mask->data()),
                                 static_cast<int>(cols), static_cast<int>(rows), GDT_Byte, 0, 0);
+        } else if (type == GDT_Int16) {
+            const std::int16_t* data = fixedCells(b, 0, cols * rows, *st.options.fixedPoint, fixedBuffer);
+            err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
+                                static_cast<int>(rows), const_cast<std::int16_t*>(data), static_cast<int>(cols),
+                                static_cast<int>(rows), GDT_Int16, 0, 0);
         } else {
             const float* data = floatCells(b, 0, cols * rows, replaceNan, nodataF, buffer);
             err = out->RasterIO(GF_Write, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
@@ -737,7 +774,13 @@ void RasterSink::commit() {
     }
     // COG: the overviews and layout need the whole raster, read back from the streamed file and
     // written by writeRaster (band-wise overview resampling, its own temporaries).
-    const std::vector<Grid<float>> values = readRasterBands(st.file->path());
+    std::vector<Grid<float>> values = readRasterBands(st.file->path());
+    // Fixed point is read back raw (nodata as NaN): to the band's values, which writeRaster
+    // stores again as the same integers.
+    if (st.options.fixedPoint && !st.masks)
+        for (Grid<float>& g : values)
+            for (float& v : g.values())
+                v = static_cast<float>(v * st.options.fixedPoint->scale + st.options.fixedPoint->offset);
     std::vector<Grid<std::uint8_t>> masks;
     std::vector<OutputBand> bands = st.layout;
     for (std::size_t i = 0; i < bands.size(); ++i) {

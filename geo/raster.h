@@ -103,6 +103,19 @@ struct OutputBand {
     Resampling resampling = Resampling::Average;
 };
 
+/// 16-bit fixed-point storage of Float32 bands (the seed's compact horizon maps): a value v is
+/// stored in Int16 as round((v - offset) / scale), clamped to +-kFixedPoint16Max, with the band's
+/// GDAL scale and offset set, so that every reader that applies them (gdalinfo -stats, QGIS,
+/// rasterio's masked and scaled reads) gets v back within scale / 2. NaN (nodata) is stored as
+/// `nodata`, outside the clamped range.
+struct FixedPoint16 {
+    double scale = 1.0;
+    double offset = 0.0;
+    std::int16_t nodata = std::numeric_limits<std::int16_t>::min();
+};
+/// The largest stored magnitude: -32768 stays free for nodata.
+inline constexpr std::int16_t kFixedPoint16Max = std::numeric_limits<std::int16_t>::max();
+
 struct WriteOptions {
     /// GDAL driver: "GTiff" (default) or "COG".
     std::string format = "GTiff";
@@ -115,6 +128,9 @@ struct WriteOptions {
     /// Nodata value written for NaN cells of Float32 bands (NaN by default); Byte bands declare
     /// it as their nodata value when it is in 0..255 (their cells are written as given).
     double nodata = std::numeric_limits<double>::quiet_NaN();
+    /// Store the Float32 bands as 16-bit fixed point (Int16 with scale and offset) instead; Byte
+    /// (mask) rasters are unaffected, and `nodata` is then FixedPoint16::nodata.
+    std::optional<FixedPoint16> fixedPoint;
     /// Called while writing (stage "write"); returning false stops: the temporary file is removed
     /// and Cancelled thrown. Empty: never stopped.
     ProgressFn progress;

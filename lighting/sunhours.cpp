@@ -95,7 +95,11 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
         const bool dark = field.elevationRange().second < kSunDownElevationDeg;
         SunFrame frame;
         if (!dark) {
-            frame = computeSunFrame(t, normals, field, params.frame);
+            if (params.stack)
+                frame.light = sunLightFromStack(t, normals, *params.stack, field, params.frame.sunDiameterDeg,
+                                                params.frame.threads);
+            else
+                frame = computeSunFrame(t, normals, field, params.frame);
             ++out.instantsSwept;
         }
         const double clock = instants[i].clockHours;

@@ -53,8 +53,13 @@ struct SunInstant {
     double clockHours = 0;  ///< local clock time of the instant (hours, e.g. 6.25 = 06:15)
 };
 
+struct HorizonStack;
+
 struct SunHoursParams {
     SunFrameParams frame;  ///< sun disk, search distance, refraction, threads
+    /// Set: each instant's sun horizons are interpolated from this stack (sunLightFromStack, the
+    /// `interpolated:N` horizon mode) instead of an exact sweep along its azimuth.
+    const HorizonStack* stack = nullptr;
 };
 
 struct SunHoursMaps {
@@ -64,6 +69,9 @@ struct SunHoursMaps {
     Grid<float> lastLitClock;    ///< local clock hours when visibility last drops below 0.5; NaN if never
     std::size_t instantsSwept = 0;  ///< instants with the sun up somewhere (each costs a sweep)
 };
+
+/// Directions of a stack when none are given (`interpolated` alone, and sunhours' auto choice).
+inline constexpr std::size_t kDefaultStackDirections = 64;
 
 /// Horizon maps at N equally spaced true azimuths (direction i at i * 360 / N degrees), swept
 /// once for a whole sequence: the `interpolated:N` horizon mode of time-lapses. Memory: N floats

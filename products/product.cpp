@@ -59,6 +59,18 @@ HorizonParams horizonParams(const SearchRequest& search, const ScenePlan& plan) 
     return planHorizonParams(plan, search.refraction, search.threads);
 }
 
+HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
+                                 double sunDiameterDeg) {
+    // The stack gives every instant's sun horizon: the plan's own direction tolerance, not the
+    // integrals' (planIntegralParams), and two scan lines per cell.
+    HorizonParams p = horizonParams(search, plan);
+    p.nearestLine = false;
+    // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's distance (full).
+    if (!search.maxDistanceM)
+        p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(terrain, 0.0, sunDiameterDeg);
+    return p;
+}
+
 HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
                              std::size_t directions) {
     return planIntegralParams(terrain, plan, directions, search.refraction, search.threads);

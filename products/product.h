@@ -74,6 +74,12 @@ HorizonParams horizonParams(const SearchRequest& search, const ScenePlan& plan);
 /// HorizonParams of a sky or aperture integral over `directions` sectors (planIntegralParams).
 HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
                              std::size_t directions);
+/// HorizonParams of a stack of horizon maps that serves every sun of a sequence (the
+/// `interpolated:N` horizon mode): the plan's horizon parameters, two scan lines per cell, out to
+/// the lowest sun's shadows (auto: sunSearchDistanceM at 0 deg), the plan's distance (full) or
+/// the request's maxDistanceM.
+HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
+                                 double sunDiameterDeg);
 /// SunFrameParams of the plan: the request's maxDistanceM when given; with Quality::Full the
 /// plan's (the DEM diagonal); with Auto 0, the distance each sun needs (sunSearchDistanceM).
 SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan);

@@ -40,7 +40,7 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
 }
 
 SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const ScenePlan& plan,
-                               const SunhoursRequest& r, const ProgressFn& progress) {
+                               const SunhoursRequest& r, std::size_t stackDirections, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     // Each instant's sun on the whole DEM, read by this window (the same bits on its cells).
     const auto fieldAt = [&](UtcInstant when, const SolarSite& site) {
@@ -54,13 +54,23 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     const SolarSite site;  // default pressure and temperature; position from each lattice node
     const Normals normals = computeNormals(t, r.search.threads);
 
-    // Sky term once: it does not depend on the sun's position.
-    const std::size_t skyDirections = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams hp = integralParams(r.search, plan, t, skyDirections);
+    // Sky term once: it does not depend on the sun's position. With a stack, from the stack's
+    // directions (which also give every instant's sun horizons), as the time-lapse does.
+    const std::size_t skyDirections =
+        stackDirections > 0 ? stackDirections : r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const HorizonParams hp = stackDirections > 0 ? stackHorizonParams(r.search, plan, t, r.sunDiameterDeg)
+                                                 : integralParams(r.search, plan, t, skyDirections);
     SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
-    ProgressCounter skyCounter(progress, "sky", t.heightsM.size() * skyDirections);
-    sweepDirections(t, hp, skyDirections, [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); },
-                    &skyCounter);
+    ProgressCounter skyCounter(progress, stackDirections > 0 ? "horizons" : "sky", t.heightsM.size() * skyDirections);
+    HorizonStack stack;
+    if (stackDirections > 0) {
+        stack = computeHorizonStack(t, stackDirections, hp, &skyCounter);
+        for (std::size_t i = 0; i < stackDirections; ++i) skyAcc.addDirection(i, stack.angleDeg[i]);
+        params.stack = &stack;
+    } else {
+        sweepDirections(t, hp, skyDirections,
+                        [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); }, &skyCounter);
+    }
     const Grid<float> skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
 
     ProgressCounter counter(progress, "sunhours", seq.instants.size());
@@ -100,6 +110,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
         {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
         {"DEMLIGHT_METHOD", "sweep"},
+        {"DEMLIGHT_HORIZON_MODE", stackDirections > 0 ? "interpolated:" + std::to_string(stackDirections) : "exact"},
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
         {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
         {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
@@ -112,6 +123,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     static_cast<ProductResult&>(out) = makeResult(dem, "sunhours", meta);
     out.instants = seq.instants.size();
     out.instantsSwept = maps.instantsSwept;
+    out.stackDirections = stackDirections;
     const std::string zone = r.zone.describe();
     out.bands = {
         {"sun_hours", "hours of direct sun weighted by visibility (h)", std::move(maps.sunHours), {}},
@@ -144,8 +156,11 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
+    if (request.stackDirections != 0 && (request.stackDirections < 4 || request.stackDirections > 720))
+        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or 4..720");
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
+    const std::size_t stackDirections = request.stackDirections;
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
@@ -158,7 +173,7 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
     }
     return onWindow<SunhoursResult>(source, window, halo,
-                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, progress); });
+                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, stackDirections, progress); });
 }
 
 }  // namespace demlight

@@ -29,11 +29,16 @@ struct SunhoursRequest {
     double albedo = kDefaultAlbedo;  ///< C of the sky term's interreflection
     /// Directions of the sky term; none = the plan's.
     std::optional<std::size_t> skyDirections;
+    /// How each instant's sun horizons are found: 0 (the default) = an exact sweep along its own
+    /// azimuth; N = interpolated in azimuth from N directions swept once (sunLightFromStack, the
+    /// `interpolated:N` horizon mode; the stack also gives the sky term, over its N sectors).
+    std::size_t stackDirections = 0;
     SearchRequest search;
 };
 
 struct SunhoursResult : ProductResult {
     std::size_t instants = 0, instantsSwept = 0;
+    std::size_t stackDirections = 0;  ///< the horizon mode that ran: 0 exact, N interpolated
 };
 
 /// Bands: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.

@@ -22,8 +22,6 @@ using Clock = std::chrono::steady_clock;
 /// significand read as an integer).
 constexpr int kFloatMantissaBits = 23, kFloatExponentBias = 127 + kFloatMantissaBits;
 
-/// Horizon directions of the interpolated mode when no N is given.
-constexpr std::size_t kDefaultStackDirections = 64;
 constexpr std::size_t kMinStackDirections = 4, kMaxStackDirections = 720;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -48,13 +46,7 @@ void fillInstants(TimelapseInstants& f, UtcInstant t0, UtcInstant t1, std::chron
 HorizonParams skyTermParams(const Terrain& t, const ScenePlan& plan, const TimelapseRequest& r,
                             std::size_t skyDirections) {
     if (r.stackDirections == 0) return integralParams(r.search, plan, t, skyDirections);
-    // The interpolated stack also gives every frame's sun horizon: the plan's own direction
-    // tolerance, not the integrals' (planIntegralParams).
-    HorizonParams p = horizonParams(r.search, plan);
-    // One stack serves every sun: out to the lowest sun's shadows (auto) or the plan's distance (full).
-    if (!r.search.maxDistanceM)
-        p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(t, 0.0, r.sunDiameterDeg);
-    return p;
+    return stackHorizonParams(r.search, plan, t, r.sunDiameterDeg);
 }
 
 /// The sky term once; with a stack, the stack too (it gives every frame's sun horizon).
@@ -72,10 +64,7 @@ SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan,
         out.skyK = skyLightK(t, normals, skyDirections, out.params, &counter);
         return out;
     }
-    // The stack also gives every frame's sun horizon: two scan lines per cell.
-    HorizonParams stackParams = out.params;
-    stackParams.nearestLine = false;
-    out.stack = computeHorizonStack(t, r.stackDirections, stackParams, &counter);
+    out.stack = computeHorizonStack(t, r.stackDirections, out.params, &counter);
     SkyAccumulator acc(normals.east, normals.north, normals.up, r.stackDirections, {}, r.search.threads);
     for (std::size_t i = 0; i < r.stackDirections; ++i) acc.addDirection(i, out.stack.angleDeg[i]);
     out.skyK = std::move(acc).finish(0.0).skyK;

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -172,6 +174,148 @@ TEST(CliOutputs, HorizonBandsLineUpWithTheInput) {
     EXPECT_EQ(mask.descriptions[1], "truncated_azimuth=123.5");
 }
 
+/// `gdalinfo -json PATH` parsed (the reader users run; GDAL's own view of the file).
+nlohmann::json gdalinfoJson(const std::string& path) {
+    std::FILE* pipe = popen(("gdalinfo -json '" + path + "' 2>/dev/null").c_str(), "r");
+    if (!pipe) return {};
+    const std::string text = testing::readAll(pipe);
+    pclose(pipe);
+    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+}
+
+// --ot Int16: horizons in 16-bit fixed point that every reader applying GDAL's scale and offset
+// reads as degrees, within half a step of the Float32 output (the rounding is the only change),
+// nodata exactly at the same cells, negative (downhill) horizons kept. One piece as GTiff, and
+// in tiles as COG (the streamed file is read back and rewritten at commit).
+TEST(CliOutputs, HorizonInt16IsDegreesInFixedPointWithinHalfAStep) {
+    const fs::path dir = freshDir("demlight_cli_horizon_int16");
+    const std::string f32 = (dir / "f32.tif").string(), i16 = (dir / "i16.tif").string(),
+                      cog = (dir / "i16cog.tif").string();
+    const std::string common = "-q horizon " + kHelens + " --azimuth 0 123.5 --threads 2 --max-distance 3000 -o ";
+    ASSERT_EQ(runDemlight(common + f32).exitCode, 0);
+    const auto r = runDemlight(common + i16 + " --ot Int16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_EQ(runDemlight(common + cog + " -ot Int16 -of COG --tile-size 173").exitCode, 0);
+
+    const std::vector<Grid<float>> reference = readRasterBands(f32);
+    for (const std::string& path : {i16, cog}) {
+        const nlohmann::json info = gdalinfoJson(path);
+        ASSERT_TRUE(info.contains("bands")) << path;
+        ASSERT_EQ(info["bands"].size(), 2u);
+        const std::vector<Grid<float>> raw = readRasterBands(path);  // stored integers, nodata as NaN
+        for (std::size_t b = 0; b < 2; ++b) {
+            const nlohmann::json& band = info["bands"][b];
+            EXPECT_EQ(band["type"], "Int16");
+            EXPECT_EQ(band["noDataValue"], -32768);
+            EXPECT_EQ(band["unit"], "deg");
+            const double scale = band.value("scale", 1.0), offset = band.value("offset", 0.0);
+            EXPECT_NEAR(scale, 90.0 / 32767.0, 1e-12);  // the signed -90..90 deg range
+            EXPECT_EQ(offset, 0.0);
+            std::size_t voids = 0, negative = 0;
+            double worst = 0;
+            for (std::size_t k = 0; k < raw[b].size(); ++k) {
+                const float want = reference[b].data()[k], stored = raw[b].data()[k];
+                ASSERT_EQ(std::isnan(want), std::isnan(stored)) << path << " cell " << k;
+                if (std::isnan(want)) {
+                    ++voids;
+                    continue;
+                }
+                worst = std::max(worst, std::abs(stored * scale + offset - want));
+                if (want < -0.01f) {
+                    ++negative;
+                    EXPECT_LT(stored, 0.0f) << k;
+                }
+            }
+            EXPECT_EQ(voids, 4151u);  // exactly the DEM's nodata cells
+            EXPECT_GT(negative, 1000u);
+            EXPECT_LE(worst, scale / 2 * (1 + 1e-4)) << path << " band " << b + 1;  // float rounding of the input
+        }
+    }
+    EXPECT_EQ(inspectRaster(cog).imageStructure.at("LAYOUT"), "COG");
+    EXPECT_EQ(inspectRaster((dir / "i16.truncated.tif").string()).dataTypes[0], "Byte");
+}
+
+// sunhours --horizon-mode: exact is the default (the metadata says so and an explicit exact is
+// the same bits), and interpolated:64 is really used (not the same bits) and stays close to
+// exact: on this DEM and day the mean |interpolated - exact| sun hours was 0.024 h (1.4 min) and
+// the largest 1.0 h on one cell, with half the cells differing (measured when this test was
+// written; the bounds leave about twice that margin on the mean).
+TEST(CliOutputs, SunhoursInterpolatedHorizonsStayCloseToExact) {
+    const fs::path dir = freshDir("demlight_cli_sunhours_modes");
+    const std::string common = "-q sunhours " + kHelens + " --date 2024-06-21 --tz America/Los_Angeles --step 10m --threads 2 -o ";
+    const std::string byDefault = (dir / "default.tif").string(), exact = (dir / "exact.tif").string(),
+                      interpolated = (dir / "interp.tif").string();
+    auto r = runDemlight(common + byDefault);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runDemlight(common + exact + " --horizon-mode exact");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runDemlight(common + interpolated + " --horizon-mode interpolated:64");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(inspectRaster(byDefault).metadata.at("DEMLIGHT_HORIZON_MODE"), "exact");
+    EXPECT_EQ(inspectRaster(interpolated).metadata.at("DEMLIGHT_HORIZON_MODE"), "interpolated:64");
+
+    const std::vector<Grid<float>> d = readRasterBands(byDefault), e = readRasterBands(exact),
+                                    i = readRasterBands(interpolated);
+    ASSERT_EQ(e.size(), 5u);
+    ASSERT_EQ(i.size(), 5u);
+    std::size_t cells = 0, differ = 0;
+    double sum = 0, worst = 0;
+    for (std::size_t k = 0; k < e[0].size(); ++k) {
+        const float want = e[0].data()[k], got = i[0].data()[k];
+        ASSERT_EQ(std::isnan(want), std::isnan(got)) << k;
+        if (std::isnan(want)) continue;
+        EXPECT_EQ(d[0].data()[k], want) << k;  // the default is exact, bit for bit
+        ++cells;
+        differ += got != want;
+        sum += std::abs(static_cast<double>(got) - want);
+        worst = std::max(worst, std::abs(static_cast<double>(got) - want));
+    }
+    ASSERT_GT(cells, 100000u);
+    const double mean = sum / static_cast<double>(cells);
+    std::printf("interpolated:64 vs exact sun hours: mean |diff| %.4f h, max %.3f h, %zu of %zu cells differ\n", mean,
+                worst, differ, cells);
+    EXPECT_GT(differ, cells / 100);  // the stack is really used
+    EXPECT_LT(mean, 0.05);
+    EXPECT_LT(worst, 1.5);
+}
+
+// demlight bench on a small crop: the CSV's columns, and a finite time and error on every row.
+TEST(CliOutputs, BenchWritesTimesAndErrorsForEveryRow) {
+    const fs::path dir = freshDir("demlight_cli_bench");
+    const auto r = runDemlight("-q bench " + kHelens + " -o " + (dir / "b").string() +
+                               " --crop 80 --sample 40 --directions 4 8 --repeats 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream csv(dir / "b" / "bench.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(csv, line));
+    EXPECT_EQ(line, "family,method,directions,seconds,ns_per_cell_per_direction,median_error_deg,p99_error_deg,scored,"
+                    "pareto,notes");
+    std::size_t rows = 0;
+    while (std::getline(csv, line)) {
+        // Quoted family and method first (no commas in them), then the numbers.
+        std::vector<std::string> fields;
+        std::size_t at = 0;
+        for (int f = 0; f < 9; ++f) {
+            std::size_t end = line[at] == '"' ? line.find('"', at + 1) + 1 : at;
+            end = line.find(',', end);
+            fields.push_back(line.substr(at, end - at));
+            at = end + 1;
+        }
+        ++rows;
+        const double seconds = std::stod(fields[3]), ns = std::stod(fields[4]), median = std::stod(fields[5]),
+                     p99 = std::stod(fields[6]);
+        EXPECT_TRUE(std::isfinite(seconds) && seconds > 0) << line;
+        EXPECT_TRUE(std::isfinite(ns) && ns > 0) << line;
+        EXPECT_TRUE(std::isfinite(median) && median >= 0) << line;
+        EXPECT_TRUE(std::isfinite(p99) && p99 >= median) << line;
+        EXPECT_GT(std::stoul(fields[7]), 0u) << line;
+        if (fields[0] == "\"sweep\"") {
+            EXPECT_LT(median, 2.0) << line;  // degrees: the sweeps agree with the reference
+        }
+    }
+    EXPECT_EQ(rows, 1u + 3u * 2u);  // the reference, and three sweeps at 4 and 8 directions
+}
+
 // --date in a zone far from the DEM's (UTC at 122 W): the day's sunset falls after that zone's
 // midnight; the frames still run from sunrise to the sunset after it (the bug: SPA's events of
 // the UTC day put the previous evening's sunset first and the frame count wrapped around).
@@ -259,7 +403,7 @@ TEST(CliOutputs, OptionsJsonDescribesEveryCommandAsItsHelpDoes) {
     const auto j = nlohmann::json::parse(r.out);
     std::map<std::string, nlohmann::json> commands;
     for (const auto& c : j.at("commands")) commands[c.at("name").get<std::string>()] = c;
-    EXPECT_EQ(commands.size(), 13u);
+    EXPECT_EQ(commands.size(), 14u);  // bench included (the QGIS provider skips it)
     EXPECT_FALSE(commands.contains("options"));
     EXPECT_EQ(commands.at("sun").at("help").get<std::string>(), runDemlight("sun --help").out);
     EXPECT_EQ(commands.at("sun").at("output"), "raster");

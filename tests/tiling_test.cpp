@@ -313,6 +313,15 @@ std::vector<ProductCase> productCases() {
              r.search = search;
              return static_cast<ProductResult>(sunhoursProduct(s, w, r));
          }},
+        {"sunhours_interpolated",
+         [=](const DemSource& s, const CellWindow& w) {
+             SunhoursRequest r;
+             r.firstDay = r.lastDay = parseDate("2024-06-21");
+             r.step = std::chrono::minutes(90);
+             r.stackDirections = 8;
+             r.search = search;
+             return static_cast<ProductResult>(sunhoursProduct(s, w, r));
+         }},
         {"timelapse", [=](const DemSource& s, const CellWindow& w) { return timelapseBands(s, w, 0, search); }},
         {"timelapse_interpolated",
          [=](const DemSource& s, const CellWindow& w) { return timelapseBands(s, w, 8, search); }},

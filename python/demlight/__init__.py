@@ -33,9 +33,10 @@ Cancelled.__doc__ = "The work was stopped: a progress callback returned False."
 #: The raster commands, one function each.
 COMMANDS = tuple(_demlight.raster_commands())
 
-# Command-line options that are not keyword arguments: the output (Result.write takes it), the
+# Command-line options that are not keyword arguments: the output and its storage (Result.write
+# takes the path, format and creation options; it writes Float32), the
 # notes of a terminal, and the DEM argument.
-_NOT_KEYWORDS = {"output", "of", "co", "verbose", "help", "quiet", "dem"}
+_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 

@@ -39,9 +39,16 @@ def companion_output_name(key):
     return key[len(_METADATA_PREFIX):] if key.startswith(_METADATA_PREFIX) else key
 
 
+# Commands that write files but make no layer: bench measures the horizon methods (a CSV and a
+# chart), a tool for choosing options, not a raster product.
+_NOT_ALGORITHMS = {"bench"}
+
+
 def is_algorithm(command):
-    """Commands that read a raster and write files at -o become algorithms (not info, sunpos)."""
-    return command["output"] is not None and any(o["positional"] for o in command["options"])
+    """Commands that read a raster and write rasters, pictures or folders at -o become algorithms
+    (not info, sunpos, which print, nor bench)."""
+    return (command["output"] is not None and command["name"] not in _NOT_ALGORITHMS
+            and any(o["positional"] for o in command["options"]))
 
 
 def _is_number(option):
