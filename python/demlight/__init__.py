@@ -35,7 +35,8 @@ COMMANDS = tuple(_demlight.raster_commands())
 
 # Command-line options that are not keyword arguments: the output (Result.write takes it), the
 # notes of a terminal, and the DEM argument.
-_NOT_KEYWORDS = {"output", "of", "co", "verbose", "help", "quiet", "dem"}
+# Point queries (at, at_xy, point_format) print values; the module returns rasters.
+_NOT_KEYWORDS = {"output", "of", "co", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 
