@@ -88,12 +88,19 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
         }
     if (bins.empty()) return;
     const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
+    const bool skyGrid = grids_.changesSky(), anyGrid = skyGrid || grids_.albedo;
     parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < heights_.width(); ++col) {
             const float z = heights_(col, row);
             if (std::isnan(z)) continue;
-            IrradianceParams cell = params_;
-            if (!grids_.at(col, row, cell)) continue;  // NaN in finish
+            // The cell's own inputs only where grids are given: the constant path stays as it was.
+            IrradianceParams own;
+            const IrradianceParams* cell = &params_;
+            if (anyGrid) {
+                own = params_;
+                if (!grids_.at(col, row, own)) continue;  // NaN in finish
+                cell = &own;
+            }
             const Enu n = normals_.at(col, row);
             // Summed in registers, in the same order as into the grids.
             double beam = beam_(col, row), hours = sunHours_(col, row), diffuse = diffuse_(col, row),
@@ -102,10 +109,9 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 const SunBin& b = *bins[k];
                 const SunAngles& sun = angles[k];
                 // A per-cell Linke or index: the bin's sky at this cell from the formulas (E2-E9).
-                const ClearSky sky = grids_.changesSky()
-                                         ? clearSky(b.extraterrestrialWm2, grids_.linke ? cell.linke : b.linke,
-                                                    b.elevationDeg, z, cell.coeffBh, cell.coeffDh)
-                                         : clearSkyWithBeam(skies[k], beams[k].at(z));
+                const ClearSky sky = skyGrid ? clearSky(b.extraterrestrialWm2, grids_.linke ? cell->linke : b.linke,
+                                                        b.elevationDeg, z, cell->coeffBh, cell->coeffDh)
+                                             : clearSkyWithBeam(skies[k], beams[k].at(z));
                 const SunTerms terms = sunTerms(n, horizonDeg(col, row), sun, sunDiameterDeg_);
                 CellView view;
                 view.sunIrradiance = terms.irradiance;
@@ -113,7 +119,7 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
                 view.surface = {n.up, toward, toward * sun.cosElevation + n.up * sun.sinElevation,
                                 b.elevationDeg * kDegToRad};
-                const CellIrradiance c = cellIrradiance(sky, view, cell);
+                const CellIrradiance c = cellIrradiance(sky, view, *cell);
                 beam += b.hours * c.beam;
                 hours += b.hours * terms.visibility;
                 // visible-sky: diffuse and reflected are K0 and 1 - K0 times horizon-free sums.

@@ -75,12 +75,13 @@ IrradianceMaps computeIrradiance(const IrradianceInputs& in, const IrradiancePar
     IrradianceMaps out{Grid<float>(width, height, nan), Grid<float>(width, height, nan),
                        Grid<float>(width, height, nan), Grid<float>(width, height, nan)};
     const Normals& n = *in.normals;
+    const bool anyGrid = in.grids.changesSky() || in.grids.albedo;
     parallelFor(0, height, p.threads, [&](std::size_t row) {
         forEachSunInRow(*in.sun, row, width, [&](std::size_t col, const SunAngles& sun) {
             const float z = heights(col, row);
             if (std::isnan(z)) return;
-            IrradianceParams q = p;
-            if (!in.grids.at(col, row, q)) return;
+            IrradianceParams q = p;  // the cell's own inputs where grids are given
+            if (anyGrid && !in.grids.at(col, row, q)) return;
             const ClearSky sky = clearSky(q.extraterrestrialWm2, q.linke, sun.elevationDeg, z, q.coeffBh, q.coeffDh);
             CellView view;
             view.sunIrradiance = (*in.sunIrradiance)(col, row);

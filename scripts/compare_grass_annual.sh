@@ -78,15 +78,15 @@ if [[ $flat == 1 ]]; then
             echo "r.in.gdal --q input=$tif output=dem"
             echo "g.region raster=dem"
             for d in "${day_list[@]}"; do
-                echo "r.sun --q elevation=dem slope_value=0 aspect_value=0 day=$(doy "$d") step=$flat_step linke_value=$linke albedo_value=$albedo nprocs=1 glob_rad=g"
-                echo "echo \"$d \$(r.what --q map=g coordinates=0,$lat | cut -d'|' -f4)\""
+                echo "r.sun --q elevation=dem slope_value=0 aspect_value=0 day=$(doy "$d") step=$flat_step linke_value=$linke albedo_value=$albedo nprocs=1 glob_rad=g$(doy "$d")"
+                echo "echo \"$d \$(r.what --q map=g$(doy "$d") coordinates=0,$lat | cut -d'|' -f4)\""
             done
         } >"$work/flat_job.sh"
         grass --tmp-location "$tif" --exec bash "$work/flat_job.sh" 2>/dev/null | grep -E '^[0-9]{4}-' >"$work/flat_$lat.txt"
         while read -r d rsun; do
             ours=$("$demlight" -q insolation "$tif" --at "$lat,0" --date "$d" --tz UTC --step 2m --linke "$linke" \
                 --albedo "$albedo" --point-format csv | tail -1 | cut -d, -f6)
-            python3 -c "r=$rsun; o=$ours*1000; print(f'| {$lat} | $d | {r:.1f} | {o:.1f} | {o-r:+.1f} ({(o-r)/r*100:+.2f} %) |')"
+            python3 -c "r=$rsun; o=$ours*1000; rel=f'({(o-r)/r*100:+.2f} %)' if r > 0 else '(no sun)'; print(f'| {$lat} | $d | {r:.1f} | {o:.1f} | {o-r:+.1f} {rel} |')"
         done <"$work/flat_$lat.txt"
     done
     echo
