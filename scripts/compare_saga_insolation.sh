@@ -122,7 +122,8 @@ import numpy as np
 from osgeo import gdal
 work, day = sys.argv[1], sys.argv[2]
 def band(path, k=1):
-    b = gdal.Open(path).GetRasterBand(k)
+    ds = gdal.Open(path)  # kept while its band is read: GDAL frees a band with its dataset
+    b = ds.GetRasterBand(k)
     a = b.ReadAsArray().astype(np.float64)
     nd = b.GetNoDataValue()
     if nd is not None:
