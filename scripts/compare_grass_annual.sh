@@ -13,7 +13,8 @@
 # Defaults: the N44W072 SRTM3 tile beside the repository (1201^2), 2024, 12 sample days (the 21st of
 # each month), latitudes 0,30,50,70, days 2024-03-20,2024-06-21,2024-09-22,2024-12-21, Linke 3,
 # albedo 0.2, r.sun step 0.5 h (its default) for the timing and 0.05 h for flat ground.
-# Needs: grass (8.x, Debian package grass-core), gdal_create, gdal_translate, gdalinfo, python3, /usr/bin/time.
+# Needs: grass (8.x, Debian package grass-core), gdal_create, gdal_translate, gdalinfo, python3,
+# /usr/bin/python3 with numpy and GDAL's Python bindings, /usr/bin/time.
 #
 # r.sun runs single-threaded (nprocs=1) and demlight with --threads 1, so the CPU times compare
 # one core's work. r.sun's day is the solar day; at longitude 0 the UTC day differs from it by the
@@ -120,7 +121,11 @@ print(' '.join(str(d.timetuple().tm_yday) for d in days))")
     } >"$work/year_job.sh"
     grass --tmp-location "$work/dem.tif" --exec bash "$work/year_job.sh" 2>/dev/null | grep '^mean ' >"$work/rsun_means.txt"
     ours_time 2
-    ours_mean=$(gdalinfo -stats -b 4 "$work/year_1.tif" | sed -n 's/^ *STATISTICS_MEAN=//p' | head -1)
+    ours_mean=$(/usr/bin/python3 -c "
+from osgeo import gdal
+import numpy as np
+ds = gdal.Open('$work/year_1.tif')  # kept while its band is read
+print(np.nanmean(ds.GetRasterBand(4).ReadAsArray().astype(float)))")
     python3 - "$work" "$sample_days" "$w" "$h" "$ours_mean" "$rsun_step" "$grass_version" "$year" <<'EOF'
 import sys
 work, n, w, h, ours_mean, step, version, year = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4], float(sys.argv[5]), sys.argv[6], sys.argv[7], sys.argv[8]
