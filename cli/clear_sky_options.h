@@ -1,8 +1,10 @@
 // The clear-sky options of `irradiance` and `insolation`: --linke, --albedo, --coeff-bh,
-// --coeff-dh, --diffuse-model, --solar-constant (products/irradiance.h).
+// --coeff-dh, their rasters (--linke-raster, --albedo-raster, --coeff-bh-raster, --coeff-dh-raster),
+// --diffuse-model, --solar-constant (products/irradiance.h).
 #pragma once
 
 #include "lighting/irradiance.h"
+#include "products/irradiance.h"
 #include "products/sky.h"
 
 #include <CLI/CLI.hpp>
@@ -16,11 +18,15 @@ struct ClearSkyOptions {
     std::string linke = formatNumber(kDefaultLinke);
     double albedo = kDefaultAlbedo;
     double coeffBh = 1, coeffDh = 1;
+    std::string linkeRaster, albedoRaster, coeffBhRaster, coeffDhRaster;
     std::string diffuseModel = "visible-sky";
     double solarConstantWm2 = kSolarConstantWm2;
 };
 /// Adds the options; `monthOf` says whose month picks a monthly Linke value.
 void addClearSkyOptions(CLI::App* cmd, ClearSkyOptions& o, const std::string& monthOf);
+
+/// The --*-raster options as the requests take them.
+ClearSkyRasters clearSkyRasters(const ClearSkyOptions& o);
 
 /// --linke: "3.2" or 12 comma-separated numbers (the product checks the count and range).
 std::vector<double> parseLinkeOption(const std::string& text);

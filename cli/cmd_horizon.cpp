@@ -1,8 +1,10 @@
 // demlight horizon DEM -o OUT.tif (--azimuth DEG... | --directions N): horizon angle maps, one
 // Float32 band per azimuth (products/horizon.h), and the truncation mask in OUT.truncated.tif.
 #include "cli/common.h"
+#include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "products/horizon.h"
+#include "products/point.h"
 #include "src/error.h"
 
 #include <cmath>
@@ -16,6 +18,7 @@ struct HorizonOptions {
     OutputOptions out;
     TilingOptions tiling;
     SearchOptions search;
+    PointOptions point;
     std::vector<double> azimuthsDeg;
     int directions = 0;
     std::string method = "sweep";
@@ -37,11 +40,18 @@ std::string truncationPath(const std::string& outPath) {
     return (p.parent_path() / (p.stem().string() + ".truncated.tif")).string();
 }
 
+/// Directions of a point query's profile when neither --azimuth nor --directions is given: PVGIS's
+/// horizon profile, 48 values every 7.5 deg.
+constexpr int kPointProfileDirections = 48;
+
 HorizonRequest horizonRequest(const HorizonOptions& o) {
-    if (o.azimuthsDeg.empty() == (o.directions == 0)) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
+    if (!o.azimuthsDeg.empty() && o.directions != 0) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
+    if (o.azimuthsDeg.empty() && o.directions == 0 && !pointOf(o.point))
+        throw Error("give either --azimuth DEG [DEG ...] or --directions N");
     HorizonRequest request;
     request.azimuthsDeg = o.azimuthsDeg;
-    for (double az : evenAzimuthsDeg(static_cast<std::size_t>(o.directions))) request.azimuthsDeg.push_back(az);
+    const int directions = o.azimuthsDeg.empty() && o.directions == 0 ? kPointProfileDirections : o.directions;
+    for (double az : evenAzimuthsDeg(static_cast<std::size_t>(directions))) request.azimuthsDeg.push_back(az);
     request.method = parseHorizonMethod(o.method);
     request.search = o.search.request;
     return request;
@@ -75,7 +85,33 @@ RasterCall horizonCall(const HorizonOptions& o) {
     return call;
 }
 
+/// --at / --at-xy: the reference horizon of one cell in each azimuth, printed.
+void printHorizonAt(const HorizonOptions& o, const PointSpec& spec, const CliContext& ctx) {
+    refuseRasterOptions(o.tiling);
+    const HorizonRequest request = horizonRequest(o);
+    const DemSource dem = openPointDem(o.dem, o.search.request, ctx);
+    const PointCell cell = locatePoint(dem, spec);
+    const PointHorizon h = pointHorizon(dem, cell, request.azimuthsDeg, request.search);
+    nlohmann::ordered_json j;
+    j["point"] = pointJson(cell);
+    j["method"] = "reference ray march";
+    j["max_distance_m"] = h.maxDistanceM;
+    j["refraction"] = request.search.refraction;
+    j["horizon"] = nlohmann::ordered_json::array();
+    std::vector<std::vector<std::string>> rows;
+    for (std::size_t i = 0; i < h.samples.size(); ++i) {
+        const HorizonSample& s = h.samples[i];
+        j["horizon"].push_back({{"azimuth_deg", h.azimuthsDeg[i]},
+                                {"elevation_deg", s.angleDeg},
+                                {"truncated", s.truncated != 0}});
+        rows.push_back({formatNumber(h.azimuthsDeg[i]), formatNumber(s.angleDeg), std::to_string(s.truncated)});
+    }
+    printPoint(o.point, j, {"azimuth_deg", "horizon_deg", "truncated"}, rows);
+}
+
 void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
+    if (const auto spec = pointOf(o.point)) return printHorizonAt(o, *spec, ctx);
+    requireOutputOrPoint(o.out, o.point);
     const HorizonRequest request = horizonRequest(o);
     const std::vector<RasterTarget> targets = horizonTargets(horizonOutput(o));
     checkOutputPath(targets[0].out, o.dem.path);
@@ -106,9 +142,10 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
     ctx.outputs[cmd->get_name()].companionKeys = {kTruncationMaskKey};
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
+    addPointOptions(cmd, o->point, cmd->get_option("-o"));
     auto* az = cmd->add_option("--azimuth", o->azimuthsDeg, "True azimuth(s), degrees clockwise from north (repeatable)")
                    ->expected(1, -1);
-    auto* dirs = cmd->add_option("--directions", o->directions, "N azimuths evenly spaced from 0 (0, 360/N, ...)")
+    auto* dirs = cmd->add_option("--directions", o->directions, "N azimuths evenly spaced from 0 (0, 360/N, ...); a point query without --azimuth: 48")
                      ->check(finiteRange(1, 4096));
     az->excludes(dirs);
     addSearchOptions(cmd, o->search);
@@ -121,7 +158,10 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
                     "0.00275 deg with GDAL scale/offset (readers get degrees), half the size")
         ->check(CLI::IsMember({"Float32", "Int16"}))
         ->capture_default_str();
-    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(horizonCall(*o)) : runHorizon(*o, ctx); });
+    cmd->callback([o, &ctx] {
+        refusePointCall(o->point, ctx);
+        ctx.takeCall ? ctx.takeCall(horizonCall(*o)) : runHorizon(*o, ctx);
+    });
 }
 
 }  // namespace demlight::cli

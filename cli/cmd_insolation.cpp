@@ -3,8 +3,10 @@
 // period of local days or times, by binned sun positions (products/insolation.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "products/insolation.h"
+#include "products/point.h"
 #include "src/error.h"
 
 #include <optional>
@@ -18,6 +20,7 @@ struct InsolationOptions {
     TilingOptions tiling;
     SearchOptions search;
     ClearSkyOptions sky;
+    PointOptions point;
     DayOptions days;
     std::string step = "10m";
     std::optional<std::size_t> directions;
@@ -37,6 +40,7 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
     r.albedo = o.sky.albedo;
     r.coeffBh = o.sky.coeffBh;
     r.coeffDh = o.sky.coeffDh;
+    r.rasters = clearSkyRasters(o.sky);
     r.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
     r.solarConstantWm2 = o.sky.solarConstantWm2;
     r.directions = o.directions;
@@ -57,7 +61,44 @@ RasterCall insolationCall(const InsolationOptions& o) {
         });
 }
 
+/// --at / --at-xy: the irradiation of one cell, every instant with its own sun and horizon, printed.
+void printInsolationAt(const InsolationOptions& o, const PointSpec& spec, const CliContext& ctx) {
+    refuseRasterOptions(o.tiling);
+    const InsolationRequest request = insolationRequest(o);
+    const DemSource dem = openPointDem(o.dem, request.search, ctx);
+    const PointInsolation p = pointInsolation(dem, locatePoint(dem, spec), request);
+    const std::string start = formatInstant(p.start, request.zone), end = formatInstant(p.end, request.zone);
+    nlohmann::ordered_json j;
+    j["point"] = pointJson(p.point);
+    j["start"] = start;
+    j["end"] = end;
+    j["step_s"] = std::chrono::duration<double>(request.step).count();
+    j["instants"] = p.instants;
+    j["sun_up_instants"] = p.sunUpInstants;
+    j["method"] = "per instant, reference ray march";
+    j["linke"] = formatNumberList(request.linke);
+    j["albedo"] = request.albedo;
+    j["coeff_bh"] = request.coeffBh;
+    j["coeff_dh"] = request.coeffDh;
+    j["diffuse_model"] = o.sky.diffuseModel;
+    j["max_distance_m"] = p.maxDistanceM;
+    j["sky_k0"] = p.skyK0 ? nlohmann::ordered_json(*p.skyK0) : nlohmann::ordered_json(nullptr);
+    j["sky_directions"] = p.skyDirections;
+    j["beam_kwh_m2"] = p.irradiation.beam;
+    j["diffuse_kwh_m2"] = p.irradiation.diffuse;
+    j["reflected_kwh_m2"] = p.irradiation.reflected;
+    j["global_kwh_m2"] = p.irradiation.global();
+    j["sun_hours"] = p.sunHours;
+    printPoint(o.point, j,
+               {"start", "end", "beam_kwh_m2", "diffuse_kwh_m2", "reflected_kwh_m2", "global_kwh_m2", "sun_hours"},
+               {{start, end, formatNumber(p.irradiation.beam), formatNumber(p.irradiation.diffuse),
+                 formatNumber(p.irradiation.reflected), formatNumber(p.irradiation.global()),
+                 formatNumber(p.sunHours)}});
+}
+
 void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
+    if (const auto spec = pointOf(o.point)) return printInsolationAt(o, *spec, ctx);
+    requireOutputOrPoint(o.out, o.point);
     const InsolationRequest request = insolationRequest(o);
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
@@ -84,6 +125,7 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
         "diffuse, reflected, global, and hours of direct sun");
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
+    addPointOptions(cmd, o->point, cmd->get_option("-o"));
     addDayOptions(cmd, o->days, "IANA time zone of the days (required; UTC for universal time)");
     cmd->add_option("--step", o->step,
                     "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
@@ -99,7 +141,10 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(insolationCall(*o)) : runInsolation(*o, ctx); });
+    cmd->callback([o, &ctx] {
+        refusePointCall(o->point, ctx);
+        ctx.takeCall ? ctx.takeCall(insolationCall(*o)) : runInsolation(*o, ctx);
+    });
 }
 
 }  // namespace demlight::cli

@@ -2,8 +2,10 @@
 // irradiance in W m-2 on each cell's surface, ESRA clear sky (products/irradiance.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "products/irradiance.h"
+#include "products/point.h"
 #include "src/error.h"
 
 #include <cmath>
@@ -18,6 +20,7 @@ struct IrradianceOptions {
     TilingOptions tiling;
     SearchOptions search;
     ClearSkyOptions sky;
+    PointOptions point;
     std::string time, tz;
     std::optional<std::size_t> skyDirections;
     double sunDiameterDeg = kSunDiameterDeg;
@@ -33,6 +36,7 @@ IrradianceRequest irradianceRequest(const IrradianceOptions& o) {
     request.albedo = o.sky.albedo;
     request.coeffBh = o.sky.coeffBh;
     request.coeffDh = o.sky.coeffDh;
+    request.rasters = clearSkyRasters(o.sky);
     request.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
     request.solarConstantWm2 = o.sky.solarConstantWm2;
     request.skyDirections = o.skyDirections;
@@ -50,7 +54,45 @@ RasterCall irradianceCall(const IrradianceOptions& o) {
         });
 }
 
+/// --at / --at-xy: the irradiance of one cell, printed.
+void printIrradianceAt(const IrradianceOptions& o, const PointSpec& spec, const CliContext& ctx) {
+    refuseRasterOptions(o.tiling);
+    const IrradianceRequest request = irradianceRequest(o);
+    const DemSource dem = openPointDem(o.dem, request.search, ctx);
+    const PointIrradiance p = pointIrradiance(dem, locatePoint(dem, spec), request);
+    nlohmann::ordered_json j;
+    j["point"] = pointJson(p.point);
+    j["time_utc"] = formatInstant(request.time.utc, std::string());
+    j["method"] = "reference ray march";
+    j["sun_azimuth_deg"] = p.sunAzimuthDeg;
+    j["sun_elevation_deg"] = p.sunElevationDeg;
+    j["extraterrestrial_wm2"] = p.extraterrestrialWm2;
+    j["linke"] = p.linke;
+    j["albedo"] = request.albedo;
+    j["coeff_bh"] = request.coeffBh;
+    j["coeff_dh"] = request.coeffDh;
+    j["diffuse_model"] = o.sky.diffuseModel;
+    j["max_distance_m"] = p.maxDistanceM;
+    j["horizon_at_sun_deg"] = p.horizonAtSunDeg;
+    j["sun_visibility"] = p.sunVisibility;
+    j["sky_k0"] = p.skyK0 ? nlohmann::ordered_json(*p.skyK0) : nlohmann::ordered_json(nullptr);
+    j["sky_directions"] = p.skyDirections;
+    j["beam_wm2"] = p.irradiance.beam;
+    j["diffuse_wm2"] = p.irradiance.diffuse;
+    j["reflected_wm2"] = p.irradiance.reflected;
+    j["global_wm2"] = p.irradiance.global();
+    printPoint(o.point, j,
+               {"time_utc", "sun_azimuth_deg", "sun_elevation_deg", "horizon_at_sun_deg", "sun_visibility", "beam_wm2",
+                "diffuse_wm2", "reflected_wm2", "global_wm2"},
+               {{formatInstant(request.time.utc, std::string()), formatNumber(p.sunAzimuthDeg),
+                 formatNumber(p.sunElevationDeg), formatNumber(p.horizonAtSunDeg), formatNumber(p.sunVisibility),
+                 formatNumber(p.irradiance.beam), formatNumber(p.irradiance.diffuse),
+                 formatNumber(p.irradiance.reflected), formatNumber(p.irradiance.global())}});
+}
+
 void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
+    if (const auto spec = pointOf(o.point)) return printIrradianceAt(o, *spec, ctx);
+    requireOutputOrPoint(o.out, o.point);
     const IrradianceRequest request = irradianceRequest(o);
     if (request.diffuseModel == DiffuseModel::RSun && o.skyDirections)
         note(ctx, "note: --sky-directions is used by --diffuse-model visible-sky only; rsun sweeps the sun's azimuth");
@@ -80,6 +122,7 @@ void registerIrradiance(CLI::App& app, CliContext& ctx) {
         "irradiance", "Clear-sky solar irradiance (W/m2) at one instant: beam, diffuse, reflected, global (ESRA)");
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
+    addPointOptions(cmd, o->point, cmd->get_option("-o"));
     addTimeOptions(cmd, o->time, o->tz);
     addClearSkyOptions(cmd, o->sky, "--time in its zone");
     cmd->add_option("--sky-directions", o->skyDirections,
@@ -88,7 +131,10 @@ void registerIrradiance(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(irradianceCall(*o)) : runIrradiance(*o, ctx); });
+    cmd->callback([o, &ctx] {
+        refusePointCall(o->point, ctx);
+        ctx.takeCall ? ctx.takeCall(irradianceCall(*o)) : runIrradiance(*o, ctx);
+    });
 }
 
 }  // namespace demlight::cli

@@ -329,4 +329,18 @@ std::pair<double, double> cellLatLon(const Dem& dem, double col, double row) {
     return {lat, lon};
 }
 
+std::pair<double, double> crsPointOfWgs84(const Dem& dem, double latitudeDeg, double longitudeDeg) {
+    OGRSpatialReference wgs84, grid;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // lon, lat
+    grid.importFromWkt(dem.band.ref.crsWkt.c_str());
+    grid.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    TransformPtr toGrid(OGRCreateCoordinateTransformation(&wgs84, &grid));
+    double x = longitudeDeg, y = latitudeDeg;
+    if (!toGrid || !toGrid->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))
+        throw Error("cannot place latitude " + std::to_string(latitudeDeg) + ", longitude " +
+                    std::to_string(longitudeDeg) + " in the CRS of '" + dem.band.path + "'");
+    return {x, y};
+}
+
 }  // namespace demlight

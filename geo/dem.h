@@ -96,4 +96,9 @@ Grid<float> heightsInMetres(const RasterBand& band, const HeightTransform& tr);
 /// Latitude and longitude (degrees, on the CRS's own datum) of a cell centre.
 std::pair<double, double> cellLatLon(const Dem& dem, double col, double row);
 
+/// The DEM's CRS coordinates (x, y) of a WGS84 latitude and longitude (degrees), through PROJ
+/// (a datum shift included where the DEM's datum is not WGS84). Throws Error naming the DEM when
+/// PROJ cannot transform the point.
+std::pair<double, double> crsPointOfWgs84(const Dem& dem, double latitudeDeg, double longitudeDeg);
+
 }  // namespace demlight

@@ -128,6 +128,18 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
     return s;
 }
 
+DemSource DemSource::openWithoutHeightPass(const std::string& path, const HeightOptions& heights) {
+    Dem dem = openDem(path, heights);
+    DemSource s;
+    s.derived_ = std::make_shared<Derived>();
+    const Terrain& t = dem.terrain;
+    const HeightStats none;  // lo = +inf > hi = -inf: no range known
+    s.frame_ = std::make_shared<const GridFrame>(
+        GridFrame{dem.band.width, dem.band.height, t.cellWidthM, t.cellHeightM, t.convergence, none.lo, none.hi});
+    s.geometry_ = geometryOf(std::move(dem), s.frame_);
+    return s;
+}
+
 DemSource::DemSource(Dem dem) : derived_(std::make_shared<Derived>()) {
     // The DEM given is the whole grid, even when it was cut from a larger one.
     dem.terrain.frame.reset();

@@ -34,6 +34,11 @@ public:
     /// hears of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and
     /// stops it (Cancelled) by returning false.
     static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});
+    /// Opens the DEM as `open` does but without the pass over its heights, for callers that read
+    /// a few small windows with a search distance of their own (point queries given a distance):
+    /// the height range is unknown (frame lowM > highM, the relief of a DEM without heights, so
+    /// planned search distances are the smallest cell side), and meanHeightM and validCells are 0.
+    static DemSource openWithoutHeightPass(const std::string& path, const HeightOptions& heights = {});
     /// A DEM already in memory (tests, bindings).
     explicit DemSource(Dem dem);
 

@@ -64,6 +64,12 @@ InsolationAccumulator::InsolationAccumulator(const Grid<float>& heightsM, const 
         }
 }
 
+void InsolationAccumulator::setGrids(const ClearSkyGrids& grids) {
+    for (const Grid<float>* g : {grids.linke, grids.albedo, grids.coeffBh, grids.coeffDh})
+        if (g && !g->sameShape(heights_)) throw Error("InsolationAccumulator: a clear-sky grid of another shape");
+    grids_ = grids;
+}
+
 void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
     if (index >= directions_ || !horizonDeg.sameShape(heights_))
         throw Error("InsolationAccumulator: direction out of range or horizons of another shape");
@@ -82,10 +88,19 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
         }
     if (bins.empty()) return;
     const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
+    const bool skyGrid = grids_.changesSky(), anyGrid = skyGrid || grids_.albedo;
     parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < heights_.width(); ++col) {
             const float z = heights_(col, row);
             if (std::isnan(z)) continue;
+            // The cell's own inputs only where grids are given: the constant path stays as it was.
+            IrradianceParams own;
+            const IrradianceParams* cell = &params_;
+            if (anyGrid) {
+                own = params_;
+                if (!grids_.at(col, row, own)) continue;  // NaN in finish
+                cell = &own;
+            }
             const Enu n = normals_.at(col, row);
             // Summed in registers, in the same order as into the grids.
             double beam = beam_(col, row), hours = sunHours_(col, row), diffuse = diffuse_(col, row),
@@ -93,7 +108,10 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
             for (std::size_t k = 0; k < bins.size(); ++k) {
                 const SunBin& b = *bins[k];
                 const SunAngles& sun = angles[k];
-                const ClearSky sky = clearSkyWithBeam(skies[k], beams[k].at(z));
+                // A per-cell Linke or index: the bin's sky at this cell from the formulas (E2-E9).
+                const ClearSky sky = skyGrid ? clearSky(b.extraterrestrialWm2, grids_.linke ? cell->linke : b.linke,
+                                                        b.elevationDeg, z, cell->coeffBh, cell->coeffDh)
+                                             : clearSkyWithBeam(skies[k], beams[k].at(z));
                 const SunTerms terms = sunTerms(n, horizonDeg(col, row), sun, sunDiameterDeg_);
                 CellView view;
                 view.sunIrradiance = terms.irradiance;
@@ -101,7 +119,7 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
                 view.surface = {n.up, toward, toward * sun.cosElevation + n.up * sun.sinElevation,
                                 b.elevationDeg * kDegToRad};
-                const CellIrradiance c = cellIrradiance(sky, view, params_);
+                const CellIrradiance c = cellIrradiance(sky, view, *cell);
                 beam += b.hours * c.beam;
                 hours += b.hours * terms.visibility;
                 // visible-sky: diffuse and reflected are K0 and 1 - K0 times horizon-free sums.
@@ -127,12 +145,14 @@ InsolationMaps InsolationAccumulator::finish(const Grid<float>* skyK0) const {
     IrradianceMaps& out = totals.irradiation;
     for (std::size_t k = 0; k < heights_.size(); ++k) {
         if (std::isnan(heights_.data()[k])) continue;
+        IrradianceParams cell = params_;
+        if (!grids_.at(k % w, k / w, cell)) continue;
         const double beam = beam_.data()[k];
         double diffuse = diffuse_.data()[k], reflected = reflected_.data()[k];
         if (visibleSky) {
             const double k0 = std::clamp(static_cast<double>(skyK0->data()[k]), 0.0, 1.0);
             diffuse *= k0;
-            reflected *= params_.albedo * (1 - k0);
+            reflected *= cell.albedo * (1 - k0);
         }
         out.beam.data()[k] = static_cast<float>(beam);
         out.diffuse.data()[k] = static_cast<float>(diffuse);

@@ -53,6 +53,10 @@ public:
     /// `params.extraterrestrialWm2` and `params.linke` are ignored: each bin has its own.
     InsolationAccumulator(const Grid<float>& heightsM, const Normals& normals, std::vector<SunBin> bins,
                           std::size_t directions, const IrradianceParams& params, double sunDiameterDeg);
+    /// Per-cell Linke, albedo and real-sky indices (grids of the heights' shape, kept by
+    /// reference) in place of the params' constants; with a Linke or index grid each cell
+    /// evaluates the clear sky of every bin itself instead of the bins' tables.
+    void setGrids(const ClearSkyGrids& grids);
     /// Adds the bins of sector `index` with its horizons (degrees, NaN = nodata).
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
     /// Totals; the visible-sky model takes K0 (lighting/irradiance.h) here. NaN at nodata.
@@ -65,6 +69,7 @@ private:
     std::size_t directions_;
     IrradianceParams params_;
     double sunDiameterDeg_;
+    ClearSkyGrids grids_;
     Grid<double> beam_, diffuse_, reflected_, sunHours_;
     /// Valid heights' range: what the bins' BeamNormalTables cover.
     double lowM_ = std::numeric_limits<double>::infinity(), highM_ = -std::numeric_limits<double>::infinity();

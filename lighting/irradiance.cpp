@@ -27,6 +27,17 @@ void raiseToHorizontal(const Grid<float>& horizonDeg, Grid<float>& raised) {
     for (float& v : raised.values()) v = std::max(v, 0.0f);  // NaN stays NaN
 }
 
+bool ClearSkyGrids::at(std::size_t col, std::size_t row, IrradianceParams& params) const {
+    for (const auto& [grid, value] : {std::pair{linke, &params.linke}, std::pair{albedo, &params.albedo},
+                                      std::pair{coeffBh, &params.coeffBh}, std::pair{coeffDh, &params.coeffDh}}) {
+        if (!grid) continue;
+        const float v = (*grid)(col, row);
+        if (std::isnan(v)) return false;
+        *value = v;
+    }
+    return true;
+}
+
 CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params) {
     CellIrradiance out;
     if (!(sky.beamNormal > 0 || sky.diffuseHorizontal > 0)) return out;  // the sun is down
@@ -53,19 +64,25 @@ IrradianceMaps computeIrradiance(const IrradianceInputs& in, const IrradiancePar
     const Grid<float>& heights = *in.heightsM;
     const std::size_t width = heights.width(), height = heights.height();
     const auto sameShape = [&](const Grid<float>& g) { return g.width() == width && g.height() == height; };
+    bool gridsFit = true;
+    for (const Grid<float>* g : {in.grids.linke, in.grids.albedo, in.grids.coeffBh, in.grids.coeffDh})
+        gridsFit = gridsFit && (!g || sameShape(*g));
     if (!sameShape(in.normals->up) || !sameShape(*in.sunVisibility) || !sameShape(*in.sunIrradiance) ||
-        (in.skyK0 && !sameShape(*in.skyK0)))
+        (in.skyK0 && !sameShape(*in.skyK0)) || !gridsFit)
         throw Error("computeIrradiance: the input grids differ in shape");
 
     const float nan = std::numeric_limits<float>::quiet_NaN();
     IrradianceMaps out{Grid<float>(width, height, nan), Grid<float>(width, height, nan),
                        Grid<float>(width, height, nan), Grid<float>(width, height, nan)};
     const Normals& n = *in.normals;
+    const bool anyGrid = in.grids.changesSky() || in.grids.albedo;
     parallelFor(0, height, p.threads, [&](std::size_t row) {
         forEachSunInRow(*in.sun, row, width, [&](std::size_t col, const SunAngles& sun) {
             const float z = heights(col, row);
             if (std::isnan(z)) return;
-            const ClearSky sky = clearSky(p.extraterrestrialWm2, p.linke, sun.elevationDeg, z, p.coeffBh, p.coeffDh);
+            IrradianceParams q = p;  // the cell's own inputs where grids are given
+            if (anyGrid && !in.grids.at(col, row, q)) return;
+            const ClearSky sky = clearSky(q.extraterrestrialWm2, q.linke, sun.elevationDeg, z, q.coeffBh, q.coeffDh);
             CellView view;
             view.sunIrradiance = (*in.sunIrradiance)(col, row);
             view.sunVisibility = (*in.sunVisibility)(col, row);
@@ -74,7 +91,7 @@ IrradianceMaps computeIrradiance(const IrradianceInputs& in, const IrradiancePar
             const double toward = n.east(col, row) * sun.sinAzimuth + n.north(col, row) * sun.cosAzimuth;
             view.surface = {up, toward, toward * sun.cosElevation + up * sun.sinElevation, sun.elevationDeg * kDegToRad};
             if (in.skyK0) view.skyK0 = (*in.skyK0)(col, row);
-            const CellIrradiance c = cellIrradiance(sky, view, p);
+            const CellIrradiance c = cellIrradiance(sky, view, q);
             out.beam(col, row) = static_cast<float>(c.beam);
             out.diffuse(col, row) = static_cast<float>(c.diffuse);
             out.reflected(col, row) = static_cast<float>(c.reflected);

@@ -57,6 +57,20 @@ struct CellIrradiance {
     double global() const { return beam + diffuse + reflected; }
 };
 
+/// Per-cell values of the clear-sky inputs that may vary over the DEM (r.sun's linke, albedo,
+/// coeff_bh and coeff_dh rasters), each of the DEM's shape; null = the constant of
+/// IrradianceParams. A NaN value (the raster has no data there) makes the cell's outputs NaN.
+struct ClearSkyGrids {
+    const Grid<float>* linke = nullptr;
+    const Grid<float>* albedo = nullptr;
+    const Grid<float>* coeffBh = nullptr;
+    const Grid<float>* coeffDh = nullptr;
+    /// A grid that changes the clear sky itself (not only the albedo) is given.
+    bool changesSky() const { return linke || coeffBh || coeffDh; }
+    /// `params` with the grids' values at (col, row); false where a grid holds NaN.
+    bool at(std::size_t col, std::size_t row, IrradianceParams& params) const;
+};
+
 /// The model above for one cell under the clear sky `sky` of its sun and height.
 CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params);
 
@@ -73,6 +87,7 @@ struct IrradianceInputs {
     const Grid<float>* sunVisibility = nullptr;  ///< the sun frame's O
     const Grid<float>* sunIrradiance = nullptr;  ///< the sun frame's O max(0, N.s)
     const Grid<float>* skyK0 = nullptr;          ///< visible-sky model only
+    ClearSkyGrids grids;                         ///< per-cell Linke, albedo and real-sky indices
 };
 
 /// cellIrradiance for every cell, parallel over rows; the same bits for any thread count and for

@@ -15,35 +15,9 @@ namespace {
 constexpr double kWhPerKWh = 1000;
 constexpr std::chrono::milliseconds kMinStep = std::chrono::seconds(6), kMaxStep = std::chrono::hours(2);
 
-void validateInsolation(const InsolationRequest& r) {
-    validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
-    linkeAt(r.linke, localDay(r.firstDay, r.zone).startUtc, r.zone);
-    if (r.interval && !(r.interval->first < r.interval->second))
-        throw FieldError("interval", " " + formatInstant(r.interval->second, r.zone) + ": is not after its start " +
-                                         formatInstant(r.interval->first, r.zone));
-    if (!r.interval && r.lastDay < r.firstDay)
-        throw FieldError("lastDay", " " + formatDate(r.lastDay) + ": is before the first day " + formatDate(r.firstDay));
-    if (r.step < kMinStep || r.step > kMaxStep) throw FieldError("step", ": must be from 6 s to 2 h");
-    if (r.directions && *r.directions < 4)
-        throw FieldError("directions", " " + std::to_string(*r.directions) + ": must be >= 4");
-    if (!(r.elevationBandDeg > 0 && r.elevationBandDeg <= 90))
-        throw FieldError("elevationBandDeg", " " + formatNumber(r.elevationBandDeg) + ": must be in (0, 90]");
-}
-
-double hoursBetween(UtcInstant a, UtcInstant b) { return std::chrono::duration<double, std::ratio<3600>>(b - a).count(); }
-
-/// First and last instant of the period: the interval, or the days from midnight to midnight.
-std::pair<UtcInstant, UtcInstant> periodOf(const InsolationRequest& r) {
-    if (r.interval) return *r.interval;
-    return {localDay(r.firstDay, r.zone).startUtc, localDay(r.lastDay, r.zone).endUtc};
-}
-
 /// The sun at the DEM centre every `step` over the period, with trapezoid weights (hours).
 std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationRequest& r, std::size_t& instants) {
-    const auto [start, end] = periodOf(r);
-    std::vector<UtcInstant> times;
-    for (UtcInstant t = start; t < end; t += r.step) times.push_back(t);
-    times.push_back(end);
+    const std::vector<UtcInstant> times = periodInstants(r);
     instants = times.size();
     SolarSite site;
     std::tie(site.latitudeDeg, site.longitudeDeg) = cellLatLon(
@@ -54,8 +28,8 @@ std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationR
     site.temperatureC = r.atmosphere.temperatureC;
     std::vector<WeightedSun> suns;
     for (std::size_t i = 0; i < times.size(); ++i) {
-        const double before = i > 0 ? hoursBetween(times[i - 1], times[i]) : 0.0;
-        const double after = i + 1 < times.size() ? hoursBetween(times[i], times[i + 1]) : 0.0;
+        const double before = i > 0 ? instantHoursBetween(times[i - 1], times[i]) : 0.0;
+        const double after = i + 1 < times.size() ? instantHoursBetween(times[i], times[i + 1]) : 0.0;
         SpaTrace trace{};
         const SolarPosition p = solarPosition(site, times[i], SpaOptions{}, &trace);
         if (!(p.elevationDeg > 0)) continue;
@@ -68,7 +42,7 @@ std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationR
 
 InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const InsolationRequest& r,
                               const std::vector<SunBin>& bins, std::size_t directions, std::size_t instants,
-                              const ProgressFn& progress) {
+                              const ClearSkyRasterGrids& rasters, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
     const Normals normals = computeNormals(t, r.search.threads);
@@ -81,6 +55,8 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
     params.coeffDh = r.coeffDh;
     params.threads = r.search.threads;
     InsolationAccumulator totals(t.heightsM, normals, bins, directions, params, r.sunDiameterDeg);
+    ClearSkyRasterGrids cut;
+    totals.setGrids(rasters.on(t, cut));
     std::optional<SkyAccumulator> sky;
     if (visibleSky) sky.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, r.search.threads);
     Grid<float> raised;
@@ -98,7 +74,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
 
     std::map<std::string, std::string> meta = planMetadata(plan);
     meta.merge(searchMetadata(t, hp.maxDistanceM, r.search.refraction));
-    const auto [start, end] = periodOf(r);
+    const auto [start, end] = insolationPeriod(r);
     meta.insert({
         {"DEMLIGHT_START", formatInstant(start, r.zone)},
         {"DEMLIGHT_END", formatInstant(end, r.zone)},
@@ -111,14 +87,11 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
         {"DEMLIGHT_ELEVATION_BAND_DEG", formatNumber(r.elevationBandDeg)},
         {"DEMLIGHT_MODEL", "esra"},
         {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
-        {"DEMLIGHT_LINKE", formatNumberList(r.linke)},
-        {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
-        {"DEMLIGHT_COEFF_BH", formatNumber(r.coeffBh)},
-        {"DEMLIGHT_COEFF_DH", formatNumber(r.coeffDh)},
         {"DEMLIGHT_SOLAR_CONSTANT_WM2", formatNumber(r.solarConstantWm2)},
         {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(r.sunDiameterDeg)},
         {"DEMLIGHT_UNITS", "kWh m-2"},
     });
+    meta.merge(clearSkyInputMetadata(formatNumberList(r.linke), r.albedo, r.coeffBh, r.coeffDh, r.rasters));
     InsolationResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "insolation", meta);
     out.instants = instants;
@@ -131,6 +104,38 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
 
 }  // namespace
 
+void validateInsolation(const InsolationRequest& r) {
+    validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
+    linkeAt(r.linke, localDay(r.firstDay, r.zone).startUtc, r.zone);
+    if (r.interval && !(r.interval->first < r.interval->second))
+        throw FieldError("interval", " " + formatInstant(r.interval->second, r.zone) + ": is not after its start " +
+                                         formatInstant(r.interval->first, r.zone));
+    if (!r.interval && r.lastDay < r.firstDay)
+        throw FieldError("lastDay", " " + formatDate(r.lastDay) + ": is before the first day " + formatDate(r.firstDay));
+    if (r.step < kMinStep || r.step > kMaxStep) throw FieldError("step", ": must be from 6 s to 2 h");
+    if (r.directions && *r.directions < 4)
+        throw FieldError("directions", " " + std::to_string(*r.directions) + ": must be >= 4");
+    if (!(r.elevationBandDeg > 0 && r.elevationBandDeg <= 90))
+        throw FieldError("elevationBandDeg", " " + formatNumber(r.elevationBandDeg) + ": must be in (0, 90]");
+}
+
+double instantHoursBetween(UtcInstant a, UtcInstant b) {
+    return std::chrono::duration<double, std::ratio<3600>>(b - a).count();
+}
+
+std::pair<UtcInstant, UtcInstant> insolationPeriod(const InsolationRequest& r) {
+    if (r.interval) return *r.interval;
+    return {localDay(r.firstDay, r.zone).startUtc, localDay(r.lastDay, r.zone).endUtc};
+}
+
+std::vector<UtcInstant> periodInstants(const InsolationRequest& r) {
+    const auto [start, end] = insolationPeriod(r);
+    std::vector<UtcInstant> times;
+    for (UtcInstant t = start; t < end; t += r.step) times.push_back(t);
+    times.push_back(end);
+    return times;
+}
+
 InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
                                    const ProgressFn& progress) {
     validateInsolation(request);
@@ -141,8 +146,10 @@ InsolationResult insolationProduct(const DemSource& source, const CellWindow& wi
     std::size_t instants = 0;
     const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, instants), directions, request.elevationBandDeg);
     const std::size_t halo = haloCellsFor(whole.terrain, horizonParams(request.search, plan).maxDistanceM);
+    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+    const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
     return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
-        return insolationOn(dem, plan, request, bins, directions, instants, progress);
+        return insolationOn(dem, plan, request, bins, directions, instants, rasters, progress);
     });
 }
 

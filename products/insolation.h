@@ -34,6 +34,7 @@ struct InsolationRequest {
     std::vector<double> linke{kDefaultLinke};  ///< one value, or 12 monthly (each instant's month)
     double albedo = kDefaultAlbedo;
     double coeffBh = 1, coeffDh = 1;
+    ClearSkyRasters rasters;  ///< rasters replacing linke, albedo, coeffBh or coeffDh over the DEM
     DiffuseModel diffuseModel = DiffuseModel::VisibleSky;
     double solarConstantWm2 = kSolarConstantWm2;
     /// Azimuth sectors of the bins and of the visible sky (>= 4); none = kDefaultInsolationDirections.
@@ -49,6 +50,15 @@ struct InsolationResult : ProductResult {
     std::size_t bins = 0;      ///< bins they fell in (sun up)
     std::size_t directions = 0;
 };
+
+/// Checks the request's fields; throws FieldError naming the first bad one.
+void validateInsolation(const InsolationRequest& request);
+/// First and last instant of the period: the interval, or the days from local midnight to midnight.
+std::pair<UtcInstant, UtcInstant> insolationPeriod(const InsolationRequest& request);
+/// The sun positions' instants: every request.step from the period's start, then its end.
+std::vector<UtcInstant> periodInstants(const InsolationRequest& request);
+/// Hours from `a` to `b` (the trapezoid weights: half the hours to each neighbour).
+double instantHoursBetween(UtcInstant a, UtcInstant b);
 
 /// Bands (Float32): beam, diffuse, reflected, global (kWh m-2), sun_hours (hours of direct sun:
 /// the time of each bin times the fraction of the sun's disk the cell sees in it).

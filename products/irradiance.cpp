@@ -20,12 +20,16 @@ constexpr double kMinLinke = 1, kMaxLinke = 10;
 /// Solar constants accepted (W m-2): the measured values lie near 1361-1367.
 constexpr double kMinSolarConstantWm2 = 1000, kMaxSolarConstantWm2 = 1500;
 
+}  // namespace
+
 void validateIrradiance(const IrradianceRequest& r) {
     validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
     linkeFor(r);
     if (r.skyDirections && *r.skyDirections < 1)
         throw FieldError("skyDirections", " " + std::to_string(*r.skyDirections) + ": must be >= 1");
 }
+
+namespace {
 
 /// K0: the sky K of the horizons raised to the horizontal (lighting/irradiance.h).
 Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::size_t directions,
@@ -40,7 +44,8 @@ Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::si
 }
 
 IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const IrradianceRequest& r,
-                             const SunField& field, double g0, double linke, const ProgressFn& progress) {
+                             const SunField& field, double g0, double linke, const ClearSkyRasterGrids& rasters,
+                             const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
     const Normals normals = computeNormals(t, r.search.threads);
@@ -67,6 +72,8 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     inputs.sunVisibility = &frame.light.visibility;
     inputs.sunIrradiance = &frame.light.irradiance;
     inputs.skyK0 = visibleSky ? &k0 : nullptr;
+    ClearSkyRasterGrids cut;
+    inputs.grids = rasters.on(t, cut);
     IrradianceMaps maps = computeIrradiance(inputs, params);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
@@ -81,17 +88,15 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
         {"DEMLIGHT_SUN_SWEEP_REGIONS", std::to_string(frame.sweepRegions)},
         {"DEMLIGHT_MODEL", "esra"},
         {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
-        {"DEMLIGHT_LINKE", formatNumber(linke)},
-        {"DEMLIGHT_LINKE_MONTHLY", r.linke.size() == 12 ? formatNumberList(r.linke) : std::string()},
-        {"DEMLIGHT_ALBEDO", formatNumber(r.albedo)},
-        {"DEMLIGHT_COEFF_BH", formatNumber(r.coeffBh)},
-        {"DEMLIGHT_COEFF_DH", formatNumber(r.coeffDh)},
+        {"DEMLIGHT_LINKE_MONTHLY",
+         r.linke.size() == 12 && r.rasters.linke.empty() ? formatNumberList(r.linke) : std::string()},
         {"DEMLIGHT_SOLAR_CONSTANT_WM2", formatNumber(r.solarConstantWm2)},
         {"DEMLIGHT_EXTRATERRESTRIAL_WM2", formatNumber(g0)},
         {"DEMLIGHT_UNITS", "W m-2"},
         {"DEMLIGHT_SKY_DIRECTIONS", visibleSky ? std::to_string(directions) : std::string()},
         {"DEMLIGHT_SKY_MAX_DISTANCE_M", visibleSky ? metadataDistanceM(t, hp.maxDistanceM) : std::string()},
     });
+    meta.merge(clearSkyInputMetadata(formatNumber(linke), r.albedo, r.coeffBh, r.coeffDh, r.rasters));
     IrradianceResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "irradiance", meta);
     out.centreAzimuthDeg = field.centreAzimuthDeg;
@@ -103,6 +108,78 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
 }
 
 }  // namespace
+
+ClearSkyGrids ClearSkyRasterGrids::on(const Terrain& terrain, ClearSkyRasterGrids& cut) const {
+    const auto one = [&](const Grid<float>& whole, Grid<float>& part) -> const Grid<float>* {
+        if (whole.empty()) return nullptr;
+        if (!terrain.frame) return &whole;
+        part = cropGrid(whole, cellsOnFullGrid(terrain));
+        return &part;
+    };
+    return {one(linke, cut.linke), one(albedo, cut.albedo), one(coeffBh, cut.coeffBh), one(coeffDh, cut.coeffDh)};
+}
+
+namespace {
+
+/// The auxiliary-raster specs of the clear-sky rasters: request field and valid range.
+struct ClearSkyRasterSpec {
+    const std::string ClearSkyRasters::*path;
+    Grid<float> ClearSkyRasterGrids::*grid;
+    double IrradianceParams::*value;
+    AuxiliarySpec spec;
+};
+const ClearSkyRasterSpec kClearSkyRasterSpecs[] = {
+    {&ClearSkyRasters::linke, &ClearSkyRasterGrids::linke, &IrradianceParams::linke,
+     {"linkeRaster", 1, false, kMinLinke, kMaxLinke, false, {}}},
+    {&ClearSkyRasters::albedo, &ClearSkyRasterGrids::albedo, &IrradianceParams::albedo,
+     {"albedoRaster", 1, false, 0, 1, false, {}}},
+    {&ClearSkyRasters::coeffBh, &ClearSkyRasterGrids::coeffBh, &IrradianceParams::coeffBh,
+     {"coeffBhRaster", 1, false, 0, 1, false, {}}},
+    {&ClearSkyRasters::coeffDh, &ClearSkyRasterGrids::coeffDh, &IrradianceParams::coeffDh,
+     {"coeffDhRaster", 1, false, 0, 1, false, {}}},
+};
+
+}  // namespace
+
+ClearSkyRasterGrids loadClearSkyRasters(const ClearSkyRasters& rasters, const DemSource& source) {
+    ClearSkyRasterGrids out;
+    for (const ClearSkyRasterSpec& r : kClearSkyRasterSpecs)
+        if (!(rasters.*r.path).empty()) out.*r.grid = std::move(loadAuxiliaryRaster(rasters.*r.path, source, r.spec)[0]);
+    return out;
+}
+
+IrradianceParams clearSkyAtCell(const ClearSkyRasters& rasters, const DemSource& source, CellIndex cell,
+                                IrradianceParams constants) {
+    GeoReference ref = source.geometry().band.ref;
+    ref.geoTransform[0] += static_cast<double>(cell.col) * ref.geoTransform[1];
+    ref.geoTransform[3] += static_cast<double>(cell.row) * ref.geoTransform[5];
+    for (const ClearSkyRasterSpec& r : kClearSkyRasterSpecs) {
+        const std::string& path = rasters.*r.path;
+        if (path.empty()) continue;
+        std::vector<Grid<float>> bands;
+        try {
+            bands = readRasterResampled(path, ref, 1, 1);
+        } catch (const Error& e) {
+            throw FieldError(r.spec.field, " " + path + ": " + e.what());
+        }
+        if (bands.empty()) throw FieldError(r.spec.field, " " + path + ": the raster has no bands");
+        const float v = bands[0](0, 0);
+        if (!std::isnan(v) && !(v >= r.spec.minValue && v <= r.spec.maxValue))
+            throw FieldError(r.spec.field, " " + path + ": holds " + formatNumber(v) + " at the point; expected values " +
+                                               formatNumber(r.spec.minValue) + "-" + formatNumber(r.spec.maxValue));
+        constants.*r.value = v;
+    }
+    return constants;
+}
+
+std::map<std::string, std::string> clearSkyInputMetadata(const std::string& linke, double albedo, double coeffBh,
+                                                         double coeffDh, const ClearSkyRasters& rasters) {
+    const auto valueOr = [](const std::string& path, const std::string& value) { return path.empty() ? value : path; };
+    return {{"DEMLIGHT_LINKE", valueOr(rasters.linke, linke)},
+            {"DEMLIGHT_ALBEDO", valueOr(rasters.albedo, formatNumber(albedo))},
+            {"DEMLIGHT_COEFF_BH", valueOr(rasters.coeffBh, formatNumber(coeffBh))},
+            {"DEMLIGHT_COEFF_DH", valueOr(rasters.coeffDh, formatNumber(coeffDh))}};
+}
 
 std::vector<ProductBand> irradianceBands(IrradianceMaps maps, const std::string& unit) {
     return {{"beam", unit, std::move(maps.beam), {}},
@@ -164,9 +241,11 @@ IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& wi
                                               .maxDistanceM);
         halo = haloCellsFor(whole.terrain, distance);
     }
+    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+    const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
     return onWindow<IrradianceResult>(source, window, halo, [&](const Dem& dem) {
-        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, progress);
-        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, progress);
+        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, rasters, progress);
+        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, rasters, progress);
     });
 }
 

@@ -15,6 +15,37 @@
 
 namespace demlight {
 
+/// Rasters (paths GDAL opens, band 1) of the clear-sky inputs that vary over the DEM, as r.sun's
+/// linke, albedo, coeff_bh and coeff_dh maps: resampled bilinearly onto the DEM's grid once
+/// (loadAuxiliaryRaster) and cut per window, so tiles give the one-piece bits. Empty = the
+/// request's constant. Where a raster has no data the outputs are nodata.
+struct ClearSkyRasters {
+    std::string linke;    ///< Linke turbidity, 1-10, constant over the period
+    std::string albedo;   ///< ground albedo, 0-1
+    std::string coeffBh;  ///< real-sky beam index, 0-1
+    std::string coeffDh;  ///< real-sky diffuse index, 0-1
+    bool any() const { return !linke.empty() || !albedo.empty() || !coeffBh.empty() || !coeffDh.empty(); }
+};
+
+/// The rasters on the whole DEM's grid (empty grids for those not given).
+struct ClearSkyRasterGrids {
+    Grid<float> linke, albedo, coeffBh, coeffDh;
+    /// The grids of a window's terrain (cut from these when it is a tile) as ClearSkyGrids;
+    /// `cut` holds the cut grids while the result is used.
+    ClearSkyGrids on(const Terrain& terrain, ClearSkyRasterGrids& cut) const;
+};
+/// Loads the rasters of `rasters` for `source`; throws FieldError naming linkeRaster, albedoRaster,
+/// coeffBhRaster or coeffDhRaster (unreadable, out of range, covering no cell).
+ClearSkyRasterGrids loadClearSkyRasters(const ClearSkyRasters& rasters, const DemSource& source);
+/// The values of the rasters at one cell of `source` (NaN where a raster has no data), for point
+/// queries: each raster resampled bilinearly onto that cell alone.
+IrradianceParams clearSkyAtCell(const ClearSkyRasters& rasters, const DemSource& source, CellIndex cell,
+                                IrradianceParams constants);
+/// The metadata of the clear-sky inputs: DEMLIGHT_LINKE (`linke`, or the raster's path),
+/// DEMLIGHT_ALBEDO, DEMLIGHT_COEFF_BH and DEMLIGHT_COEFF_DH (the constant or the raster's path).
+std::map<std::string, std::string> clearSkyInputMetadata(const std::string& linke, double albedo, double coeffBh,
+                                                         double coeffDh, const ClearSkyRasters& rasters);
+
 struct IrradianceRequest {
     /// The instant, and the zone its civil time is shown in (DEMLIGHT_TIME_LOCAL) and whose
     /// calendar month picks a monthly Linke value.
@@ -26,6 +57,8 @@ struct IrradianceRequest {
     double albedo = kDefaultAlbedo;
     /// Real-sky indices: the fractions (0-1) of clear-sky beam and diffuse that reach the ground.
     double coeffBh = 1, coeffDh = 1;
+    /// Rasters replacing linke, albedo, coeffBh or coeffDh over the DEM.
+    ClearSkyRasters rasters;
     DiffuseModel diffuseModel = DiffuseModel::VisibleSky;
     /// Solar constant I0 (W m-2) of the extraterrestrial irradiance I0 / R^2.
     double solarConstantWm2 = kSolarConstantWm2;
@@ -48,6 +81,8 @@ struct IrradianceResult : ProductResult {
 double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpec& zone);
 /// Numbers as formatNumber writes them, comma-separated ("1.5,1.6").
 std::string formatNumberList(const std::vector<double>& values);
+/// Checks the request's fields; throws FieldError naming the first bad one.
+void validateIrradiance(const IrradianceRequest& request);
 /// linkeAt for the request's instant and zone.
 double linkeFor(const IrradianceRequest& request);
 /// Checks the fields irradiance and insolation share (albedo, coeffBh, coeffDh, solarConstantWm2,

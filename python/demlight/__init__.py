@@ -36,7 +36,8 @@ COMMANDS = tuple(_demlight.raster_commands())
 # Command-line options that are not keyword arguments: the output and its storage (Result.write
 # takes the path, format and creation options; it writes Float32), the
 # notes of a terminal, and the DEM argument.
-_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem"}
+# Point queries (at, at_xy, point_format) print values; the module returns rasters.
+_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 

@@ -20,6 +20,9 @@ _OUTPUT_OPTION = "output"
 _ADVANCED = {"z-unit", "z-factor", "co", "threads", "tolerance", "refraction", "verbose", "tile-size",
              "memory-limit", "srcwin", "pressure", "temperature"}
 
+# Options of point queries, which print values instead of writing the raster an algorithm returns.
+_POINT_QUERY = {"at", "at-xy", "point-format"}
+
 # Picture outputs (render): the formats the CLI picks from the extension (cli/cmd_render.cpp help).
 _PICTURE_FILTER = "PNG (*.png);;JPEG (*.jpg *.jpeg);;OpenEXR (*.exr)"
 
@@ -100,6 +103,8 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
 
     def initAlgorithm(self, config=None):
         for option in self._command["options"]:
+            if option["name"] in _POINT_QUERY:
+                continue
             parameter = self._parameter(option)
             if option["name"] in _ADVANCED:
                 parameter.setFlags(parameter.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
@@ -138,6 +143,8 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         args = [self._executable, self._command["name"]]
         outputs = {}
         for option in self._command["options"]:
+            if option["name"] in _POINT_QUERY:
+                continue
             name = parameter_name(option)
             if option["positional"]:
                 layer = self.parameterAsRasterLayer(parameters, name, context)
