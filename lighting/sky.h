@@ -155,6 +155,9 @@ public:
     /// (degrees, NaN = nodata) are `horizonDeg`. Throws Error on a wrong shape, an index out of
     /// range or a direction added twice.
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
+    /// The same with the accumulator's cells at `cells` of a larger horizon grid (a tile's
+    /// window inside the grid swept with its halo); `cells` must match the normals' size.
+    void addDirection(std::size_t index, const Grid<float>& horizonDeg, const CellWindow& cells);
 
     /// Final grids with a constant albedo C in [0, 1]. Throws Error if a direction is missing.
     SkyMaps finish(double albedo) const&;
