@@ -44,7 +44,7 @@ constexpr std::size_t kSunhoursBands = 5;
 
 RasterCall sunhoursCall(const SunhoursOptions& o) {
     return singleRasterCall(
-        "sunhours", o.dem, o.tiling, o.search.request, kSunhoursBands,
+        "sunhours", o.dem, o.tiling, o.search.request, productTileBytes(kSunhoursBands),
         [request = sunhoursRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
             return sunhoursProduct(dem, w, request, p);
         });
@@ -55,7 +55,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunhoursBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kSunhoursBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

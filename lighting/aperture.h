@@ -105,6 +105,8 @@ public:
     /// window inside the grid swept with its halo); `cells` must match the normals' size.
     void addDirection(std::size_t index, const Grid<float>& horizonDeg, const CellWindow& cells);
     ApertureMaps finish() const;
+    /// Bytes of sums held per cell.
+    static constexpr std::size_t kBytesPerCell = 4 * sizeof(double);
 
 private:
     const Grid<float>& east_;
