@@ -26,16 +26,10 @@ ProgressFn tileProgress(const ProgressFn& job, std::size_t index, std::size_t co
     };
 }
 
-double TileBytes::of(double tileCells, double haloCells) const {
-    const double read = tileCells + 2 * haloCells;
-    return read * read * perReadCell + tileCells * tileCells * perTileCell;
-}
-
 TileBytes productTileBytes(std::size_t outputBands) {
     // Heights (4) and the DEM band (4), normals (12), two sweep planes (8), per-direction
-    // accumulators and scratch (~24), each output band (4), and a margin (8): sky's 4 bands took
-    // 72 bytes a read cell on the 40 000^2 benchmark, where 52 + 16 had let it pass
-    // --memory-limit 4000 by 6 % (docs/performance.md).
+    // accumulators and scratch (~24), each output band (4), and a margin (8), all for every
+    // cell read (docs/performance.md, "A DEM larger than memory").
     return {60.0 + 4.0 * static_cast<double>(outputBands), 0.0};
 }
 

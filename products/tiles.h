@@ -24,8 +24,6 @@ ProgressFn tileProgress(const ProgressFn& job, std::size_t index, std::size_t co
 struct TileBytes {
     double perReadCell = 0;
     double perTileCell = 0;
-    /// Bytes of a tile of `tileCells`^2 cells read with a halo of `haloCells` on every side.
-    double of(double tileCells, double haloCells) const;
 };
 
 /// A product that computes every cell it reads and crops the result to the tile (onWindow):

@@ -34,9 +34,8 @@ struct PlanCase {
     double limitMB;
 };
 
-/// The plan's memory for a tile of `tile` cells, written out here rather than taken from
-/// TileBytes::of: read window (tile + 2 halo)^2 at perReadCell, the tile at perTileCell, plus
-/// the block cache and the process.
+/// The plan's memory for a tile of `tile` cells: the read window (tile + 2 halo)^2 at
+/// perReadCell, the tile at perTileCell, plus the block cache and the process.
 double plannedBytes(const PlanCase& c, std::size_t tile) {
     const double read = static_cast<double>(tile + 2 * c.halo);
     const double cells = static_cast<double>(tile);
