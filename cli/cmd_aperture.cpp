@@ -1,6 +1,7 @@
 // demlight aperture DEM -o OUT.tif: ambient aperture per cell (products/aperture.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
+#include "lighting/aperture.h"
 #include "products/aperture.h"
 
 #include <optional>
@@ -28,7 +29,7 @@ ApertureRequest apertureRequest(const ApertureOptions& o) {
 
 RasterCall apertureCall(const ApertureOptions& o) {
     return singleRasterCall(
-        "aperture", o.dem, o.tiling, o.search.request, kApertureBands,
+        "aperture", o.dem, o.tiling, o.search.request, windowProductTileBytes(ApertureAccumulator::kBytesPerCell, kApertureBands),
         [request = apertureRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
             return apertureProduct(dem, w, request, p);
         });
@@ -39,7 +40,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     const DemSource dem = openDem(o.dem, ctx);
     const ApertureRequest request = apertureRequest(o);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kApertureBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, windowProductTileBytes(ApertureAccumulator::kBytesPerCell, kApertureBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const ApertureResult result = runRaster<ApertureResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

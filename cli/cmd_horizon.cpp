@@ -76,7 +76,7 @@ RasterCall horizonCall(const HorizonOptions& o) {
     call.heights = o.dem.heights;
     call.tiling = o.tiling;
     call.search = request.search;
-    call.outputBands = horizonBands(request);
+    call.tileBytes = productTileBytes(horizonBands(request));
     call.run = [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
         HorizonResult r = horizonProduct(dem, w, request, p);
         return std::vector<ProductResult>{std::move(r.horizons), std::move(r.truncation)};
@@ -119,7 +119,7 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
 
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, horizonBands(request), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(horizonBands(request)), ctx);
     const auto start = std::chrono::steady_clock::now();
     const HorizonResult result = runRaster<HorizonResult>(
         run, targets, ctx, o.dem.path, [&](const CellWindow& w, const ProgressFn& p) { return horizonProduct(dem, w, request, p); },

@@ -55,7 +55,7 @@ constexpr std::size_t kInsolationBands = 5;  // beam, diffuse, reflected, global
 
 RasterCall insolationCall(const InsolationOptions& o) {
     return singleRasterCall(
-        "insolation", o.dem, o.tiling, o.search.request, kInsolationBands,
+        "insolation", o.dem, o.tiling, o.search.request, productTileBytes(kInsolationBands),
         [request = insolationRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
             return insolationProduct(dem, w, request, p);
         });
@@ -103,7 +103,7 @@ void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kInsolationBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kInsolationBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const InsolationResult r = runRaster<InsolationResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

@@ -48,7 +48,7 @@ IrradianceRequest irradianceRequest(const IrradianceOptions& o) {
 
 RasterCall irradianceCall(const IrradianceOptions& o) {
     return singleRasterCall(
-        "irradiance", o.dem, o.tiling, o.search.request, kIrradianceBands,
+        "irradiance", o.dem, o.tiling, o.search.request, productTileBytes(kIrradianceBands),
         [request = irradianceRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
             return irradianceProduct(dem, w, request, p);
         });
@@ -99,7 +99,7 @@ void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kIrradianceBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kIrradianceBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const IrradianceResult r = runRaster<IrradianceResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

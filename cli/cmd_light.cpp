@@ -50,7 +50,7 @@ LightRequest lightRequest(const LightOptions& o) {
 constexpr std::size_t kLightBands = 3;
 
 RasterCall lightCall(const LightOptions& o) {
-    return singleRasterCall("light", o.dem, o.tiling, o.search.request, kLightBands,
+    return singleRasterCall("light", o.dem, o.tiling, o.search.request, productTileBytes(kLightBands),
                             [request = lightRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
                                 return lightProduct(dem, w, request, p);
                             });
@@ -61,7 +61,7 @@ void runLight(const LightOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kLightBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kLightBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const LightResult result = runRaster<LightResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

@@ -2,6 +2,7 @@
 // hemisphere Hargreaves' hemisphere lighting (no horizons, one band).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
+#include "lighting/sky.h"
 #include "products/sky.h"
 #include "src/error.h"
 
@@ -38,9 +39,14 @@ SkyRequest skyRequest(const SkyOptions& o) {
 /// Bands of the output: svf_horizontal, sky_fraction, sky_K, f_sky and one per sky patch.
 std::size_t skyBands(const SkyRequest& request) { return 4 + request.patches.patches.size(); }
 
+/// What a tile holds: the Stewart-Langer sky computes its window's cells only (skyProduct).
+TileBytes skyTileBytes(const SkyRequest& request) {
+    return windowProductTileBytes(SkyAccumulator::bytesPerCell(request.patches.size()), skyBands(request));
+}
+
 RasterCall skyCall(const SkyOptions& o) {
     const SkyRequest request = skyRequest(o);
-    return singleRasterCall("sky", o.dem, o.tiling, request.search, skyBands(request),
+    return singleRasterCall("sky", o.dem, o.tiling, request.search, skyTileBytes(request),
                             [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
                                 return skyProduct(dem, w, request, p);
                             });
@@ -54,7 +60,7 @@ void runSky(const SkyOptions& o, const CliContext& ctx) {
     const double loadSeconds = secondsSince(loadStart);
     if (request.model == SkyModel::StewartLanger) notePlan(o.search, dem.geometry().terrain, ctx);
 
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, skyBands(request), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, skyTileBytes(request), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SkyResult result = runRaster<SkyResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

@@ -36,7 +36,7 @@ SunRequest sunRequest(const SunOptions& o) {
 }
 
 RasterCall sunCall(const SunOptions& o) {
-    return singleRasterCall("sun", o.dem, o.tiling, o.search.request, kSunBands,
+    return singleRasterCall("sun", o.dem, o.tiling, o.search.request, productTileBytes(kSunBands),
                             [request = sunRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
                                 return sunProduct(dem, w, request, p);
                             });
@@ -49,7 +49,7 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     checkOutputPath(o.out, o.dem.path);
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, kSunBands, ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kSunBands), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunResult r = runRaster<SunResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

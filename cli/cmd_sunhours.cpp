@@ -46,7 +46,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 constexpr std::size_t kSunhoursBands = 5;
 
 /// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions.
-std::size_t sunhoursGrids(std::size_t stackDirections) { return kSunhoursBands + stackDirections; }
+TileBytes sunhoursGrids(std::size_t stackDirections) { return productTileBytes(kSunhoursBands + stackDirections); }
 
 RasterCall sunhoursCall(const SunhoursOptions& o) {
     SunhoursRequest request = sunhoursRequest(o);

@@ -305,7 +305,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const std::set<std::string> formats = parseFormats(o.formats);
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, timelapseGridsPerCell(request), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), ctx);
     const bool tiled = run.tiles.size() > 1;
     if (request.previews && !dem.isWhole(run.tiles.front()))
         throw Error("--formats " + o.formats + ": png, gif and mp4 are pictures of whole frames of the DEM, and this run is " +

@@ -171,7 +171,7 @@ void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
 }
 
 RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
-                        std::size_t outputBands, const CliContext& ctx) {
+                        const TileBytes& bytes, const CliContext& ctx) {
     RasterRun run;
     run.extent = dem.whole();
     if (!tiling.srcwin.empty()) {
@@ -187,7 +187,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
     const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
     setRasterCacheBytes(rasterCacheBytes(limit));  // streamed outputs' blocks count in the budget
     if (tiling.tileSize == "auto") {
-        tile = automaticTileCells(run.extent, halo, productBytesPerCell(outputBands), limit - rasterCacheBytes(limit));
+        tile = automaticTileCells(run.extent, halo, bytes, tileMemoryBytes(limit));
     } else {
         std::size_t used = 0;
         unsigned long long n = 0;

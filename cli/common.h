@@ -77,9 +77,9 @@ struct RasterRun {
     std::vector<CellWindow> tiles;
 };
 /// Chooses the tiles: --tile-size N, or auto (one piece unless extent + halo exceeds
-/// --memory-limit for `outputBands` bands). Throws Error naming the option on bad values.
+/// --memory-limit for a tile holding `bytes`). Throws Error naming the option on bad values.
 RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
-                        std::size_t outputBands, const CliContext& ctx);
+                        const TileBytes& bytes, const CliContext& ctx);
 
 /// Streamed outputs of a tiled run: one sink per target, opened at the first tile.
 class TiledWriter {
@@ -112,7 +112,7 @@ struct RasterCall {
     HeightOptions heights;  ///< --z-unit, --z-factor: how the DEM argument is to be opened
     TilingOptions tiling;
     SearchRequest search;         ///< what the halo and the tiles are planned from (planRasterRun)
-    std::size_t outputBands = 0;  ///< of planRasterRun
+    TileBytes tileBytes;          ///< of planRasterRun
     /// The product on one window of a source: one result per output raster (rasterTargets).
     std::function<std::vector<ProductResult>(const DemSource&, const CellWindow&, const ProgressFn&)> run;
     /// The rasters the command writes for -o, in the order of run's results.
@@ -125,13 +125,13 @@ std::string infoJson(const std::string& path, const DemSource& source);
 /// A RasterCall of a command that writes one raster: `product(source, window, progress)`.
 template <class Product>
 RasterCall singleRasterCall(std::string command, const DemOptions& dem, const TilingOptions& tiling,
-                            const SearchRequest& search, std::size_t outputBands, Product product) {
+                            const SearchRequest& search, const TileBytes& tileBytes, Product product) {
     RasterCall call;
     call.command = std::move(command);
     call.heights = dem.heights;
     call.tiling = tiling;
     call.search = search;
-    call.outputBands = outputBands;
+    call.tileBytes = tileBytes;
     call.run = [product](const DemSource& source, const CellWindow& w, const ProgressFn& p) {
         return std::vector<ProductResult>{product(source, w, p)};
     };

@@ -337,11 +337,17 @@ ApertureAccumulator::ApertureAccumulator(const Grid<float>& normalEast,
 }
 
 void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
+    addDirection(index, horizonDeg, CellWindow{0, 0, horizonDeg.width(), horizonDeg.height()});
+}
+
+void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg, const CellWindow& cells) {
     if (index >= directions_)
         throw Error("aperture: direction index " + std::to_string(index) + " out of range 0.." +
                     std::to_string(directions_ - 1));
     if (added_[index]) throw Error("aperture: direction " + std::to_string(index) + " added twice");
-    if (!horizonDeg.sameShape(east_))
+    if (cells.col1 - cells.col0 != east_.width() || cells.row1 - cells.row0 != east_.height() ||
+        cells.col1 > horizonDeg.width() || cells.row1 > horizonDeg.height() || cells.col0 > cells.col1 ||
+        cells.row0 > cells.row1)
         throw Error("aperture: horizon grid size differs from the normal grids");
     added_[index] = true;
     const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions_);
@@ -352,7 +358,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
         thread_local std::vector<double> keptBuffer;
         keptBuffer.resize(width);
         double* kept = keptBuffer.data();
-        const float* h = horizonDeg.rowPtr(row);
+        const float* h = horizonDeg.rowPtr(cells.row0 + row) + cells.col0;
         const float* e = east_.rowPtr(row);
         const float* n = north_.rowPtr(row);
         const float* u = up_.rowPtr(row);

@@ -101,7 +101,12 @@ public:
     ApertureAccumulator(const Grid<float>& normalEast, const Grid<float>& normalNorth,
                         const Grid<float>& normalUp, std::size_t directions, int threads = 0);
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
+    /// The same with the accumulator's cells at `cells` of a larger horizon grid (a tile's
+    /// window inside the grid swept with its halo); `cells` must match the normals' size.
+    void addDirection(std::size_t index, const Grid<float>& horizonDeg, const CellWindow& cells);
     ApertureMaps finish() const;
+    /// Bytes of sums held per cell.
+    static constexpr std::size_t kBytesPerCell = 4 * sizeof(double);
 
 private:
     const Grid<float>& east_;

@@ -142,7 +142,7 @@ struct SkyMaps {
 };
 
 /// Streams horizon grids one direction at a time so callers never hold all D grids.
-/// Memory: (3 + patches) doubles per cell. Results are bit-identical for any thread count;
+/// Memory: (3 + patches) floats per cell (bytesPerCell). Results are bit-identical for any thread count;
 /// every direction must be added exactly once (in any order; the order changes only rounding).
 /// The normal grids are referenced, not copied: they must outlive the accumulator.
 class SkyAccumulator {
@@ -155,6 +155,9 @@ public:
     /// (degrees, NaN = nodata) are `horizonDeg`. Throws Error on a wrong shape, an index out of
     /// range or a direction added twice.
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
+    /// The same with the accumulator's cells at `cells` of a larger horizon grid (a tile's
+    /// window inside the grid swept with its halo); `cells` must match the normals' size.
+    void addDirection(std::size_t index, const Grid<float>& horizonDeg, const CellWindow& cells);
 
     /// Final grids with a constant albedo C in [0, 1]. Throws Error if a direction is missing.
     SkyMaps finish(double albedo) const&;
@@ -167,6 +170,8 @@ public:
     SkyMaps finish(const Grid<float>& albedo) &&;
 
     std::size_t directions() const { return directions_; }
+    /// Bytes of sums held per cell with `patches` sky patches.
+    static std::size_t bytesPerCell(std::size_t patches) { return (3 + patches) * sizeof(float); }
 
 private:
     /// Turns sums (maps.skyK, maps.skyFraction, maps.svfHorizontal and maps.patchK hold

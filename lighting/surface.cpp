@@ -23,16 +23,21 @@ double axisDerivative(double hMinus, double hCentre, double hPlus, double distMi
 }  // namespace
 
 Normals computeNormals(const Terrain& t, int threads) {
+    return computeNormals(t, CellWindow{0, 0, t.width(), t.height()}, threads);
+}
+
+Normals computeNormals(const Terrain& t, const CellWindow& cells, int threads) {
     const std::size_t W = t.width(), H = t.height();
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    Normals n{Grid<float>(W, H, nan), Grid<float>(W, H, nan), Grid<float>(W, H, nan)};
+    const std::size_t outW = cells.col1 - cells.col0, outH = cells.row1 - cells.row0;
+    Normals n{Grid<float>(outW, outH, nan), Grid<float>(outW, outH, nan), Grid<float>(outW, outH, nan)};
     const Grid<float>& h = t.heightsM;
-    parallelFor(0, H, threads, [&](std::size_t row) {
+    parallelFor(cells.row0, cells.row1, threads, [&](std::size_t row) {
         // Distances between row centres (metres): half of each cell's north-south extent.
         const double toNorthM = row > 0 ? 0.5 * (t.cellHeightM[row - 1] + t.cellHeightM[row]) : 1.0;
         const double toSouthM = row + 1 < H ? 0.5 * (t.cellHeightM[row + 1] + t.cellHeightM[row]) : 1.0;
         const double cellWidthM = t.cellWidthM[row];
-        for (std::size_t col = 0; col < W; ++col) {
+        for (std::size_t col = cells.col0; col < cells.col1; ++col) {
             const double hc = h(col, row);
             if (std::isnan(hc)) continue;
             const double west = col > 0 ? h(col - 1, row) : nan;
@@ -49,9 +54,10 @@ Normals computeNormals(const Terrain& t, int threads) {
             const double ex = gx * c + gy * s;
             const double ny = -gx * s + gy * c;
             const double len = std::sqrt(ex * ex + ny * ny + 1.0);
-            n.east(col, row) = static_cast<float>(ex / len);
-            n.north(col, row) = static_cast<float>(ny / len);
-            n.up(col, row) = static_cast<float>(1.0 / len);
+            const std::size_t oc = col - cells.col0, orow = row - cells.row0;
+            n.east(oc, orow) = static_cast<float>(ex / len);
+            n.north(oc, orow) = static_cast<float>(ny / len);
+            n.up(oc, orow) = static_cast<float>(1.0 / len);
         }
     }, 8);
     return n;

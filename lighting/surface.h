@@ -29,5 +29,9 @@ struct Normals {
 /// with no valid neighbour). The gradient is taken along the grid axes and rotated by the
 /// meridian convergence gamma into true east/north. Parallel over rows (0 = all cores).
 Normals computeNormals(const Terrain& terrain, int threads = 0);
+/// The normals of `cells` of the terrain only (grids of the window's size), with the same bits
+/// as computeNormals gives those cells: a tile's window inside the terrain read with its halo.
+/// `cells` must lie inside the terrain.
+Normals computeNormals(const Terrain& terrain, const CellWindow& cells, int threads = 0);
 
 }  // namespace demlight

@@ -15,14 +15,17 @@ ApertureResult apertureProduct(const DemSource& source, const CellWindow& window
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t halo = haloCellsFor(whole, integralParams(request.search, plan, whole, directions).maxDistanceM);
-    return onWindow<ApertureResult>(source, window, halo, [&](const Dem& dem) {
+    // The sweeps serve the window's cells only; the halo is read for its occluders.
+    return onWindowCells<ApertureResult>(source, window, halo, [&](const Dem& dem, const CellWindow& cells) {
         const Terrain& t = dem.terrain;
-        const HorizonParams params = integralParams(request.search, plan, t, directions);
-        const Normals normals = computeNormals(t, request.search.threads);
+        HorizonParams params = integralParams(request.search, plan, t, directions);
+        params.window = sweepWindowOf(t, cells);
+        const Normals normals = computeNormals(t, cells, request.search.threads);
         ApertureAccumulator acc(normals.east, normals.north, normals.up, directions, request.search.threads);
-        ProgressCounter counter(progress, "aperture", t.heightsM.size() * directions);
+        ProgressCounter counter(progress, "aperture", normals.up.size() * directions);
         sweepDirections(t, params, directions,
-                        [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, &counter);
+                        [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg, cells); },
+                        &counter);
         ApertureMaps maps = acc.finish();
 
         std::map<std::string, std::string> meta = planMetadata(plan);

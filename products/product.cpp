@@ -153,16 +153,30 @@ ProductResult makeResult(const Dem& dem, const std::string& product, const std::
     return r;
 }
 
+CellWindow cellsWithin(const CellWindow& read, const CellWindow& window) {
+    return {window.col0 - read.col0, window.row0 - read.row0, window.col1 - read.col0, window.row1 - read.row0};
+}
+
+std::optional<CellWindow> sweepWindowOf(const Terrain& terrain, const CellWindow& cells) {
+    if (cells.col0 == 0 && cells.row0 == 0 && cells.col1 == terrain.width() && cells.row1 == terrain.height())
+        return std::nullopt;
+    return cells;
+}
+
 void cropResult(ProductResult& result, const CellWindow& read, const CellWindow& window) {
-    const std::size_t col0 = window.col0 - read.col0, row0 = window.row0 - read.row0;
-    const std::size_t cols = window.col1 - window.col0, rows = window.row1 - window.row0;
+    const CellWindow cells = cellsWithin(read, window);
     for (ProductBand& b : result.bands) {
-        if (!b.values.empty()) b.values = cropGrid(b.values, {col0, row0, col0 + cols, row0 + rows});
-        if (!b.flags.empty()) b.flags = cropGrid(b.flags, {col0, row0, col0 + cols, row0 + rows});
+        if (!b.values.empty()) b.values = cropGrid(b.values, cells);
+        if (!b.flags.empty()) b.flags = cropGrid(b.flags, cells);
     }
+    moveReference(result, read, window);
+}
+
+void moveReference(ProductResult& result, const CellWindow& read, const CellWindow& window) {
+    const CellWindow cells = cellsWithin(read, window);
     auto& gt = result.ref.geoTransform;
-    gt[0] += static_cast<double>(col0) * gt[1];
-    gt[3] += static_cast<double>(row0) * gt[5];
+    gt[0] += static_cast<double>(cells.col0) * gt[1];
+    gt[3] += static_cast<double>(cells.row0) * gt[5];
 }
 
 ColorEncoding parseColorEncoding(const std::string& name, const std::string& field) {

@@ -132,8 +132,24 @@ template <class Result>
 Result onWindow(const DemSource& source, const CellWindow& window, std::size_t haloCells,
                 const std::function<Result(const Dem&)>& compute);
 
+/// As onWindow, for products that compute the window's cells only (the halo is read for its
+/// occluders and never computed): compute(dem, cells) gets the DEM read with the halo and the
+/// window's cells in its coordinates (all of it for the whole DEM), and returns bands of exactly
+/// those cells on the read DEM's georeference, which is moved to the window's. A tile then costs
+/// the sweeps' walk over the halo, not a horizon for every halo cell.
+template <class Result>
+Result onWindowCells(const DemSource& source, const CellWindow& window, std::size_t haloCells,
+                     const std::function<Result(const Dem&, const CellWindow&)>& compute);
+
 /// Crops every band of `result` (computed on `read`) to `window`, and moves its georeference.
 void cropResult(ProductResult& result, const CellWindow& read, const CellWindow& window);
+/// Moves the georeference of `result` from `read`'s corner to `window`'s (bands untouched).
+void moveReference(ProductResult& result, const CellWindow& read, const CellWindow& window);
+/// `window` in the coordinates of `read`, which contains it.
+CellWindow cellsWithin(const CellWindow& read, const CellWindow& window);
+/// HorizonParams::window for sweeps that serve `cells` of `terrain` (onWindowCells): none when
+/// the cells are all of it.
+std::optional<CellWindow> sweepWindowOf(const Terrain& terrain, const CellWindow& cells);
 
 template <class Result>
 Result onWindow(const DemSource& source, const CellWindow& window, std::size_t haloCells,
@@ -143,6 +159,20 @@ Result onWindow(const DemSource& source, const CellWindow& window, std::size_t h
     const CellWindow read = source.withHalo(window, haloCells);
     Result result = compute(source.read(read));
     cropResult(result, read, window);
+    return result;
+}
+
+template <class Result>
+Result onWindowCells(const DemSource& source, const CellWindow& window, std::size_t haloCells,
+                     const std::function<Result(const Dem&, const CellWindow&)>& compute) {
+    source.checkWindow(window);
+    if (source.isWhole(window)) {
+        const std::shared_ptr<const Dem> whole = source.readWhole();
+        return compute(*whole, CellWindow{0, 0, whole->terrain.width(), whole->terrain.height()});
+    }
+    const CellWindow read = source.withHalo(window, haloCells);
+    Result result = compute(source.read(read), cellsWithin(read, window));
+    moveReference(result, read, window);
     return result;
 }
 

@@ -12,8 +12,8 @@ std::string albedoName(const SkyRequest& r) {
 }
 
 /// sky x (1 + N_up)/2 + albedo x (1 - N_up)/2 for a unit sky (Hargreaves).
-SkyResult hemisphere(const Dem& dem, const SkyRequest& request, const Grid<float>* albedo) {
-    const Normals normals = computeNormals(dem.terrain, request.search.threads);
+SkyResult hemisphere(const Dem& dem, const CellWindow& cells, const SkyRequest& request, const Grid<float>* albedo) {
+    const Normals normals = computeNormals(dem.terrain, cells, request.search.threads);
     HemisphereParams hp;
     hp.albedo = request.albedo;
     SkyResult out;
@@ -27,16 +27,19 @@ SkyResult hemisphere(const Dem& dem, const SkyRequest& request, const Grid<float
     return out;
 }
 
-SkyResult stewartLanger(const Dem& dem, const ScenePlan& plan, const SkyRequest& request, const Grid<float>* albedo,
-                        const ProgressFn& progress) {
+/// Sky factors of `cells` of the DEM (all of it, or a tile's window inside its halo): the sweeps
+/// serve those cells only, and the sums and outputs cover only them.
+SkyResult stewartLanger(const Dem& dem, const CellWindow& cells, const ScenePlan& plan, const SkyRequest& request,
+                        const Grid<float>* albedo, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams params = integralParams(request.search, plan, t, directions);
-    const Normals normals = computeNormals(t, request.search.threads);
+    HorizonParams params = integralParams(request.search, plan, t, directions);
+    params.window = sweepWindowOf(t, cells);
+    const Normals normals = computeNormals(t, cells, request.search.threads);
     SkyAccumulator sky(normals.east, normals.north, normals.up, directions, request.patches, request.search.threads);
-    ProgressCounter counter(progress, "sky", t.heightsM.size() * directions);
-    sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg); },
-                    &counter);
+    ProgressCounter counter(progress, "sky", normals.up.size() * directions);
+    sweepDirections(t, params, directions,
+                    [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg, cells); }, &counter);
     SkyMaps maps = albedo ? std::move(sky).finish(*albedo) : std::move(sky).finish(request.albedo);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
@@ -86,11 +89,13 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
     if (!request.albedoRaster.empty())
         albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source,
                                                {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
-    return onWindow<SkyResult>(source, window, halo, [&](const Dem& dem) {
+    return onWindowCells<SkyResult>(source, window, halo, [&](const Dem& dem, const CellWindow& cells) {
         const Terrain& t = dem.terrain;
-        const Grid<float> cut = t.frame ? cropGrid(albedo, cellsOnFullGrid(t)) : Grid<float>();
+        const CellWindow onFull{t.frameCol0 + cells.col0, t.frameRow0 + cells.row0, t.frameCol0 + cells.col1,
+                                t.frameRow0 + cells.row1};
+        const Grid<float> cut = t.frame ? cropGrid(albedo, onFull) : Grid<float>();
         const Grid<float>* a = albedo.empty() ? nullptr : t.frame ? &cut : &albedo;
-        return hemi ? hemisphere(dem, request, a) : stewartLanger(dem, plan, request, a, progress);
+        return hemi ? hemisphere(dem, cells, request, a) : stewartLanger(dem, cells, plan, request, a, progress);
     });
 }
 

@@ -19,19 +19,41 @@ std::vector<CellWindow> tilesOf(const CellWindow& extent, std::size_t tileCells)
 /// reports (index + f) / count, the stage prefixed "tile i/n". Cancelling the job cancels the tile.
 ProgressFn tileProgress(const ProgressFn& job, std::size_t index, std::size_t count);
 
-/// Memory a product needs per cell it computes (bytes), as a rule of thumb for sizing tiles:
-/// the heights, normals and sweep planes every horizon product holds, plus each output band.
-double productBytesPerCell(std::size_t outputBands);
+/// Memory a product holds while it computes one tile (bytes), as a rule of thumb for sizing
+/// tiles: so much per cell it reads (the tile with its halo) and so much per cell of the tile.
+struct TileBytes {
+    double perReadCell = 0;
+    double perTileCell = 0;
+};
+
+/// A product that computes every cell it reads and crops the result to the tile (onWindow):
+/// heights, normals, sweep planes and scratch for every read cell, and each output band.
+TileBytes productTileBytes(std::size_t outputBands);
+
+/// A product that computes the tile's cells only (onWindowCells: sky, aperture): heights, the
+/// DEM band and two sweep planes for every read cell; normals, the integral's sums
+/// (`sumBytesPerCell`) and the output bands for the tile's cells.
+TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t outputBands);
 
 /// The tile side for --tile-size auto: the whole extent when extent + halo fits `memoryBytes`
-/// at `bytesPerCell` (one piece is fastest), else the largest side s with (s + 2 halo)^2 cells
-/// within it, at least 256 cells (a smaller tile re-reads more halo than it computes).
-std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, double bytesPerCell,
+/// at `bytes` (one piece is fastest), else the largest side s whose tile with its halo fits,
+/// at least 256 cells (a smaller tile re-reads more halo than it computes); then evened out so
+/// that the extent's longer side is cut into tiles of equal size (a thin last tile would read a
+/// whole halo for a few cells).
+std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, const TileBytes& bytes,
                                double memoryBytes);
 
 /// GDAL's block cache a run allows itself out of a memory budget of `memoryBytes`: an eighth,
-/// at most 256 MiB (the rest sizes the tiles).
+/// at most 256 MiB.
 double rasterCacheBytes(double memoryBytes);
+
+/// What a run holds besides its tile and GDAL's block cache: the program, its libraries and
+/// GDAL's and PROJ's own state (a sky run on the bundled 152 x 187 sample peaks at 64 MB).
+inline constexpr double kProcessBytes = 64.0 * (1 << 20);
+
+/// The memory --tile-size auto sizes tiles for out of a budget of `memoryBytes`: the budget less
+/// the block cache (rasterCacheBytes) and the process (kProcessBytes).
+double tileMemoryBytes(double memoryBytes);
 
 /// Half of this machine's physical memory (bytes): --memory-limit's default.
 double defaultMemoryLimitBytes();

@@ -244,7 +244,7 @@ struct PyCall {
     /// command line's messages about srcwin and tile_size name them as keywords.
     cli::RasterRun plan(const PyDem& dem) const {
         try {
-            return cli::planRasterRun(*dem.source, call.tiling, call.search, call.outputBands, ctx);
+            return cli::planRasterRun(*dem.source, call.tiling, call.search, call.tileBytes, ctx);
         } catch (const FieldError&) {
             throw;
         } catch (const Error& e) {
