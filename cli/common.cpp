@@ -117,8 +117,7 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o) {
     cmd->add_option("--near-field", r.nearFieldSteps,
                     "Horizon near field (line steps, 0-32): terrain this close is sampled on the ray from "
                     "each cell's own centre, farther terrain by scan lines. Default: 16 on surface models "
-                    "(buildings, trees: 5 % or more of neighbour steps steeper than 45 deg) and with "
-                    "--quality full, 4 on terrain; 0 = scan lines only (the model of earlier releases)")
+                    "(buildings, trees: 5 % or more of neighbour steps steeper than 45 deg), 4 on terrain; 0 = scan lines only (the model of earlier releases)")
         ->check(finiteRange(0, kMaxNearFieldSteps));
     cmd->add_flag("-v,--verbose", o.verbose, "Print the modelling choices (the scene plan)");
 }

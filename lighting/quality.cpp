@@ -168,7 +168,9 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
 
     const double steepShare = g.steepStepShare();
     const bool surfaceModel = steepShare >= kSurfaceModelSteepShare;
-    plan.nearFieldSteps = surfaceModel || quality == Quality::Full ? kSurfaceNearFieldSteps : kTerrainNearFieldSteps;
+    // The same rule under full: its claim is that auto adds at most the tolerance to full's
+    // error, and a longer near field on terrain alone moves full's p99 by more than that.
+    plan.nearFieldSteps = surfaceModel ? kSurfaceNearFieldSteps : kTerrainNearFieldSteps;
     std::ostringstream nearWhy;
     nearWhy.precision(3);
     if (budget.nearFieldSteps >= 0) {
@@ -177,7 +179,6 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     } else {
         nearWhy << "near_field_steps=" << plan.nearFieldSteps << " (" << 100 * steepShare
                 << " % of neighbour steps steeper than 45 deg: " << (surfaceModel ? "a surface model" : "terrain")
-                << (quality == Quality::Full ? "; full" : "")
                 << "; horizons over the nearest steps from each cell's own centre)";
     }
     if (quality == Quality::Full) {

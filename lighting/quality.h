@@ -95,8 +95,8 @@ struct ScenePlan {
     /// The search distance was given by the user (--max-distance), not chosen by the plan.
     bool userDistance = false;
     /// HorizonParams::nearFieldSteps of every sweep: kSurfaceNearFieldSteps on surface models
-    /// (SteepSteps share at least kSurfaceModelSteepShare) and under full, else
-    /// kTerrainNearFieldSteps.
+    /// (SteepSteps share at least kSurfaceModelSteepShare), else kTerrainNearFieldSteps (auto
+    /// and full alike).
     int nearFieldSteps = 0;
     std::size_t sunLatticeStepCells = 64;  ///< SPA evaluated every this many cells
     ExpectedError expectedError;           ///< what the horizons of this plan are within
