@@ -1,7 +1,6 @@
 // demlight aperture DEM -o OUT.tif: ambient aperture per cell (products/aperture.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "lighting/aperture.h"
 #include "products/aperture.h"
 
 #include <optional>
@@ -18,7 +17,6 @@ struct ApertureOptions {
 };
 
 /// Bands of the output: bent normal E, N, U, aperture radius, visible solid angle.
-constexpr std::size_t kApertureBands = 5;
 
 ApertureRequest apertureRequest(const ApertureOptions& o) {
     ApertureRequest request;
@@ -29,7 +27,7 @@ ApertureRequest apertureRequest(const ApertureOptions& o) {
 
 RasterCall apertureCall(const ApertureOptions& o) {
     return singleRasterCall(
-        "aperture", o.dem, o.tiling, o.search.request, windowProductTileBytes(ApertureAccumulator::kBytesPerCell, kApertureBands),
+        "aperture", o.dem, o.tiling, o.search.request, apertureTileBytes(),
         [request = apertureRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
             return apertureProduct(dem, w, request, p);
         });
@@ -40,7 +38,7 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
     const DemSource dem = openDem(o.dem, ctx);
     const ApertureRequest request = apertureRequest(o);
     notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, windowProductTileBytes(ApertureAccumulator::kBytesPerCell, kApertureBands), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, apertureTileBytes(), ctx);
     const auto start = std::chrono::steady_clock::now();
     const ApertureResult result = runRaster<ApertureResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,

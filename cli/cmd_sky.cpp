@@ -2,7 +2,6 @@
 // hemisphere Hargreaves' hemisphere lighting (no horizons, one band).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "lighting/sky.h"
 #include "products/sky.h"
 #include "src/error.h"
 
@@ -34,14 +33,6 @@ SkyRequest skyRequest(const SkyOptions& o) {
     request.albedoRaster = o.albedoRaster;
     request.search = o.search.request;
     return request;
-}
-
-/// Bands of the output: svf_horizontal, sky_fraction, sky_K, f_sky and one per sky patch.
-std::size_t skyBands(const SkyRequest& request) { return 4 + request.patches.patches.size(); }
-
-/// What a tile holds: the Stewart-Langer sky computes its window's cells only (skyProduct).
-TileBytes skyTileBytes(const SkyRequest& request) {
-    return windowProductTileBytes(SkyAccumulator::bytesPerCell(request.patches.size()), skyBands(request));
 }
 
 RasterCall skyCall(const SkyOptions& o) {

@@ -214,6 +214,22 @@ struct LineState {
     std::size_t hint;
 };
 
+/// A line's walk reaches sigma (metres from the far edge) in a later chunk of maxDistanceM: the
+/// hull so far becomes the previous chunk's when the chunks are consecutive, else both empty.
+inline void enterChunk(LineState& line, double sigma, double maxDistanceM) {
+    const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
+    if (chunk == line.chunk + 1) {
+        line.prevLo = line.lo;
+        line.prevHi = line.hi;
+        line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
+        line.lo = line.hi;
+    } else {
+        line.prevLo = line.prevHi = line.lo = line.hi = 0;
+    }
+    line.chunk = chunk;
+    line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
+}
+
 /// The curved-earth tangent (slope of the sight line) from a cell at (sigmaQ, gQ) to a line
 /// point (sigmaP, gP), as both passes evaluate it. Not inlined, so that both get the same bits
 /// whatever the compiler contracts at each call: a tile's first pass may find a point its
@@ -632,19 +648,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                                          tc * (geo.sigmaAt[static_cast<std::size_t>(m)] -
                                                geo.sigmaAt[static_cast<std::size_t>(prev)])
                                    : lineDistance(geo, line.edgeArcM, static_cast<double>(j), m);
-                    if (limited && sigma >= line.nextChunkM) {
-                        const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
-                        if (chunk == line.chunk + 1) {
-                            line.prevLo = line.lo;
-                            line.prevHi = line.hi;
-                            line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
-                            line.lo = line.hi;
-                        } else {
-                            line.prevLo = line.prevHi = line.lo = line.hi = 0;
-                        }
-                        line.chunk = chunk;
-                        line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
-                    }
+                    if (limited && sigma >= line.nextChunkM) enterChunk(line, sigma, maxDistanceM);
                     const double g = static_cast<double>(h) - sigma * sigma * halfInvR;
                     std::size_t top = line.hi;
                     while (top - line.lo >= 2) {
@@ -689,19 +693,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 // Range limit: a fresh hull per chunk of length maxDistanceM (see limitRangePass).
                 // Chunks start at multiples of maxDistanceM from the far edge, so a chunk that
                 // serves a cell starts within the halo and every walk builds the same hull.
-                if (limited && sigma >= line.nextChunkM) {
-                    const long chunk = static_cast<long>(std::floor(sigma / maxDistanceM));
-                    if (chunk == line.chunk + 1) {
-                        line.prevLo = line.lo;
-                        line.prevHi = line.hi;
-                        line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
-                        line.lo = line.hi;
-                    } else {
-                        line.prevLo = line.prevHi = line.lo = line.hi = 0;
-                    }
-                    line.chunk = chunk;
-                    line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
-                }
+                if (limited && sigma >= line.nextChunkM) enterChunk(line, sigma, maxDistanceM);
 
                 // The line sample's tangent vertex = the hull top after the pops it causes:
                 // pop v1 while the slope to v2 (farther) is at least the slope to v1.

@@ -44,4 +44,6 @@ ApertureResult apertureProduct(const DemSource& source, const CellWindow& window
     });
 }
 
+TileBytes apertureTileBytes() { return windowProductTileBytes(ApertureAccumulator::kBytesPerCell, kApertureBands); }
+
 }  // namespace demlight

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "products/product.h"
+#include "products/tiles.h"
 
 #include <optional>
 
@@ -21,6 +22,11 @@ struct ApertureResult : ProductResult {
 
 /// Bands: bent_normal_east, bent_normal_north, bent_normal_up (ENU unit vector),
 /// aperture_radius_deg, visible_solid_angle_sr.
+/// Bands of an aperture output.
+inline constexpr std::size_t kApertureBands = 5;
+/// Memory of a tile (products/tiles.h): the aperture computes its window's cells only.
+TileBytes apertureTileBytes();
+
 ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
                                const ProgressFn& progress = {});
 

@@ -99,4 +99,10 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
     });
 }
 
+std::size_t skyBands(const SkyRequest& request) { return 4 + request.patches.patches.size(); }
+
+TileBytes skyTileBytes(const SkyRequest& request) {
+    return windowProductTileBytes(SkyAccumulator::bytesPerCell(request.patches.size()), skyBands(request));
+}
+
 }  // namespace demlight

@@ -5,6 +5,7 @@
 #include "lighting/lighting_models.h"
 #include "lighting/sky.h"
 #include "products/product.h"
+#include "products/tiles.h"
 
 #include <optional>
 #include <string>
@@ -36,6 +37,11 @@ struct SkyResult : ProductResult {
 
 /// Bands: svf_horizontal, sky_fraction, sky_K, sky_factor, then sky_K_patch=<name> per patch;
 /// the hemisphere model: sky_hemisphere.
+/// Bands of a sky output: svf_horizontal, sky_fraction, sky_K, f_sky and one per sky patch.
+std::size_t skyBands(const SkyRequest& request);
+/// Memory of a tile (products/tiles.h): the sky computes its window's cells only.
+TileBytes skyTileBytes(const SkyRequest& request);
+
 SkyResult skyProduct(const DemSource& source, const CellWindow& window, const SkyRequest& request,
                      const ProgressFn& progress = {});
 
