@@ -62,17 +62,9 @@ std::vector<double> parseLinkeOption(const std::string& text) {
     std::stringstream ss(text);
     std::string part;
     while (std::getline(ss, part, ',')) {
-        std::size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(part, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        while (used < part.size() && part[used] == ' ') ++used;
-        if (used == 0 || used != part.size() || !std::isfinite(v))
-            throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
-        values.push_back(v);
+        const std::optional<double> v = parseFiniteNumber(part, /*trailingSpaces=*/true);
+        if (!v) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
+        values.push_back(*v);
     }
     if (values.empty()) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers");
     return values;

@@ -323,14 +323,9 @@ std::array<double, 3> parseColor(const std::string& text, const std::string& opt
     std::string part;
     std::size_t n = 0;
     while (std::getline(ss, part, ',')) {
-        std::size_t used = 0;
-        double v = -1;
-        try {
-            v = std::stod(part, &used);
-        } catch (const std::exception&) {
-        }
-        if (n >= 3 || used != part.size() || !(v >= 0) || !std::isfinite(v)) throw bad();
-        c[n++] = v;
+        const std::optional<double> v = parseFiniteNumber(part);
+        if (n >= 3 || !v || !(*v >= 0)) throw bad();
+        c[n++] = *v;
     }
     if (n != 3) throw bad();
     return c;
@@ -453,8 +448,17 @@ PictureRequest pictureRequest(const PictureOptions& o) {
     return r;
 }
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+std::optional<double> parseFiniteNumber(const std::string& text, bool trailingSpaces) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    while (trailingSpaces && used < text.size() && text[used] == ' ') ++used;
+    if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
 }
 
 std::string formatSeconds(double seconds) {

@@ -2,6 +2,8 @@
 // and write its result.
 #pragma once
 
+#include "src/timing.h"  // secondsSince, for the time notes of the commands
+
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "geo/dem_source.h"
@@ -216,8 +218,9 @@ PictureRequest pictureRequest(const PictureOptions& o);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
 std::string formatDistance(double metres);
-/// Seconds elapsed since `start` (steady clock), for the time notes of the commands.
-double secondsSince(std::chrono::steady_clock::time_point start);
+/// `text` as one finite number (trailing spaces allowed when `trailingSpaces`); nullopt when it
+/// is not exactly that. The option parsers' number rule.
+std::optional<double> parseFiniteNumber(const std::string& text, bool trailingSpaces = false);
 /// A duration for notes, rounded to hundredths of a second ("1.23 s").
 std::string formatSeconds(double seconds);
 /// Prints a line to stderr unless quiet.

@@ -1,5 +1,6 @@
 #include "cli/point_options.h"
 
+#include "cli/common.h"
 #include "src/error.h"
 
 #include <cmath>
@@ -12,16 +13,9 @@ namespace {
 std::pair<double, double> parsePair(const std::string& text, const std::string& option, const std::string& form) {
     const std::size_t comma = text.find(',');
     const auto number = [&](const std::string& part) {
-        std::size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(part, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != part.size() || !std::isfinite(v))
-            throw Error(option + " '" + text + "': expected " + form + ", two numbers separated by a comma");
-        return v;
+        const std::optional<double> v = parseFiniteNumber(part);
+        if (!v) throw Error(option + " '" + text + "': expected " + form + ", two numbers separated by a comma");
+        return *v;
     };
     if (comma == std::string::npos) throw Error(option + " '" + text + "': expected " + form);
     return {number(text.substr(0, comma)), number(text.substr(comma + 1))};

@@ -230,6 +230,20 @@ inline void enterChunk(LineState& line, double sigma, double maxDistanceM) {
     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
 }
 
+/// One past the hull's new top when the point (sigma, g), nearer than every vertex, is pushed:
+/// vertex v1 is popped while the slope to v2 (farther) is at least the slope to v1. The vertex
+/// below it is the point's tangent vertex.
+inline std::size_t hullTopAfterPops(const LineState& line, double sigma, double g) {
+    std::size_t top = line.hi;
+    while (top - line.lo >= 2) {
+        const HullPoint& v1 = line.buf[top - 1];
+        const HullPoint& v2 = line.buf[top - 2];
+        if ((v2.g - g) * (sigma - v1.sigmaM) < (v1.g - g) * (sigma - v2.sigmaM)) break;
+        --top;
+    }
+    return top;
+}
+
 /// The curved-earth tangent (slope of the sight line) from a cell at (sigmaQ, gQ) to a line
 /// point (sigmaP, gP), as both passes evaluate it. Not inlined, so that both get the same bits
 /// whatever the compiler contracts at each call: a tile's first pass may find a point its
@@ -650,13 +664,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                                    : lineDistance(geo, line.edgeArcM, static_cast<double>(j), m);
                     if (limited && sigma >= line.nextChunkM) enterChunk(line, sigma, maxDistanceM);
                     const double g = static_cast<double>(h) - sigma * sigma * halfInvR;
-                    std::size_t top = line.hi;
-                    while (top - line.lo >= 2) {
-                        const HullPoint& v1 = line.buf[top - 1];
-                        const HullPoint& v2 = line.buf[top - 2];
-                        if ((v2.g - g) * (sigma - v1.sigmaM) < (v1.g - g) * (sigma - v2.sigmaM)) break;
-                        --top;
-                    }
+                    const std::size_t top = hullTopAfterPops(line, sigma, g);
                     if (limited) line.log->points[line.log->nPoints++] = {sigma, g, line.chunk};
                     line.hi = top;
                     line.buf[line.hi++] = {sigma, g};
@@ -700,15 +708,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 const bool sampleValid = !std::isnan(sample);
                 const double drop = sigma * sigma * halfInvR;
                 const double gSample = static_cast<double>(sample) - drop;
-                std::size_t top = line.hi;  // one past the new top
-                if (sampleValid) {
-                    while (top - line.lo >= 2) {
-                        const HullPoint& v1 = line.buf[top - 1];
-                        const HullPoint& v2 = line.buf[top - 2];
-                        if ((v2.g - gSample) * (sigma - v1.sigmaM) < (v1.g - gSample) * (sigma - v2.sigmaM)) break;
-                        --top;
-                    }
-                }
+                const std::size_t top = sampleValid ? hullTopAfterPops(line, sigma, gSample) : line.hi;
 
                 // Serve the cells this line brackets at this step: cell n1 (line below it, weight
                 // frac) into plane A, cell n0 (line above it, weight 1-frac) into plane B; on an

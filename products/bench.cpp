@@ -1,5 +1,7 @@
 #include "products/bench.h"
 
+#include "src/timing.h"
+
 #include "lighting/directions.h"
 #include "lighting/quality.h"
 #include "products/horizon.h"
@@ -20,21 +22,6 @@ constexpr std::uint64_t kSampleSeed = 4242;
 /// its shorter side, so that each has terrain around it (the crop edge truncates every method,
 /// and the reference, alike beyond that).
 constexpr double kMarginSideFraction = 1.0 / 6.0;
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double medianSeconds(int repeats, const std::function<void()>& f) {
-    std::vector<double> s;
-    for (int i = 0; i < std::max(1, repeats); ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        f();
-        s.push_back(secondsSince(t0));
-    }
-    std::sort(s.begin(), s.end());
-    return s[s.size() / 2];
-}
 
 /// The q-quantile (0..1) of `v` by the nearest rank (v is sorted in place).
 double quantile(std::vector<double>& v, double q) {

@@ -103,6 +103,18 @@ IrradianceParams inputsAt(const DemSource& source, const PointCell& p, const Cle
     return q;
 }
 
+/// The request's constant clear-sky inputs (an irradiance or an insolation request); rasters,
+/// where given, replace them at the cell (inputsAt).
+template <class Request>
+IrradianceParams constantInputs(const Request& request) {
+    IrradianceParams p;
+    p.model = request.diffuseModel;
+    p.albedo = request.albedo;
+    p.coeffBh = request.coeffBh;
+    p.coeffDh = request.coeffDh;
+    return p;
+}
+
 }  // namespace
 
 PointCell locatePoint(const DemSource& source, const PointSpec& point) {
@@ -178,12 +190,8 @@ PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point,
         out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(s.plan.skyDirections));
         out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n, request.search.threads);
     }
-    IrradianceParams constants;
-    constants.model = request.diffuseModel;
+    IrradianceParams constants = constantInputs(request);
     constants.linke = out.linke;
-    constants.albedo = request.albedo;
-    constants.coeffBh = request.coeffBh;
-    constants.coeffDh = request.coeffDh;
     const IrradianceParams params = inputsAt(source, point, request.rasters, constants);
     out.linke = params.linke;
     const CellView view =
@@ -212,12 +220,7 @@ PointInsolation pointInsolation(const DemSource& source, const PointCell& point,
         out.skyDirections = request.directions.value_or(kDefaultInsolationDirections);
         out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n, request.search.threads);
     }
-    IrradianceParams constants;
-    constants.model = request.diffuseModel;
-    constants.albedo = request.albedo;
-    constants.coeffBh = request.coeffBh;
-    constants.coeffDh = request.coeffDh;
-    const IrradianceParams params = inputsAt(source, point, request.rasters, constants);
+    const IrradianceParams params = inputsAt(source, point, request.rasters, constantInputs(request));
 
     // Every instant's own sun and horizon, in parallel; summed below in time order.
     struct Instant {

@@ -1,5 +1,7 @@
 #include "products/timelapse.h"
 
+#include "src/timing.h"
+
 #include "geo/solar_position.h"
 #include "lighting/sequence_fit.h"
 #include "lighting/sky.h"
@@ -24,7 +26,6 @@ constexpr int kFloatMantissaBits = 23, kFloatExponentBias = 127 + kFloatMantissa
 
 constexpr std::size_t kMinStackDirections = 4, kMaxStackDirections = 720;
 
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// Seconds since the Unix epoch, the clock the sequence fit's times use.
 double unixSeconds(UtcInstant t) { return std::chrono::duration<double>(t.time_since_epoch()).count(); }
