@@ -35,11 +35,11 @@ ApertureResult apertureProduct(const DemSource& source, const CellWindow& window
         static_cast<ProductResult&>(out) = makeResult(dem, "aperture", meta);
         out.directions = directions;
         out.maxDistanceM = params.maxDistanceM;
-        out.bands = {{"bent_normal_east", "unit vector component (ENU)", std::move(maps.bentEast), {}},
-                     {"bent_normal_north", "unit vector component (ENU)", std::move(maps.bentNorth), {}},
-                     {"bent_normal_up", "unit vector component (ENU)", std::move(maps.bentUp), {}},
-                     {"aperture_radius_deg", "deg", std::move(maps.radiusDeg), {}},
-                     {"visible_solid_angle_sr", "sr", std::move(maps.solidAngleSr), {}}};
+        out.bands = movedBands(ProductBand{"bent_normal_east", "unit vector component (ENU)", std::move(maps.bentEast), {}},
+                     ProductBand{"bent_normal_north", "unit vector component (ENU)", std::move(maps.bentNorth), {}},
+                     ProductBand{"bent_normal_up", "unit vector component (ENU)", std::move(maps.bentUp), {}},
+                     ProductBand{"aperture_radius_deg", "deg", std::move(maps.radiusDeg), {}},
+                     ProductBand{"visible_solid_angle_sr", "sr", std::move(maps.solidAngleSr), {}});
         return out;
     });
 }

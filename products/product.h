@@ -36,6 +36,16 @@ struct ProductBand {
     Resampling resampling = Resampling::Average;
 };
 
+/// The bands in this order, moved in: a braced list would copy every grid (the elements of an
+/// initializer_list are const), doubling a tile's output memory while both exist.
+template <class... Bands>
+std::vector<ProductBand> movedBands(Bands&&... bands) {
+    std::vector<ProductBand> out;
+    out.reserve(sizeof...(bands));
+    (out.push_back(std::forward<Bands>(bands)), ...);
+    return out;
+}
+
 /// Named bands on a georeference, plus the dataset metadata (DEMLIGHT_* keys) to write with them.
 struct ProductResult {
     std::vector<ProductBand> bands;
@@ -171,7 +181,11 @@ Result onWindowCells(const DemSource& source, const CellWindow& window, std::siz
         return compute(*whole, CellWindow{0, 0, whole->terrain.width(), whole->terrain.height()});
     }
     const CellWindow read = source.withHalo(window, haloCells);
-    Result result = compute(source.read(read), cellsWithin(read, window));
+    Dem dem = source.read(read);
+    // The raw band values are not needed past the heights; a tile's memory plan
+    // (windowProductTileBytes) counts on their memory being free for the sweeps.
+    dem.band.values = Grid<float>();
+    Result result = compute(dem, cellsWithin(read, window));
     moveReference(result, read, window);
     return result;
 }

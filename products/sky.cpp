@@ -53,12 +53,11 @@ SkyResult stewartLanger(const Dem& dem, const CellWindow& cells, const ScenePlan
     out.directions = directions;
     out.maxDistanceM = params.maxDistanceM;
     out.directionToleranceDeg = params.directionToleranceDeg;
-    out.bands = {
-        {"svf_horizontal", "fraction (cosine-weighted, horizontal plane)", std::move(maps.svfHorizontal), {}},
-        {"sky_fraction", "fraction of the upper hemisphere", std::move(maps.skyFraction), {}},
-        {"sky_K", "normalised irradiance from a unit-radiance sky", std::move(maps.skyK), {}},
-        {"sky_factor", "normalised irradiance with interreflection", std::move(maps.skyFactor), {}},
-    };
+    out.bands = movedBands(
+        ProductBand{"svf_horizontal", "fraction (cosine-weighted, horizontal plane)", std::move(maps.svfHorizontal), {}},
+        ProductBand{"sky_fraction", "fraction of the upper hemisphere", std::move(maps.skyFraction), {}},
+        ProductBand{"sky_K", "normalised irradiance from a unit-radiance sky", std::move(maps.skyK), {}},
+        ProductBand{"sky_factor", "normalised irradiance with interreflection", std::move(maps.skyFactor), {}});
     for (std::size_t i = 0; i < maps.patchK.size(); ++i)
         out.bands.push_back({"sky_K_patch=" + request.patches.patches[i].name, "normalised irradiance",
                              std::move(maps.patchK[i]), {}});
@@ -102,7 +101,10 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
 std::size_t skyBands(const SkyRequest& request) { return 4 + request.patches.patches.size(); }
 
 TileBytes skyTileBytes(const SkyRequest& request) {
-    return windowProductTileBytes(SkyAccumulator::bytesPerCell(request.patches.size()), skyBands(request));
+    // The sums become svf_horizontal, sky_fraction, sky_K and the patch bands in place
+    // (SkyAccumulator::finish &&): f_sky is the one new band, and a tile's cut of an albedo raster.
+    const std::size_t newBands = 1 + (request.albedoRaster.empty() ? 0 : 1);
+    return windowProductTileBytes(SkyAccumulator::bytesPerCell(request.patches.size()), newBands);
 }
 
 }  // namespace demlight

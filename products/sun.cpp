@@ -20,9 +20,9 @@ SunResult horizonSun(const Dem& dem, const Normals& normals, const SunField& fie
     const SunFrameParams params = sunFrameParams(request.search, request.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(dem.terrain, normals, field, params, &counter);
     SunResult out;
-    out.bands = {{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
-                 {"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
-                  std::move(frame.light.irradiance), {}}};
+    out.bands = movedBands(ProductBand{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
+                 ProductBand{"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
+                  std::move(frame.light.irradiance), {}});
     out.maxDistanceM = frame.maxDistanceM;
     out.sweepRegions = frame.sweepRegions;
     out.strategy = sunSweepStrategyName(frame.strategy);
@@ -43,11 +43,11 @@ SunResult apertureSun(const Dem& dem, const Normals& normals, const SunField& fi
     ApertureSunMaps m =
         applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp, request.search.threads);
     SunResult out;
-    out.bands = {{"sun_visibility", "fraction of the sun cap inside the aperture cap (0-1)", std::move(m.visibility), {}},
-                 {"sun_irradiance",
+    out.bands = movedBands(ProductBand{"sun_visibility", "fraction of the sun cap inside the aperture cap (0-1)", std::move(m.visibility), {}},
+                 ProductBand{"sun_irradiance",
                   "normalised irradiance, Lambert integral over the sun cap inside the aperture cap (1 = "
                   "unit-radiance zenith sun on flat ground)",
-                  std::move(m.irradiance), {}}};
+                  std::move(m.irradiance), {}});
     out.maxDistanceM = hp.maxDistanceM;
     out.directions = directions;
     out.sunUp = field.elevationRange().second > -0.5 * request.sunDiameterDeg;

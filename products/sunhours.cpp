@@ -125,20 +125,20 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     out.instantsSwept = maps.instantsSwept;
     out.stackDirections = stackDirections;
     const std::string zone = r.zone.describe();
-    out.bands = {
-        {"sun_hours", "hours of direct sun weighted by visibility (h)", std::move(maps.sunHours), {}},
-        {"sun_irradiation", "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)",
+    out.bands = movedBands(
+        ProductBand{"sun_hours", "hours of direct sun weighted by visibility (h)", std::move(maps.sunHours), {}},
+        ProductBand{"sun_irradiation", "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)",
          std::move(maps.sunIrradiation), {}},
-        {"sky_irradiation",
+        ProductBand{"sky_irradiation",
          "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the cell "
          "(1 h of unit sky on open flat ground = 1)",
          std::move(skyIrr), {}},
         // Nearest: kNeverLitClock (-1) sits beside clock hours, and a mean of the two (a cell
         // "first lit" at 2 a.m.) is a time no cell has.
-        {"first_lit", "local clock hours (" + zone + ") when half the sun first shows; -1 = never",
+        ProductBand{"first_lit", "local clock hours (" + zone + ") when half the sun first shows; -1 = never",
          std::move(maps.firstLitClock), {}, Resampling::Nearest},
-        {"last_lit", "local clock hours (" + zone + ") when half the sun last shows; -1 = never",
-         std::move(maps.lastLitClock), {}, Resampling::Nearest}};
+        ProductBand{"last_lit", "local clock hours (" + zone + ") when half the sun last shows; -1 = never",
+         std::move(maps.lastLitClock), {}, Resampling::Nearest});
     return out;
 }
 

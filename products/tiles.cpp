@@ -33,10 +33,10 @@ TileBytes productTileBytes(std::size_t outputBands) {
     return {60.0 + 4.0 * static_cast<double>(outputBands), 0.0};
 }
 
-TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t outputBands) {
-    // Read cells: heights (4), the DEM band (4), the sweep's horizon plane and second plane (8),
-    // a margin (4). Tile cells: normals (12), the sums, each output band (4), a margin (8).
-    return {20.0, 20.0 + static_cast<double>(sumBytesPerCell) + 4.0 * static_cast<double>(outputBands)};
+TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t newBands) {
+    // Read cells: heights (4), the sweep's horizon plane and second plane (8), a margin (4).
+    // Tile cells: normals (12), the sums, each new output band (4), a margin (8).
+    return {16.0, 20.0 + static_cast<double>(sumBytesPerCell) + 4.0 * static_cast<double>(newBands)};
 }
 
 std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, const TileBytes& bytes,

@@ -30,10 +30,11 @@ struct TileBytes {
 /// heights, normals, sweep planes and scratch for every read cell, and each output band.
 TileBytes productTileBytes(std::size_t outputBands);
 
-/// A product that computes the tile's cells only (onWindowCells: sky, aperture): heights, the
-/// DEM band and two sweep planes for every read cell; normals, the integral's sums
-/// (`sumBytesPerCell`) and the output bands for the tile's cells.
-TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t outputBands);
+/// A product that computes the tile's cells only (onWindowCells: sky, aperture): heights and two
+/// sweep planes for every read cell (onWindowCells drops the raw band values once the heights
+/// are made); normals, the integral's sums (`sumBytesPerCell`) and the output bands that need
+/// memory of their own (`newBands`: not made from the sums in place) for the tile's cells.
+TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t newBands);
 
 /// The tile side for --tile-size auto: the whole extent when extent + halo fits `memoryBytes`
 /// at `bytes` (one piece is fastest), else the largest side s whose tile with its halo fits,

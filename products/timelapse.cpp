@@ -288,10 +288,10 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
             });
             out.lightmap = makeResult(dem, "timelapse frame", meta);
             // The same band order as the sun product: visibility, then irradiance.
-            out.lightmap.bands = {
-                {"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
-                {"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
-                 std::move(frame.light.irradiance), {}}};
+            out.lightmap.bands = movedBands(
+                ProductBand{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
+                ProductBand{"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
+                 std::move(frame.light.irradiance), {}});
             toWindow(out.lightmap);
         }
         if (sink.frame) sink.frame(std::move(out));

@@ -46,14 +46,14 @@ double plannedBytes(const PlanCase& c, std::size_t tile) {
 TEST(TilePlan, TilesFitTheMemoryLimitAndNoFewerEqualTilesWould) {
     const PlanCase cases[] = {
         // The 40 000^2 benchmark (halo of its 31.7 km search at 1" cells): sky, aperture, sun.
-        {40000, 1563, windowProductTileBytes(12, 4), 4000},
+        {40000, 1563, windowProductTileBytes(12, 1), 4000},
         {40000, 1563, windowProductTileBytes(32, 5), 4000},
         {40000, 1563, productTileBytes(2), 4000},
-        {40000, 1563, windowProductTileBytes(12, 4), 12000},
+        {40000, 1563, windowProductTileBytes(12, 1), 12000},
         // Small limits and halos; a halo larger than the tile.
-        {2400, 201, windowProductTileBytes(12, 4), 200},
+        {2400, 201, windowProductTileBytes(12, 1), 200},
         {2400, 201, productTileBytes(2), 200},
-        {10000, 3000, windowProductTileBytes(12, 4), 2000},
+        {10000, 3000, windowProductTileBytes(12, 1), 2000},
         {7777, 50, productTileBytes(4), 500},
     };
     for (const PlanCase& c : cases) {
@@ -75,7 +75,7 @@ TEST(TilePlan, TilesFitTheMemoryLimitAndNoFewerEqualTilesWould) {
 
 TEST(TilePlan, AWholeExtentThatFitsIsOnePiece) {
     const CellWindow extent{0, 0, 1000, 800};
-    EXPECT_EQ(automaticTileCells(extent, 100, windowProductTileBytes(12, 4), tileMemoryBytes(4000e6)), 1000u);
+    EXPECT_EQ(automaticTileCells(extent, 100, windowProductTileBytes(12, 1), tileMemoryBytes(4000e6)), 1000u);
 }
 
 // ---- A run, measured --------------------------------------------------------------------------
