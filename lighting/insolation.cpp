@@ -110,9 +110,9 @@ void InsolationAccumulator::addVisibleSky(const Grid<float>& horizonDeg, const s
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
                 const DiskEdges& e = edges[k];
                 SunTerms terms;
-                if (up && horizon <= e.lowDeg && -toward <= n.up * e.tanLow)
+                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
                     terms = {1.0, std::max(0.0, toward * sun.cosElevation + n.up * sun.sinElevation)};
-                else if (known && (horizon >= e.highDeg || (up && -toward >= n.up * e.tanHigh)))
+                else if (known && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
                     terms = {0.0, 0.0};
                 else
                     terms = sunTerms(n, horizon, sun, sunDiameterDeg_);
@@ -188,9 +188,9 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 const DiskEdges& e = edges[k];
                 const bool up = n.up > 0;
                 SunTerms terms;
-                if (up && horizon <= e.lowDeg && -toward <= n.up * e.tanLow)
+                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
                     terms = {1.0, std::max(0.0, cosine)};
-                else if (!std::isnan(horizon) && (horizon >= e.highDeg || (up && -toward >= n.up * e.tanHigh)))
+                else if (!std::isnan(horizon) && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
                     terms = {0.0, 0.0};
                 else
                     terms = sunTerms(n, horizon, sun, sunDiameterDeg_);

@@ -51,7 +51,8 @@ struct InsolationMaps {
 /// A bin's sun disk, for the test that most (cell, bin) pairs pass: the disk wholly above both
 /// the horizon and the cell's tangent plane (O = 1, N.s > 0), or wholly below one of them
 /// (O = 0); sunTerms() only for the rest. The tangent plane's elevation in the bin's azimuth,
-/// atan(across / N_up) (as in sunTerms), is compared through its tangent: across <= N_up tan(edge).
+/// atan(across / N_up) (as in sunTerms), is compared through its tangent: across < N_up tan(edge).
+/// The tests are strict, so a horizon on an edge (and a point sun, whose edges meet) takes sunTerms.
 struct DiskEdges {
     double lowDeg = 0, highDeg = 0;  ///< the disk's lower and upper edge, elevation -+ diameter / 2 (degrees)
     double tanLow = 0, tanHigh = 0;  ///< their tangents (+inf for an upper edge at or above 90 degrees)
