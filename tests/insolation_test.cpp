@@ -185,22 +185,25 @@ Diff compare(const std::vector<double>& exact, const Grid<float>& binned) {
     return e;
 }
 
-// docs/accuracy.md#insolation-accuracy has the same comparison on St Helens at 20 min steps and the
-// default 64 directions; this one is smaller so that it runs with the suite.
+// The target of issue 19: within 1 % (MAE relative to the mean) of the per-instant integral at
+// 10-minute steps, the default step. docs/accuracy.md#insolation-accuracy has the same comparison
+// on St Helens over 8 to 128 sectors; this one is smaller (and with fewer sectors than the
+// default 64, so harder) so that it runs with the suite.
 TEST(InsolationProduct, BinnedTotalsFollowThePerInstantIntegralOnRealTerrain) {
     const DemSource dem = DemSource::open(kRocky);
     constexpr std::size_t kDirections = 32;
+    constexpr auto kStep = std::chrono::minutes(10);
     for (const char* day : {"2024-06-21", "2024-12-21"}) {
         InsolationRequest r;
         r.firstDay = r.lastDay = parseDate(day);
         r.zone = TimeZoneSpec::iana("America/Denver");
-        r.step = std::chrono::minutes(30);
+        r.step = kStep;
         r.directions = kDirections;
         r.search.threads = 2;
         const auto t0 = std::chrono::steady_clock::now();
         const InsolationResult binned = insolationProduct(dem, dem.whole(), r);
         const auto t1 = std::chrono::steady_clock::now();
-        const Totals exact = exactDay(dem, day, "America/Denver", std::chrono::minutes(30), kDirections);
+        const Totals exact = exactDay(dem, day, "America/Denver", kStep, kDirections);
         const auto t2 = std::chrono::steady_clock::now();
         std::printf("binned %.2f s, per instant %.2f s\n", std::chrono::duration<double>(t1 - t0).count(),
                     std::chrono::duration<double>(t2 - t1).count());
