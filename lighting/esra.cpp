@@ -114,13 +114,24 @@ ClearSky clearSky(double g0, double linke, double apparentElevationDeg, double e
     return clearSky(clearSkySun(g0, linke, apparentElevationDeg, coeffBh, coeffDh), pressureRatio(elevationM));
 }
 
-double muneerDiffuse(double dhc, double kb, const TiltedSurface& s, double sunlit) {
-    const double cosG = std::min(1.0, s.normalUp);
-    if (cosG >= 1) return dhc;  // r.sun's plane case
-    const double g = std::acos(cosG), sinG = std::sin(g);
-    const double rSky = (1 + cosG) / 2;
+MuneerSlope muneerSlope(double normalUp) {
+    MuneerSlope s;
+    s.cosG = std::min(1.0, normalUp);
+    if (s.cosG >= 1) return s;  // r.sun's plane case
+    const double g = std::acos(s.cosG), sinG = std::sin(g);
+    s.rSky = (1 + s.cosG) / 2;
     const double halfSin = std::sin(g / 2);
-    const double fg = sinG - g * cosG - std::numbers::pi * halfSin * halfSin;  // E10
+    s.fg = sinG - g * s.cosG - std::numbers::pi * halfSin * halfSin;  // E10
+    return s;
+}
+
+double muneerDiffuse(double dhc, double kb, const TiltedSurface& s, double sunlit) {
+    return muneerDiffuse(dhc, kb, s, sunlit, muneerSlope(s.normalUp));
+}
+
+double muneerDiffuse(double dhc, double kb, const TiltedSurface& s, double sunlit, const MuneerSlope& slope) {
+    if (slope.cosG >= 1) return dhc;  // r.sun's plane case
+    const double rSky = slope.rSky, fg = slope.fg;
     const double shadowed = rSky + fg * kShadowedN;
     double lit = shadowed;
     const double weight = s.cosIncidence > 0 ? std::clamp(sunlit, 0.0, 1.0) : 0.0;

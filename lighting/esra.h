@@ -113,12 +113,24 @@ public:
     static constexpr double kStepM = 1.0;
     /// Covers elevations lowM..highM (metres); outside them `at` extrapolates the end segment.
     BeamNormalTable(const ClearSkySun& sun, double lowM, double highM);
-    double at(double elevationM) const {
+    double at(double elevationM) const { return at(node(elevationM), elevationM); }
+
+    /// Where an elevation falls among the nodes: found once per cell and read by every table of
+    /// the same lowM..highM, which share their nodes.
+    struct Node {
+        double segment = 0;  ///< start node of the segment (index from the first node)
+        double fraction = 0; ///< position within it, 0..1 (beyond at the ends)
+    };
+    Node node(double elevationM) const {
         const double t = elevationM / kStepM - first_;
         const double i = std::clamp(std::floor(t), 0.0, last_);
-        if (i == switchSegment_) return clearSky(sun_, pressureRatio(elevationM)).beamNormal;
-        const auto k = static_cast<std::size_t>(i);
-        return values_[k] + (t - i) * (values_[k + 1] - values_[k]);
+        return {i, t - i};
+    }
+    /// at(elevationM) from node(elevationM) of a table of the same range: the same bits.
+    double at(const Node& n, double elevationM) const {
+        if (n.segment == switchSegment_) return clearSky(sun_, pressureRatio(elevationM)).beamNormal;
+        const auto k = static_cast<std::size_t>(n.segment);
+        return values_[k] + n.fraction * (values_[k + 1] - values_[k]);
     }
 
 private:
@@ -148,5 +160,15 @@ struct TiltedSurface {
 /// 0 (shadowed or facing away) and 1; a partly hidden disk weights them. A horizontal surface
 /// (g = 0) gets dhc, as r.sun gives its "plane" case.
 double muneerDiffuse(double dhc, double kb, const TiltedSurface& surface, double sunlit);
+
+/// The terms of E10 that depend on the slope g alone, for drivers that evaluate many suns at one
+/// cell: muneerDiffuse with them gives the same bits as without.
+struct MuneerSlope {
+    double cosG = 1;   ///< min(1, normalUp)
+    double rSky = 1;   ///< (1 + cos g) / 2
+    double fg = 0;     ///< sin g - g cos g - pi sin^2(g/2)
+};
+MuneerSlope muneerSlope(double normalUp);
+double muneerDiffuse(double dhc, double kb, const TiltedSurface& surface, double sunlit, const MuneerSlope& slope);
 
 }  // namespace demlight

@@ -70,6 +70,65 @@ void InsolationAccumulator::setGrids(const ClearSkyGrids& grids) {
     grids_ = grids;
 }
 
+namespace {
+
+DiskEdges diskEdges(double elevationDeg, double sunDiameterDeg) {
+    const double low = elevationDeg - 0.5 * sunDiameterDeg, high = elevationDeg + 0.5 * sunDiameterDeg;
+    return {low, high, std::tan(low * kDegToRad),
+            high < 90 ? std::tan(high * kDegToRad) : std::numeric_limits<double>::infinity()};
+}
+
+}  // namespace
+
+void InsolationAccumulator::addVisibleSky(const Grid<float>& horizonDeg, const std::vector<SunAngles>& angles,
+                                          const std::vector<ClearSkySun>& skies,
+                                          const std::vector<BeamNormalTable>& beams,
+                                          const std::vector<DiskEdges>& edges,
+                                          const std::vector<const SunBin*>& bins) {
+    // The visible-sky model with constant inputs, the default: cellIrradiance's terms written out
+    // (beam = B0c O max(0, N.s); diffuse and reflected horizon-free, Dhc and Ghc, times K0 and
+    // albedo (1 - K0) in finish), in the same operations and order, so the same bits.
+    std::vector<double> hours, diffuseHorizontal, sinElevation;
+    for (std::size_t k = 0; k < bins.size(); ++k) {
+        hours.push_back(bins[k]->hours);
+        diffuseHorizontal.push_back(skies[k].diffuseHorizontal);
+        sinElevation.push_back(skies[k].sinElevation);
+    }
+    parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
+        for (std::size_t col = 0; col < heights_.width(); ++col) {
+            const float z = heights_(col, row);
+            if (std::isnan(z)) continue;
+            const Enu n = normals_.at(col, row);
+            const double horizon = horizonDeg(col, row);
+            const BeamNormalTable::Node node = beams.front().node(z);
+            const bool up = n.up > 0, known = !std::isnan(horizon);
+            double beam = beam_(col, row), sunHours = sunHours_(col, row), diffuse = diffuse_(col, row),
+                   reflected = reflected_(col, row);
+            for (std::size_t k = 0; k < bins.size(); ++k) {
+                const SunAngles& sun = angles[k];
+                const double beamNormal = beams[k].at(node, z);
+                const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
+                const DiskEdges& e = edges[k];
+                SunTerms terms;
+                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
+                    terms = {1.0, std::max(0.0, toward * sun.cosElevation + n.up * sun.sinElevation)};
+                else if (known && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
+                    terms = {0.0, 0.0};
+                else
+                    terms = sunTerms(n, horizon, sun, sunDiameterDeg_);
+                beam += hours[k] * (beamNormal * terms.irradiance);
+                sunHours += hours[k] * terms.visibility;
+                diffuse += hours[k] * diffuseHorizontal[k];
+                reflected += hours[k] * (beamNormal * sinElevation[k] + diffuseHorizontal[k]);
+            }
+            beam_(col, row) = beam;
+            sunHours_(col, row) = sunHours;
+            diffuse_(col, row) = diffuse;
+            reflected_(col, row) = reflected;
+        }
+    });
+}
+
 void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& horizonDeg) {
     if (index >= directions_ || !horizonDeg.sameShape(heights_))
         throw Error("InsolationAccumulator: direction out of range or horizons of another shape");
@@ -78,6 +137,7 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
     std::vector<SunAngles> angles;
     std::vector<ClearSkySun> skies;  // all but the cell's pressure ratio, once per bin
     std::vector<BeamNormalTable> beams;
+    std::vector<DiskEdges> edges;
     for (const SunBin& b : bins_)
         if (b.direction == index) {
             bins.push_back(&b);
@@ -85,10 +145,15 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
             angles.push_back({b.azimuthDeg, b.elevationDeg, std::sin(az), std::cos(az), std::sin(el), std::cos(el)});
             skies.push_back(clearSkySun(b.extraterrestrialWm2, b.linke, b.elevationDeg, params_.coeffBh, params_.coeffDh));
             beams.emplace_back(skies.back(), lowM_, highM_);
+            edges.push_back(diskEdges(b.elevationDeg, sunDiameterDeg_));
         }
     if (bins.empty()) return;
     const bool visibleSky = params_.model == DiffuseModel::VisibleSky;
     const bool skyGrid = grids_.changesSky(), anyGrid = skyGrid || grids_.albedo;
+    if (visibleSky && !anyGrid) {
+        addVisibleSky(horizonDeg, angles, skies, beams, edges, bins);
+        return;
+    }
     parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
         for (std::size_t col = 0; col < heights_.width(); ++col) {
             const float z = heights_(col, row);
@@ -102,6 +167,11 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 cell = &own;
             }
             const Enu n = normals_.at(col, row);
+            const double horizon = horizonDeg(col, row);
+            // Every table of the sector shares its nodes (the same lowM..highM).
+            const BeamNormalTable::Node node = beams.front().node(z);
+            // The cell's slope terms of the rsun model, once for all its bins.
+            const MuneerSlope slope = visibleSky ? MuneerSlope{} : muneerSlope(n.up);
             // Summed in registers, in the same order as into the grids.
             double beam = beam_(col, row), hours = sunHours_(col, row), diffuse = diffuse_(col, row),
                    reflected = reflected_(col, row);
@@ -111,15 +181,24 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 // A per-cell Linke or index: the bin's sky at this cell from the formulas (E2-E9).
                 const ClearSky sky = skyGrid ? clearSky(b.extraterrestrialWm2, grids_.linke ? cell->linke : b.linke,
                                                         b.elevationDeg, z, cell->coeffBh, cell->coeffDh)
-                                             : clearSkyWithBeam(skies[k], beams[k].at(z));
-                const SunTerms terms = sunTerms(n, horizonDeg(col, row), sun, sunDiameterDeg_);
+                                             : clearSkyWithBeam(skies[k], beams[k].at(node, z));
+                const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
+                const double cosine = toward * sun.cosElevation + n.up * sun.sinElevation;
+                // The disk wholly seen or wholly hidden: O and O max(0, N.s) without sunTerms.
+                const DiskEdges& e = edges[k];
+                const bool up = n.up > 0;
+                SunTerms terms;
+                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
+                    terms = {1.0, std::max(0.0, cosine)};
+                else if (!std::isnan(horizon) && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
+                    terms = {0.0, 0.0};
+                else
+                    terms = sunTerms(n, horizon, sun, sunDiameterDeg_);
                 CellView view;
                 view.sunIrradiance = terms.irradiance;
                 view.sunVisibility = terms.visibility;
-                const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
-                view.surface = {n.up, toward, toward * sun.cosElevation + n.up * sun.sinElevation,
-                                b.elevationDeg * kDegToRad};
-                const CellIrradiance c = cellIrradiance(sky, view, *cell);
+                view.surface = {n.up, toward, cosine, b.elevationDeg * kDegToRad};
+                const CellIrradiance c = cellIrradiance(sky, view, *cell, slope);
                 beam += b.hours * c.beam;
                 hours += b.hours * terms.visibility;
                 // visible-sky: diffuse and reflected are K0 and 1 - K0 times horizon-free sums.

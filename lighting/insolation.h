@@ -11,6 +11,7 @@
 #pragma once
 
 #include "lighting/irradiance.h"
+#include "lighting/sun.h"
 #include "lighting/surface.h"
 #include "src/grid.h"
 
@@ -47,6 +48,16 @@ struct InsolationMaps {
     Grid<float> sunHours;
 };
 
+/// A bin's sun disk, for the test that most (cell, bin) pairs pass: the disk wholly above both
+/// the horizon and the cell's tangent plane (O = 1, N.s > 0), or wholly below one of them
+/// (O = 0); sunTerms() only for the rest. The tangent plane's elevation in the bin's azimuth,
+/// atan(across / N_up) (as in sunTerms), is compared through its tangent: across < N_up tan(edge).
+/// The tests are strict, so a horizon on an edge (and a point sun, whose edges meet) takes sunTerms.
+struct DiskEdges {
+    double lowDeg = 0, highDeg = 0;  ///< the disk's lower and upper edge, elevation -+ diameter / 2 (degrees)
+    double tanLow = 0, tanHigh = 0;  ///< their tangents (+inf for an upper edge at or above 90 degrees)
+};
+
 /// Sums the bins per cell, one sector's horizons at a time. The grids are referenced, not copied.
 class InsolationAccumulator {
 public:
@@ -63,6 +74,12 @@ public:
     InsolationMaps finish(const Grid<float>* skyK0) const;
 
 private:
+    /// addDirection for the visible-sky model with constant inputs (the default), per bin of the
+    /// sector: its sun, clear sky, beam table and disk edges.
+    void addVisibleSky(const Grid<float>& horizonDeg, const std::vector<SunAngles>& angles,
+                       const std::vector<ClearSkySun>& skies, const std::vector<BeamNormalTable>& beams,
+                       const std::vector<DiskEdges>& edges, const std::vector<const SunBin*>& bins);
+
     const Grid<float>& heights_;
     const Normals& normals_;
     std::vector<SunBin> bins_;

@@ -39,6 +39,12 @@ bool ClearSkyGrids::at(std::size_t col, std::size_t row, IrradianceParams& param
 }
 
 CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params) {
+    return cellIrradiance(sky, view, params,
+                          params.model == DiffuseModel::RSun ? muneerSlope(view.surface.normalUp) : MuneerSlope{});
+}
+
+CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params,
+                              const MuneerSlope& slope) {
     CellIrradiance out;
     if (!(sky.beamNormal > 0 || sky.diffuseHorizontal > 0)) return out;  // the sun is down
     out.beam = sky.beamNormal * view.sunIrradiance;
@@ -50,8 +56,8 @@ CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const I
     }
     // r.sun: Kb of the sunlit case from the unshadowed beam (drad's bh / (G0 sin h)).
     const double kb = sky.extraterrestrial > 0 ? sky.beamNormal / sky.extraterrestrial : 0.0;
-    out.diffuse = muneerDiffuse(sky.diffuseHorizontal, kb, view.surface, view.sunVisibility);
-    const double cosG = std::min(1.0, view.surface.normalUp);
+    out.diffuse = muneerDiffuse(sky.diffuseHorizontal, kb, view.surface, view.sunVisibility, slope);
+    const double cosG = slope.cosG;
     const double seenBeam = view.surface.cosIncidence > 0 ? view.sunVisibility * sky.beamHorizontal : 0.0;
     out.reflected = params.albedo * (seenBeam + sky.diffuseHorizontal) * (1 - cosG) / 2;  // E12
     return out;

@@ -73,6 +73,10 @@ struct ClearSkyGrids {
 
 /// The model above for one cell under the clear sky `sky` of its sun and height.
 CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params);
+/// The same with the cell's slope terms of the rsun model (muneerSlope(view.surface.normalUp))
+/// given, for drivers that evaluate many suns at one cell: the same bits.
+CellIrradiance cellIrradiance(const ClearSky& sky, const CellView& view, const IrradianceParams& params,
+                              const MuneerSlope& slope);
 
 /// Grids of the DEM's shape; NaN at nodata.
 struct IrradianceMaps {

@@ -7,7 +7,11 @@
 #include "products/insolation.h"
 #include "products/irradiance.h"
 #include "products/sunhours.h"
+#include "lighting/sun.h"
+#include "lighting/surface.h"
+#include "src/angles.h"
 #include "src/error.h"
+#include "src/terrain.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,6 +48,88 @@ TEST(SunBins, KeepTheTimeAndTheTimeWeightedSunOfEachSectorAndBand) {
     EXPECT_EQ(bins[1].direction, 1u);
     EXPECT_EQ(bins[2].direction, 1u);
     EXPECT_NE(bins[1].linke, bins[2].linke);
+}
+
+// The accumulator's shortcuts (a disk wholly seen or wholly hidden skips sunTerms; the visible-sky
+// sums written out; the beam from a per-metre table) against the bins summed one by one through
+// sunTerms, clearSky and cellIrradiance, on horizons placed on and around every bin's disk edges
+// and its tangent plane, NaN horizons among them, for both diffuse models and a point sun.
+TEST(InsolationAccumulator, ShortcutsGiveThePerBinSum) {
+    constexpr std::size_t kW = 23, kH = 17, kDirections = 8;
+    Grid<float> heights(kW, kH, 0.0f);
+    for (std::size_t r = 0; r < kH; ++r)
+        for (std::size_t c = 0; c < kW; ++c)
+            heights(c, r) = static_cast<float>(900 + 40 * std::sin(0.7 * c) * std::cos(0.5 * r) + 25.0 * c);
+    heights(3, 4) = std::numeric_limits<float>::quiet_NaN();
+    const Terrain terrain = makeUniformTerrain(heights, 30.0);
+    const Normals normals = computeNormals(terrain, 1);
+    std::vector<WeightedSun> suns;
+    for (int i = 0; i < 400; ++i)
+        suns.push_back({0.1, std::fmod(37.0 * i, 360.0), 0.3 + std::fmod(7.3 * i, 70.0), 1361.0 + i % 7, 3.0});
+    const std::vector<SunBin> bins = binSuns(suns, kDirections, 2.0);
+    for (const DiffuseModel model : {DiffuseModel::VisibleSky, DiffuseModel::RSun})
+        for (const double diameter : {kSunDiameterDeg, 0.0}) {
+            IrradianceParams params;
+            params.model = model;
+            params.albedo = 0.2;
+            params.threads = 1;
+            InsolationAccumulator acc(terrain.heightsM, normals, bins, kDirections, params, diameter);
+            std::vector<double> beam(heights.size(), 0.0), diffuse = beam, reflected = beam, hours = beam;
+            for (std::size_t d = 0; d < kDirections; ++d) {
+                // Horizons cycling through each bin's disk edges, the tangent plane, between, NaN.
+                Grid<float> horizon(kW, kH, 0.0f);
+                for (std::size_t k = 0; k < heights.size(); ++k) {
+                    const SunBin& b = bins[(k * 7 + d) % bins.size()];
+                    const double offsets[] = {-0.5 * diameter, 0.5 * diameter, 0.1, -0.1, -3, 4, 0};
+                    const std::size_t pick = (k + 3 * d) % 8;
+                    const Enu n = normals.at(k % kW, k / kW);
+                    horizon.data()[k] = pick == 7   ? std::numeric_limits<float>::quiet_NaN()
+                                        : pick == 6 ? static_cast<float>(tangentPlaneElevationDeg(n, b.azimuthDeg))
+                                                    : static_cast<float>(b.elevationDeg + offsets[pick]);
+                }
+                acc.addDirection(d, horizon);
+                for (std::size_t k = 0; k < heights.size(); ++k) {
+                    const double z = heights.data()[k];
+                    if (std::isnan(z)) continue;
+                    const Enu n = normals.at(k % kW, k / kW);
+                    for (const SunBin& b : bins) {
+                        if (b.direction != d) continue;
+                        const ClearSky sky = clearSky(b.extraterrestrialWm2, b.linke, b.elevationDeg, z);
+                        const SunTerms t = sunTerms(n, horizon.data()[k], b.azimuthDeg, b.elevationDeg, diameter);
+                        const double az = b.azimuthDeg * kDegToRad, el = b.elevationDeg * kDegToRad;
+                        const double toward = n.east * std::sin(az) + n.north * std::cos(az);
+                        CellView view;
+                        view.sunIrradiance = t.irradiance;
+                        view.sunVisibility = t.visibility;
+                        view.surface = {n.up, toward, toward * std::cos(el) + n.up * std::sin(el), el};
+                        const CellIrradiance c = cellIrradiance(sky, view, params);
+                        const bool visibleSky = model == DiffuseModel::VisibleSky;
+                        beam[k] += b.hours * c.beam;
+                        hours[k] += b.hours * t.visibility;
+                        diffuse[k] += b.hours * (visibleSky ? sky.diffuseHorizontal : c.diffuse);
+                        reflected[k] += b.hours * (visibleSky ? sky.globalHorizontal() : c.reflected);
+                    }
+                }
+            }
+            const Grid<float> k0(kW, kH, 0.75f);
+            const InsolationMaps out = acc.finish(model == DiffuseModel::VisibleSky ? &k0 : nullptr);
+            std::size_t compared = 0;
+            for (std::size_t k = 0; k < heights.size(); ++k) {
+                if (std::isnan(heights.data()[k])) continue;
+                const bool visibleSky = model == DiffuseModel::VisibleSky;
+                const double d = visibleSky ? 0.75 * diffuse[k] : diffuse[k];
+                const double r = visibleSky ? 0.2 * 0.25 * reflected[k] : reflected[k];
+                const auto near = [](double got, double want) {
+                    return (std::isnan(got) && std::isnan(want)) || std::fabs(got - want) <= 1e-6 * std::fabs(want) + 1e-9;
+                };
+                EXPECT_TRUE(near(out.irradiation.beam.data()[k], beam[k])) << k << " beam " << out.irradiation.beam.data()[k] << " " << beam[k];
+                EXPECT_TRUE(near(out.sunHours.data()[k], hours[k])) << k << " hours";
+                EXPECT_TRUE(near(out.irradiation.diffuse.data()[k], d)) << k << " diffuse";
+                EXPECT_TRUE(near(out.irradiation.reflected.data()[k], r)) << k << " reflected";
+                ++compared;
+            }
+            EXPECT_EQ(compared, heights.size() - 1);
+        }
 }
 
 struct Totals {
@@ -98,22 +185,25 @@ Diff compare(const std::vector<double>& exact, const Grid<float>& binned) {
     return e;
 }
 
-// docs/accuracy.md#insolation-accuracy has the same comparison on St Helens at 20 min steps and the
-// default 64 directions; this one is smaller so that it runs with the suite.
+// The target of issue 19: within 1 % (MAE relative to the mean) of the per-instant integral at
+// 10-minute steps, the default step. docs/accuracy.md#insolation-accuracy has the same comparison
+// on St Helens over 8 to 128 sectors; this one is smaller (and with fewer sectors than the
+// default 64, so harder) so that it runs with the suite.
 TEST(InsolationProduct, BinnedTotalsFollowThePerInstantIntegralOnRealTerrain) {
     const DemSource dem = DemSource::open(kRocky);
     constexpr std::size_t kDirections = 32;
+    constexpr auto kStep = std::chrono::minutes(10);
     for (const char* day : {"2024-06-21", "2024-12-21"}) {
         InsolationRequest r;
         r.firstDay = r.lastDay = parseDate(day);
         r.zone = TimeZoneSpec::iana("America/Denver");
-        r.step = std::chrono::minutes(30);
+        r.step = kStep;
         r.directions = kDirections;
         r.search.threads = 2;
         const auto t0 = std::chrono::steady_clock::now();
         const InsolationResult binned = insolationProduct(dem, dem.whole(), r);
         const auto t1 = std::chrono::steady_clock::now();
-        const Totals exact = exactDay(dem, day, "America/Denver", std::chrono::minutes(30), kDirections);
+        const Totals exact = exactDay(dem, day, "America/Denver", kStep, kDirections);
         const auto t2 = std::chrono::steady_clock::now();
         std::printf("binned %.2f s, per instant %.2f s\n", std::chrono::duration<double>(t1 - t0).count(),
                     std::chrono::duration<double>(t2 - t1).count());
