@@ -6,11 +6,13 @@ temporary QGIS_CUSTOM_CONFIG_PATH, never the user's) and compare its outputs wit
 they skip, saying so, when qgis_process or python3-qgis is missing.
 Run: python3 -m pytest -q qgis/tests (scripts/test.sh does)."""
 
+import hashlib
 import json
 import os
 import shutil
 import subprocess
 import sys
+import tempfile
 
 import pytest
 
@@ -35,6 +37,17 @@ def qgis_process_program():
     return shutil.which("qgis_process.bin") or shutil.which("qgis_process")
 
 
+def values_digest(path):
+    """SHA-256 of every band's stored values (gdal_translate to raw ENVI bytes): gdalinfo's
+    checksum rounds floating-point values to whole numbers, so only the bytes show two rasters
+    are the same bit for bit."""
+    with tempfile.TemporaryDirectory() as scratch:
+        raw = os.path.join(scratch, "values.bin")
+        subprocess.run(["gdal_translate", "-q", "-of", "ENVI", str(path), raw], check=True, capture_output=True)
+        with open(raw, "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+
+
 def checksums(path):
     """What must match between the CLI's and the provider's rasters: each band's checksum,
     type, description, nodata and metadata, the georeference, and the DEMLIGHT_* metadata but
@@ -45,8 +58,8 @@ def checksums(path):
     metadata.pop("DEMLIGHT_COMMAND")
     bands = [{k: b.get(k) for k in ("checksum", "type", "description", "noDataValue", "metadata")}
              for b in info["bands"]]
-    return {"size": info["size"], "geoTransform": info["geoTransform"], "crs": info["coordinateSystem"]["wkt"],
-            "metadata": metadata, "bands": bands}
+    return {"values": values_digest(path), "size": info["size"], "geoTransform": info["geoTransform"],
+            "crs": info["coordinateSystem"]["wkt"], "metadata": metadata, "bands": bands}
 
 
 # ---- the CLI as the provider reads it ---------------------------------------------------------

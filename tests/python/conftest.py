@@ -4,11 +4,13 @@ The package under test is the one `import demlight` finds (scripts/build.sh puts
 python/ folder on /usr/bin/python3's path); the command line to compare with is this build's
 (DEMLIGHT_CLI, default build/release/cli/demlight)."""
 
+import hashlib
 import json
 import math
 import os
 import pathlib
 import subprocess
+import tempfile
 
 import pytest
 
@@ -32,10 +34,21 @@ def cli():
     return run
 
 
+def values_digest(path):
+    """SHA-256 of every band's stored values (gdal_translate to raw ENVI bytes): gdalinfo's
+    checksum rounds floating-point values to whole numbers, so only the bytes show two rasters
+    are the same bit for bit."""
+    with tempfile.TemporaryDirectory() as scratch:
+        raw = os.path.join(scratch, "values.bin")
+        subprocess.run(["gdal_translate", "-q", "-of", "ENVI", str(path), raw], check=True, capture_output=True)
+        with open(raw, "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+
+
 def raster_facts(path):
-    """What the project calls byte-identical (docs/python.md): every band's checksum, type,
-    description, unit and nodata, the georeference, and the DEMLIGHT_* metadata but
-    DEMLIGHT_COMMAND, as gdalinfo reads them."""
+    """What the project calls byte-identical (docs/python.md): the bands' stored bytes, every
+    band's checksum, type, description, unit and nodata, the georeference, and the DEMLIGHT_*
+    metadata but DEMLIGHT_COMMAND, as gdalinfo reads them."""
     info = json.loads(subprocess.run(["gdalinfo", "-json", "-checksum", str(path)], check=True,
                                      capture_output=True, text=True).stdout)
     metadata = dict(info.get("metadata", {}).get("", {}))
@@ -46,5 +59,5 @@ def raster_facts(path):
         return "nan" if isinstance(v, str) or (isinstance(v, float) and math.isnan(v)) else v
 
     bands = [(b["checksum"], b["type"], b.get("description"), b.get("unit"), nodata(b)) for b in info["bands"]]
-    return {"size": info["size"], "geoTransform": info["geoTransform"],
+    return {"values": values_digest(path), "size": info["size"], "geoTransform": info["geoTransform"],
             "wkt": info["coordinateSystem"]["wkt"], "bands": bands, "metadata": metadata}
