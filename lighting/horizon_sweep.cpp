@@ -356,6 +356,7 @@ struct LineGeometry {
     bool xMajor;
     bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
     long delay = 0;    // HorizonParams::nearFieldSteps: cells are served this many steps behind the walk
+    bool crossings = false;  // HorizonParams::farFieldCrossings (with delay > 0)
     int farSign;
     double slope;
     std::size_t majorSize, minorSize;
@@ -645,7 +646,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // (the same crossing for every line, at fraction tc of the step), each takes a point
         // there, linear between the two cells on that grid line; that is where a wall's top edge
         // along the major axis lies. Pushed before this step's samples (it is farther).
-        if (delay > 0 && m != mStart) {
+        if (geo.crossings && m != mStart) {
             const long prev = m - mStep;
             const long basePrev = geo.base[static_cast<std::size_t>(prev)];
             const double fracPrev = geo.frac[static_cast<std::size_t>(prev)];
@@ -788,10 +789,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
 }
 
 LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, const SweepRegion& region,
-                          double maxDistanceM, bool nearestLine, int nearFieldSteps) {
+                          double maxDistanceM, bool nearestLine, int nearFieldSteps, bool farFieldCrossings) {
     LineGeometry geo;
     geo.nearestLine = nearestLine;
     geo.delay = nearFieldSteps;
+    geo.crossings = nearFieldSteps > 0 && farFieldCrossings;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
     const double major = geo.xMajor ? region.dirCol : region.dirRow;
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
@@ -1305,7 +1307,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
 
     for (const SweepRegion& region : regions) {
         const LineGeometry geo = makeGeometry(full, cells, region, params.maxDistanceM, params.nearestLine,
-                                              params.nearFieldSteps);
+                                              params.nearFieldSteps, params.farFieldCrossings);
         const long nLines = geo.kLast - geo.kFirst + 1;
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
