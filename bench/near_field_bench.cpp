@@ -3,7 +3,9 @@
 // the near fields alternate (A B C A B C ...) and the median thread CPU time is reported, so a
 // busy machine slows them alike; the ratios to the first near field are the figures to quote.
 // Usage: demlight_near_field_bench DEM [--steps N ...] [--repeats R] [--cells C] [--max-distance M]
-//        (defaults: steps 0 and the scene plan's, 5 repeats, 1500 cells, the plan's distance)
+//        (defaults: steps 0 and the scene plan's, 5 repeats, 1500 cells, the plan's distance;
+//        a step count ending in c, e.g. 4c, forces the far field's grid-line crossings on, one
+//        ending in n forces them off, a bare count takes the plan's choice)
 #include "geo/dem.h"
 #include "lighting/horizon.h"
 #include "lighting/quality.h"
@@ -38,13 +40,18 @@ double percentile(std::vector<double> v, double q) {
 int main(int argc, char** argv) {
     std::string path;
     std::vector<int> steps;
+    std::vector<char> crossingsOf;  // 'c' on, 'n' off, 0 the plan's
     int repeats = 5;
     std::size_t cells = 1500;
     double maxDistanceM = 0;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--steps" && i + 1 < argc) {
-            while (i + 1 < argc && argv[i + 1][0] != '-') steps.push_back(std::atoi(argv[++i]));
+            while (i + 1 < argc && argv[i + 1][0] != '-') {
+                const std::string v = argv[++i];
+                steps.push_back(std::atoi(v.c_str()));
+                crossingsOf.push_back(v.back() == 'c' || v.back() == 'n' ? v.back() : 0);
+            }
         } else if (a == "--repeats" && i + 1 < argc) {
             repeats = std::max(1, std::atoi(argv[++i]));
         } else if (a == "--cells" && i + 1 < argc) {
@@ -65,7 +72,10 @@ int main(int argc, char** argv) {
         QualityBudget budget;
         budget.maxDistanceM = maxDistanceM;
         const ScenePlan plan = planScene(t, Quality::Auto, budget);
-        if (steps.empty()) steps = {0, plan.nearFieldSteps};
+        if (steps.empty()) {
+            steps = {0, plan.nearFieldSteps};
+            crossingsOf = {0, 0};
+        }
         HorizonParams base = planHorizonParams(plan, budget.refraction, 1);
         const std::vector<CellIndex> sample = sampleValidCells(t, cells, 20261202);
         std::printf("%s: %zu x %zu cells, search %.0f m, plan's near field %d steps\n", path.c_str(), t.width(),
@@ -86,6 +96,7 @@ int main(int argc, char** argv) {
                 for (std::size_t k = 0; k < steps.size(); ++k) {
                     HorizonParams p = base;
                     p.nearFieldSteps = steps[k];
+                    if (crossingsOf[k]) p.farFieldCrossings = crossingsOf[k] == 'c';
                     const double t0 = threadSeconds();
                     sweepHorizonInto(t, p, maps[k], buffers[k]);
                     times[k].push_back(threadSeconds() - t0);
@@ -103,7 +114,8 @@ int main(int argc, char** argv) {
                     big += std::abs(a - b) > 5.0;
                 }
                 const double s = percentile(times[k], 0.5);
-                std::printf("%8.1f %6d %12.1f %7.2f %10.4f %8.3f %7.2f%%\n", az, steps[k], s / cellsD * 1e9, s / first,
+                const std::string label = std::to_string(steps[k]) + (crossingsOf[k] ? std::string(1, crossingsOf[k]) : "");
+                std::printf("%8.1f %6s %12.1f %7.2f %10.4f %8.3f %7.2f%%\n", az, label.c_str(), s / cellsD * 1e9, s / first,
                             percentile(err, 0.5), percentile(err, 0.99),
                             100.0 * big / static_cast<double>(std::max<std::size_t>(err.size(), 1)));
             }

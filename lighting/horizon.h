@@ -83,6 +83,13 @@ struct HorizonParams {
     /// earlier versions: no near field, the query height interpolated from the lines. Must be
     /// <= kMaxNearFieldSteps.
     int nearFieldSteps = 0;
+    /// Sweep only, with nearFieldSteps > 0: the far field's lines also take a point wherever they
+    /// cross a grid line of the minor axis between two steps (the bilinear surface is linear
+    /// there, and a wall's top edge along the major axis is such a line), so wall top edges beyond
+    /// the near field are sampled exactly. Off the grid axes that nearly doubles the hulls'
+    /// vertices; terrain has no such edges and the scene plan turns it off there
+    /// (docs/accuracy.md).
+    bool farFieldCrossings = true;
     /// Sweep only: the true azimuth (degrees, unwrapped values allowed) wanted at the centre of
     /// cell (col, row) when it varies over the grid, as the sun's does across a large DEM; empty
     /// = azimuthDeg everywhere. Regions are then split until each region's straight direction is

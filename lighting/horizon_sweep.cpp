@@ -356,6 +356,7 @@ struct LineGeometry {
     bool xMajor;
     bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
     long delay = 0;    // HorizonParams::nearFieldSteps: cells are served this many steps behind the walk
+    bool crossings = false;  // HorizonParams::farFieldCrossings (with delay > 0)
     int farSign;
     double slope;
     std::size_t majorSize, minorSize;
@@ -365,6 +366,9 @@ struct LineGeometry {
     std::size_t majorWin0, majorWin1, minorWin0, minorWin1;
     long majorLo, majorHi, minorLo, minorHi;
     long mEdge;  // the full grid's far edge: every line's distances count from there
+    /// No line sample is this far from the far edge (metres): a range limit at least this long
+    /// never starts a second chunk, and the sweep runs without the range limit's bookkeeping.
+    double sigmaBoundM = 0;
     std::vector<double> stepLengthM;  // metric length of one line step, per grid row
     /// Distance of a line sample from the far edge (metres) per major index, when it is the same
     /// for every line (Y-major lines, or equal steps in every row); empty otherwise, and each
@@ -377,6 +381,8 @@ struct LineGeometry {
     /// integral of the step lengths over rows (rowArc[r]: up to row r's upper boundary, r - 0.5).
     /// A function of the sample's position alone, with no sum along the walk.
     std::vector<double> rowArc;
+    /// arcAt() at each row's centre (where X-major lines cross it between two steps).
+    std::vector<double> centreArc;
     double invAbsSlope = 0;
     std::vector<long> base;           // lineOffset() per major index
     std::vector<double> frac;
@@ -640,7 +646,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // (the same crossing for every line, at fraction tc of the step), each takes a point
         // there, linear between the two cells on that grid line; that is where a wall's top edge
         // along the major axis lies. Pushed before this step's samples (it is farther).
-        if (delay > 0 && m != mStart) {
+        if (geo.crossings && m != mStart) {
             const long prev = m - mStep;
             const long basePrev = geo.base[static_cast<std::size_t>(prev)];
             const double fracPrev = geo.frac[static_cast<std::size_t>(prev)];
@@ -661,7 +667,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(prev)] +
                                          tc * (geo.sigmaAt[static_cast<std::size_t>(m)] -
                                                geo.sigmaAt[static_cast<std::size_t>(prev)])
-                                   : lineDistance(geo, line.edgeArcM, static_cast<double>(j), m);
+                                   : std::abs(geo.centreArc[static_cast<std::size_t>(j)] - line.edgeArcM) *
+                                         geo.invAbsSlope;  // lineDistance() at a row centre
                     if (limited && sigma >= line.nextChunkM) enterChunk(line, sigma, maxDistanceM);
                     const double g = static_cast<double>(h) - sigma * sigma * halfInvR;
                     const std::size_t top = hullTopAfterPops(line, sigma, g);
@@ -782,10 +789,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
 }
 
 LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, const SweepRegion& region,
-                          double maxDistanceM, bool nearestLine, int nearFieldSteps) {
+                          double maxDistanceM, bool nearestLine, int nearFieldSteps, bool farFieldCrossings) {
     LineGeometry geo;
     geo.nearestLine = nearestLine;
     geo.delay = nearFieldSteps;
+    geo.crossings = nearFieldSteps > 0 && farFieldCrossings;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
     const double major = geo.xMajor ? region.dirCol : region.dirRow;
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
@@ -805,18 +813,22 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
     geo.minorHi = static_cast<long>(geo.xMajor ? tc.row1 : tc.col1);
 
     geo.stepLengthM.resize(g.height);
-    double minStep = std::numeric_limits<double>::infinity();
+    double minStep = std::numeric_limits<double>::infinity(), maxStep = 0;
     bool equalSteps = true;
     for (std::size_t r = 0; r < g.height; ++r) {
         const double dc = geo.xMajor ? 1.0 : geo.slope;
         const double dr = geo.xMajor ? geo.slope : 1.0;
         geo.stepLengthM[r] = std::hypot(dc * g.cellWidthM[r], dr * g.cellHeightM[r]);
         minStep = std::min(minStep, geo.stepLengthM[r]);
+        maxStep = std::max(maxStep, geo.stepLengthM[r]);
         equalSteps = equalSteps && geo.stepLengthM[r] == geo.stepLengthM[0];
     }
 
     // Far end: the terrain's edge, or far enough beyond the window to cover maxDistanceM.
     const long M = static_cast<long>(geo.majorSize);
+    // A sample is at most M - 1 steps from the far edge, each at most maxStep long (rows beyond
+    // the grid count with its outer rows' steps); one step more of margin against rounding.
+    geo.sigmaBoundM = static_cast<double>(M + 1) * maxStep;
     long extension = M;
     if (std::isfinite(maxDistanceM)) {
         // In double first: a huge finite distance would overflow the conversion to long.
@@ -843,6 +855,8 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
         geo.rowArc.assign(g.height + 1, 0.0);
         for (std::size_t r = 0; r < g.height; ++r) geo.rowArc[r + 1] = geo.rowArc[r] + geo.stepLengthM[r];
         geo.invAbsSlope = geo.slope != 0.0 ? 1.0 / std::abs(geo.slope) : 0.0;
+        geo.centreArc.resize(g.height);
+        for (std::size_t r = 0; r < g.height; ++r) geo.centreArc[r] = arcAt(geo, static_cast<double>(r));
     } else {
         geo.sigmaAt.assign(geo.majorSize, 0.0);
         const long near = -geo.farSign;
@@ -959,12 +973,16 @@ void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row,
 /// outer cell centres, nodata taps dropped and the rest reweighted, the march ending where the
 /// ray leaves the full grid. (col, row) are on the full grid; taps beyond the terrain count as
 /// nodata (a served cell's halo holds every point within its search distance).
+/// Points for which skip(q) holds are left out (the caller has them, see nearFieldRow).
+template <class Skip>
 float nearFieldAt(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t col, std::size_t row,
-                  const std::vector<NearPoint>& stencil) {
+                  const std::vector<NearPoint>& stencil, const Skip& skip) {
     const float h0 = t.heightsM(col - cells.col0, row - cells.row0);
     const double maxX = static_cast<double>(g.width) - 1, maxY = static_cast<double>(g.height) - 1;
     float best = -std::numeric_limits<float>::infinity();
-    for (const NearPoint& p : stencil) {
+    for (std::size_t q = 0; q < stencil.size(); ++q) {
+        if (skip(q)) continue;
+        const NearPoint& p = stencil[q];
         double x = static_cast<double>(col) + p.dc, y = static_cast<double>(row) + p.dr;
         if (x < -0.5 || x > maxX + 0.5 || y < -0.5 || y > maxY + 0.5) break;
         x = std::clamp(x, 0.0, maxX);
@@ -1014,52 +1032,71 @@ void nearPointRow(const float* __restrict h0, const float* __restrict t0, const 
 }
 
 /// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
-/// (-inf where the near field holds no terrain). Cells whose taps are all valid heights inside
-/// the terrain take the vectorised loop (heights relative to the cell's own, fused multiply-adds
-/// in a fixed order, so a cell gets the same bits whichever loop or tile it is in); the rest
-/// nearFieldAt.
+/// (-inf where the near field holds no terrain). Each stencil point takes the vectorised loop
+/// over the cells whose taps for it are valid heights inside the terrain (heights relative to
+/// the cell's own, fused multiply-adds in a fixed order, so a cell gets the same bits whichever
+/// tile it is in); cells next to voids take the reference's rule on the same taps, and the points
+/// of cells near the DEM's edge whose taps leave it take nearFieldAt's.
 void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t row,
                   const CellWindow& w, const std::vector<NearPoint>& stencil, std::vector<float>& out,
                   std::vector<std::uint8_t>& bad) {
     const std::size_t cols = w.col1 - w.col0, W = t.width();
+    const long colsL = static_cast<long>(cols);
     out.assign(cols, -std::numeric_limits<float>::infinity());
     bad.assign(cols, 0);
-    long dcMin = 0, dcMax = 0, drMin = 0, drMax = 0;
-    for (const NearPoint& p : stencil) {
-        for (int k = 0; k < 4; ++k) {
-            dcMin = std::min(dcMin, p.tapCol[k]);
-            dcMax = std::max(dcMax, p.tapCol[k]);
-            drMin = std::min(drMin, p.tapRow[k]);
-            drMax = std::max(drMax, p.tapRow[k]);
-        }
-    }
-    // Window columns whose taps all lie inside the terrain (terrain coordinates: col - cells.col0).
+    // Per point, the window columns [begin, end) whose taps all lie inside the terrain (terrain
+    // coordinates: col - cells.col0); the cells inside every point's range are [fastBegin, fastEnd).
+    thread_local std::vector<std::pair<long, long>> ranges;
+    ranges.resize(stencil.size());
     const long r = static_cast<long>(row - cells.row0);
-    const bool rowsInside = r + drMin >= 0 && r + drMax < static_cast<long>(t.height());
     const long c0 = static_cast<long>(w.col0 - cells.col0);
-    const long fastBegin = rowsInside ? std::clamp(-dcMin - c0, 0L, static_cast<long>(cols)) : static_cast<long>(cols);
-    const long fastEnd = rowsInside ? std::clamp(static_cast<long>(W) - dcMax - c0, fastBegin, static_cast<long>(cols))
-                                    : fastBegin;
+    long fastBegin = 0, fastEnd = colsL;
+    for (std::size_t q = 0; q < stencil.size(); ++q) {
+        const NearPoint& p = stencil[q];
+        const long dcMin = *std::min_element(p.tapCol, p.tapCol + 4), dcMax = *std::max_element(p.tapCol, p.tapCol + 4);
+        const long drMin = *std::min_element(p.tapRow, p.tapRow + 4), drMax = *std::max_element(p.tapRow, p.tapRow + 4);
+        const bool rowsInside = r + drMin >= 0 && r + drMax < static_cast<long>(t.height());
+        const long begin = rowsInside ? std::clamp(-dcMin - c0, 0L, colsL) : colsL;
+        const long end = rowsInside ? std::clamp(static_cast<long>(W) - dcMax - c0, begin, colsL) : begin;
+        ranges[q] = {begin, end};
+        fastBegin = std::max(fastBegin, begin);
+        fastEnd = std::min(fastEnd, end);
+    }
+    fastEnd = std::max(fastEnd, fastBegin);
     const float* H = t.heightsM.data();
     const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
     float* __restrict best = out.data();
     std::uint8_t* __restrict flag = bad.data();
-    for (const NearPoint& p : stencil) {
+    for (std::size_t q = 0; q < stencil.size(); ++q) {
+        const NearPoint& p = stencil[q];
+        const auto [begin, end] = ranges[q];
+        if (begin >= end) continue;
         const float* tap[4];
         for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
         if (p.taps == 2) {  // on a grid line: the taps with weight are the first two
-            nearPointRow<2>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, fastBegin, fastEnd);
+            nearPointRow<2>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
         } else {
-            nearPointRow<4>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, fastBegin, fastEnd);
+            nearPointRow<4>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
         }
     }
-    for (long i = 0; i < static_cast<long>(cols); ++i) {
+    for (long i = 0; i < colsL; ++i) {
         const bool fast = i >= fastBegin && i < fastEnd;
         if (fast && !flag[i]) continue;
         const std::size_t col = w.col0 + static_cast<std::size_t>(i);
         if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) continue;
         if (!fast) {
-            out[static_cast<std::size_t>(i)] = nearFieldAt(t, g, cells, col, row, stencil);
+            // Near the DEM's edge: the points whose taps leave the terrain by the reference's rule
+            // (clamped, ending where the ray leaves the grid), the others as taken above; next to
+            // a void, every point by that rule.
+            const std::size_t at = static_cast<std::size_t>(i);
+            if (flag[i]) {
+                out[at] = nearFieldAt(t, g, cells, col, row, stencil, [](std::size_t) { return false; });
+            } else {
+                const float edge = nearFieldAt(t, g, cells, col, row, stencil, [&](std::size_t q) {
+                    return i >= ranges[q].first && i < ranges[q].second;
+                });
+                out[at] = edge > out[at] ? edge : out[at];
+            }
             continue;
         }
         // Taps inside the terrain, some on voids: the same rule as nearFieldAt (void taps dropped,
@@ -1270,7 +1307,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
 
     for (const SweepRegion& region : regions) {
         const LineGeometry geo = makeGeometry(full, cells, region, params.maxDistanceM, params.nearestLine,
-                                              params.nearFieldSteps);
+                                              params.nearFieldSteps, params.farFieldCrossings);
         const long nLines = geo.kLast - geo.kFirst + 1;
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
@@ -1286,7 +1323,8 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
                 sweepBlock<XMajor, Limited>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
                                             out.angleDeg.data(), planeB.data(), scratch, logs);
             };
-            const bool limited = std::isfinite(params.maxDistanceM);
+            // A range limit longer than every line (the whole DEM searched) changes nothing.
+            const bool limited = std::isfinite(params.maxDistanceM) && params.maxDistanceM <= geo.sigmaBoundM;
             if (geo.xMajor) {
                 limited ? run.template operator()<true, true>() : run.template operator()<true, false>();
             } else {

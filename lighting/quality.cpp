@@ -181,6 +181,12 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                 << " % of neighbour steps steeper than 45 deg: " << (surfaceModel ? "a surface model" : "terrain")
                 << "; horizons over the nearest steps from each cell's own centre)";
     }
+    plan.farFieldCrossings = steepShare >= kFarFieldCrossingsSteepShare;
+    std::ostringstream crossWhy;
+    crossWhy << "far_field_crossings=" << (plan.farFieldCrossings ? "on" : "off") << " ("
+             << (plan.farFieldCrossings ? "at least " : "under ") << 100 * kFarFieldCrossingsSteepShare
+             << " % of neighbour steps steeper than 45 deg: edges between scan steps "
+             << (plan.farFieldCrossings ? "sampled where the lines cross grid lines)" : "need no extra samples)");
     if (quality == Quality::Full) {
         plan.maxDistanceM = std::max(diagonal, minCell);
         plan.curvature = true;
@@ -194,7 +200,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                         describe("sky_directions", plan.skyDirections, "full"),
                         "sky_scan_lines=two (full: each cell between its two bracketing lines)",
                         describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), "full"),
-                        nearWhy.str()};
+                        nearWhy.str(), crossWhy.str()};
         plan.expectedError = sweepExpectedError(terrain, -90);
         applyUserDistance(terrain, budget, plan);
         return plan;
@@ -237,7 +243,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
                     "sky_scan_lines=nearest (sky and aperture integrals: one scan line per cell; their "
                     "error stays within the sky error budget)",
                     describe("sun_lattice_cells", static_cast<double>(plan.sunLatticeStepCells), lattice.str()),
-                    nearWhy.str()};
+                    nearWhy.str(), crossWhy.str()};
     plan.expectedError = sweepExpectedError(terrain, budget.lowestElevationDeg);
     if (budget.toleranceDeg > kDefaultToleranceDeg) {
         // Measured at the default budget. A looser one lets auto add up to the tolerance to
@@ -260,6 +266,7 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
     p.directionToleranceDeg = plan.directionToleranceDeg;
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.nearFieldSteps = plan.nearFieldSteps;
+    p.farFieldCrossings = plan.farFieldCrossings;
     p.threads = threads;
     return p;
 }
@@ -275,6 +282,7 @@ SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, 
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : 0.0;
     p.nearFieldSteps = plan.nearFieldSteps;
+    p.farFieldCrossings = plan.farFieldCrossings;
     return p;
 }
 

@@ -163,6 +163,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     hp.truncationFlags = false;
     hp.nearestLine = params.nearestLine;
     hp.nearFieldSteps = params.nearFieldSteps;
+    hp.farFieldCrossings = params.farFieldCrossings;
     hp.maxDistanceM = frame.maxDistanceM;
     hp.azimuthDeg = field.centreAzimuthDeg;
     hp.azimuthAtDeg = [&field](double col, double row) { return field.atFull(col + 0.5, row + 0.5).first; };

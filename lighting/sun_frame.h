@@ -40,6 +40,8 @@ struct SunFrameParams {
     bool nearestLine = false;
     /// As HorizonParams::nearFieldSteps (the scene plan's).
     int nearFieldSteps = 0;
+    /// As HorizonParams::farFieldCrossings (the scene plan's).
+    bool farFieldCrossings = true;
     int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.
     SunSweepStrategy strategy = SunSweepStrategy::Cheapest;

@@ -94,10 +94,12 @@ TEST_P(HorizonRealDem, SweepMatchesReference) {
     HorizonParams p;
     p.maxDistanceM = std::min(defaultMaxDistanceM(t), 0.25 * sideM);
     // The scene plan's near field: terrain, by its share of steep steps.
-    p.nearFieldSteps = planScene(t, Quality::Auto, QualityBudget{}).nearFieldSteps;
+    const ScenePlan plan = planScene(t, Quality::Auto, QualityBudget{});
+    p.nearFieldSteps = plan.nearFieldSteps;
+    p.farFieldCrossings = plan.farFieldCrossings;
     ASSERT_EQ(p.nearFieldSteps, kTerrainNearFieldSteps);
     std::cout << tc.file << ": " << t.width() << " x " << t.height() << " cells, max distance "
-              << p.maxDistanceM << " m\n";
+              << p.maxDistanceM << " m, far-field crossings " << (p.farFieldCrossings ? "on" : "off") << "\n";
     for (double az : {0.0, 37.0, 90.0, 123.4, 200.0, 301.7}) {
         p.azimuthDeg = az;
         const auto t0 = std::chrono::steady_clock::now();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace demlight {
 namespace {
@@ -33,6 +34,32 @@ TEST(Quality, AutoDistanceIsReliefOverTanLowestElevationCappedByDiagonal) {
     EXPECT_TRUE(tall.curvature);  // 8.5 km: 0.033 deg >= 0.01 deg
     EXPECT_EQ(p.skyDirections, kAutoSkyDirections);
     EXPECT_FALSE(p.reasons.empty());
+}
+
+TEST(Quality, FarFieldCrossingsOnlyWhereStepsAreSteep) {
+    // 1 m per 30 m cell: no step steeper than 45 deg, so no edges between scan steps to sample.
+    const Terrain smooth = cone(200, 30, 50);
+    // 10 m per 1 m cell: every step is steep (a surface model by the same share).
+    const Terrain steep = cone(200, 1, 1000, 10);
+    for (const Quality q : {Quality::Auto, Quality::Full}) {
+        const ScenePlan s = planScene(smooth, q, {}), t = planScene(steep, q, {});
+        EXPECT_FALSE(s.farFieldCrossings);
+        EXPECT_TRUE(t.farFieldCrossings);
+        EXPECT_FALSE(planHorizonParams(s, 0.13).farFieldCrossings);
+        EXPECT_TRUE(planHorizonParams(t, 0.13).farFieldCrossings);
+        EXPECT_FALSE(planSunFrameParams(s, 0.53, 0.13).farFieldCrossings);
+        const auto has = [](const ScenePlan& p, const char* what) {
+            for (const std::string& r : p.reasons)
+                if (r.find(what) != std::string::npos) return true;
+            return false;
+        };
+        EXPECT_TRUE(has(s, "far_field_crossings=off"));
+        EXPECT_TRUE(has(t, "far_field_crossings=on"));
+    }
+    // A given near field keeps the scene's choice.
+    QualityBudget given;
+    given.nearFieldSteps = 8;
+    EXPECT_FALSE(planScene(smooth, Quality::Auto, given).farFieldCrossings);
 }
 
 TEST(Quality, AutoSearchesTheWholeDemWhenTheDistanceIsHalfTheDiagonalOrMore) {

@@ -147,6 +147,7 @@ TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     p.nearestLine = true;
     const ScenePlan plan = planScene(t, Quality::Auto, QualityBudget{});
     p.nearFieldSteps = plan.nearFieldSteps;
+    p.farFieldCrossings = plan.farFieldCrossings;
 
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<RefCell> ref = reference(t, normals, p);

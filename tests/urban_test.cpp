@@ -61,7 +61,8 @@ double bilinear(const Grid<float>& h, double x, double y) {
 /// cell apart along the minor axis, through minor coordinate slope * major + integer); terrain
 /// at least D steps away from the one or two lines bracketing the cell (tangents from the cell's
 /// own height, mixed by the cross-line weight; the nearest line alone in nearestLine mode; each
-/// line sampled at its steps and where it crosses a grid line of the minor axis), and
+/// line sampled at its steps and, with farFieldCrossings, where it crosses a grid line of the
+/// minor axis), and
 /// terrain nearer than D steps on the ray from the cell's centre: quarter-cell steps over the
 /// first two steps, and every crossing of a grid line, on the bilinear surface.
 double modelHorizonDeg(const Terrain& t, const HorizonParams& p, std::size_t col, std::size_t row) {
@@ -111,6 +112,7 @@ double modelHorizonDeg(const Terrain& t, const HorizonParams& p, std::size_t col
             const double yNext = y + slope * farSign;
             const double lo = std::min(y, yNext), hi = std::max(y, yNext);
             const double n = std::floor(hi - 1e-9);
+            if (!p.farFieldCrossings) continue;
             if (mNext < 0 || mNext >= M || !(n > lo + 1e-9) || n < 0 || n >= static_cast<double>(N)) continue;
             const double tc = (n - y) / (yNext - y);
             const double dc = (static_cast<double>(i) + tc) * stepM;
@@ -177,13 +179,14 @@ TEST(NearField, SweepComputesItsStatedModel) {
     // cells), two lines and one: the sweep's delayed hull queries, range passes and near-field
     // loops against the model computed cell by cell.
     const Terrain t = smallCity();
-    for (const int D : {4, 16}) {
+    for (const auto& [D, crossings] : {std::pair{4, true}, std::pair{4, false}, std::pair{16, true}, std::pair{16, false}}) {
         for (const double az : {0.0, 37.0, 90.0, 143.5, 225.0, 301.7}) {
             for (const double distance : {std::numeric_limits<double>::infinity(), 40.3}) {
                 for (const bool nearest : {false, true}) {
                     HorizonParams p = flat(az, D);
                     p.maxDistanceM = distance;
                     p.nearestLine = nearest;
+                    p.farFieldCrossings = crossings;
                     const HorizonMap s = sweepHorizon(t, p);
                     double worst = 0;
                     for (std::size_t r = 0; r < t.height(); ++r) {
@@ -196,7 +199,7 @@ TEST(NearField, SweepComputesItsStatedModel) {
                             worst = std::max(worst, dd);
                         }
                     }
-                    EXPECT_LT(worst, 2e-3) << "D " << D << " az " << az << " distance " << distance
+                    EXPECT_LT(worst, 2e-3) << "D " << D << (crossings ? "" : " without crossings") << " az " << az << " distance " << distance
                                            << (nearest ? " nearest line" : " two lines");
                 }
             }
@@ -371,6 +374,7 @@ TEST_P(SurfaceModel, HorizonsMeetTheTargetsAgainstTheReference) {
     if (!dem) GTEST_SKIP() << "shared surface model not found: " << GetParam();
     const ScenePlan plan = planScene(*dem, Quality::Auto, QualityBudget{});
     ASSERT_EQ(plan.nearFieldSteps, kSurfaceNearFieldSteps) << "a surface model by its steep steps";
+    ASSERT_TRUE(plan.farFieldCrossings) << "wall top edges beyond the near field";
     EXPECT_EQ(plan.skyDirections, kFullSkyDirections) << "sky integrals of a surface model need more sectors";
     const HorizonParams p = planHorizonParams(plan, kDefaultRefraction, 2);
     const DsmStats st = compareWithReference(*dem, p, 1500);
