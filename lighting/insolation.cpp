@@ -78,6 +78,19 @@ DiskEdges diskEdges(double elevationDeg, double sunDiameterDeg) {
             high < 90 ? std::tan(high * kDegToRad) : std::numeric_limits<double>::infinity()};
 }
 
+/// sunTerms() of a bin's sun at a cell, skipped where the disk is wholly seen (above the horizon
+/// and the tangent plane: O = 1, O max(0, N.s)) or wholly hidden below either (O = 0).
+/// `toward` = N_east sin A + N_north cos A. The tests are strict (DiskEdges), so a horizon on an
+/// edge takes sunTerms.
+inline SunTerms binSunTerms(const Enu& n, double horizonDeg, const SunAngles& sun, const DiskEdges& e, double toward,
+                            double sunDiameterDeg) {
+    const bool up = n.up > 0;
+    if (up && horizonDeg < e.lowDeg && -toward < n.up * e.tanLow)
+        return {1.0, std::max(0.0, toward * sun.cosElevation + n.up * sun.sinElevation)};
+    if (!std::isnan(horizonDeg) && (horizonDeg > e.highDeg || (up && -toward > n.up * e.tanHigh))) return {0.0, 0.0};
+    return sunTerms(n, horizonDeg, sun, sunDiameterDeg);
+}
+
 }  // namespace
 
 void InsolationAccumulator::addVisibleSky(const Grid<float>& horizonDeg, const std::vector<SunAngles>& angles,
@@ -101,21 +114,13 @@ void InsolationAccumulator::addVisibleSky(const Grid<float>& horizonDeg, const s
             const Enu n = normals_.at(col, row);
             const double horizon = horizonDeg(col, row);
             const BeamNormalTable::Node node = beams.front().node(z);
-            const bool up = n.up > 0, known = !std::isnan(horizon);
             double beam = beam_(col, row), sunHours = sunHours_(col, row), diffuse = diffuse_(col, row),
                    reflected = reflected_(col, row);
             for (std::size_t k = 0; k < bins.size(); ++k) {
                 const SunAngles& sun = angles[k];
                 const double beamNormal = beams[k].at(node, z);
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
-                const DiskEdges& e = edges[k];
-                SunTerms terms;
-                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
-                    terms = {1.0, std::max(0.0, toward * sun.cosElevation + n.up * sun.sinElevation)};
-                else if (known && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
-                    terms = {0.0, 0.0};
-                else
-                    terms = sunTerms(n, horizon, sun, sunDiameterDeg_);
+                const SunTerms terms = binSunTerms(n, horizon, sun, edges[k], toward, sunDiameterDeg_);
                 beam += hours[k] * (beamNormal * terms.irradiance);
                 sunHours += hours[k] * terms.visibility;
                 diffuse += hours[k] * diffuseHorizontal[k];
@@ -184,16 +189,7 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                                              : clearSkyWithBeam(skies[k], beams[k].at(node, z));
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
                 const double cosine = toward * sun.cosElevation + n.up * sun.sinElevation;
-                // The disk wholly seen or wholly hidden: O and O max(0, N.s) without sunTerms.
-                const DiskEdges& e = edges[k];
-                const bool up = n.up > 0;
-                SunTerms terms;
-                if (up && horizon < e.lowDeg && -toward < n.up * e.tanLow)
-                    terms = {1.0, std::max(0.0, cosine)};
-                else if (!std::isnan(horizon) && (horizon > e.highDeg || (up && -toward > n.up * e.tanHigh)))
-                    terms = {0.0, 0.0};
-                else
-                    terms = sunTerms(n, horizon, sun, sunDiameterDeg_);
+                const SunTerms terms = binSunTerms(n, horizon, sun, edges[k], toward, sunDiameterDeg_);
                 CellView view;
                 view.sunIrradiance = terms.irradiance;
                 view.sunVisibility = terms.visibility;
