@@ -381,8 +381,6 @@ struct LineGeometry {
     /// integral of the step lengths over rows (rowArc[r]: up to row r's upper boundary, r - 0.5).
     /// A function of the sample's position alone, with no sum along the walk.
     std::vector<double> rowArc;
-    /// arcAt() at each row's centre (where X-major lines cross it between two steps).
-    std::vector<double> centreArc;
     double invAbsSlope = 0;
     std::vector<long> base;           // lineOffset() per major index
     std::vector<double> frac;
@@ -667,8 +665,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(prev)] +
                                          tc * (geo.sigmaAt[static_cast<std::size_t>(m)] -
                                                geo.sigmaAt[static_cast<std::size_t>(prev)])
-                                   : std::abs(geo.centreArc[static_cast<std::size_t>(j)] - line.edgeArcM) *
-                                         geo.invAbsSlope;  // lineDistance() at a row centre
+                                   : lineDistance(geo, line.edgeArcM, static_cast<double>(j), m);
                     if (limited && sigma >= line.nextChunkM) enterChunk(line, sigma, maxDistanceM);
                     const double g = static_cast<double>(h) - sigma * sigma * halfInvR;
                     const std::size_t top = hullTopAfterPops(line, sigma, g);
@@ -855,8 +852,6 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
         geo.rowArc.assign(g.height + 1, 0.0);
         for (std::size_t r = 0; r < g.height; ++r) geo.rowArc[r + 1] = geo.rowArc[r] + geo.stepLengthM[r];
         geo.invAbsSlope = geo.slope != 0.0 ? 1.0 / std::abs(geo.slope) : 0.0;
-        geo.centreArc.resize(g.height);
-        for (std::size_t r = 0; r < g.height; ++r) geo.centreArc[r] = arcAt(geo, static_cast<double>(r));
     } else {
         geo.sigmaAt.assign(geo.majorSize, 0.0);
         const long near = -geo.farSign;
