@@ -34,9 +34,8 @@ inline constexpr int kSurfaceNearFieldSteps = 16;
 /// Below this share of steep neighbour steps the far field's grid-line crossings
 /// (HorizonParams::farFieldCrossings) are left out: they sample edges that are steep between two
 /// line steps (wall top edges, cliffs), and off the grid axes they cost a third of the sweep.
-/// Measured against the reference (docs/accuracy.md): on terrain of 0.01–0.3 % steep steps the
-/// medians rose by at most 0.003 deg and the p99 by at most 0.09 deg without them; on Everest
-/// (1.6 %) the auto plan's p99 rose 1.89 -> 2.09 deg, more than its tolerance over full.
+/// Set where leaving them out still keeps auto within its tolerance of full (measured: docs/
+/// accuracy.md, "How the horizon is computed, and how accurate it is", after the terrain table).
 inline constexpr double kFarFieldCrossingsSteepShare = 0.01;
 
 /// Sky and aperture directions used by `auto`: the measured default (lighting/sky.h); on

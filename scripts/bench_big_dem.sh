@@ -12,8 +12,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 product=${1:?usage: bench_big_dem.sh sky|sun [OUT_DIR] [options...]}
-out=${2:-out/bench_big}
-shift $(( $# >= 2 ? 2 : 1 ))
+shift
+out=out/bench_big
+if [[ $# -gt 0 && $1 != -* ]]; then out=$1; shift; fi  # OUT_DIR, unless the options start
 demlight=$(realpath "${DEMLIGHT:-build/release/cli/demlight}")
 tile=$(realpath "${TILE:-../shared/data/dem/N48W125_srtm1.tif}")
 instant=${TIME:-2024-06-21T18:00:00Z}

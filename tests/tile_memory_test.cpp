@@ -3,6 +3,8 @@
 // would not fit stays under the limit, measured as the child process's peak resident set.
 #include "cli_runner.h"
 #include "geo/raster.h"
+#include "products/aperture.h"
+#include "products/sky.h"
 #include "products/tiles.h"
 #include "src/grid.h"
 
@@ -46,14 +48,14 @@ double plannedBytes(const PlanCase& c, std::size_t tile) {
 TEST(TilePlan, TilesFitTheMemoryLimitAndNoFewerEqualTilesWould) {
     const PlanCase cases[] = {
         // The 40 000^2 benchmark (halo of its 31.7 km search at 1" cells): sky, aperture, sun.
-        {40000, 1563, windowProductTileBytes(12, 1), 4000},
-        {40000, 1563, windowProductTileBytes(32, 5), 4000},
+        {40000, 1563, skyTileBytes(SkyRequest{}), 4000},
+        {40000, 1563, apertureTileBytes(), 4000},
         {40000, 1563, productTileBytes(2), 4000},
-        {40000, 1563, windowProductTileBytes(12, 1), 12000},
+        {40000, 1563, skyTileBytes(SkyRequest{}), 12000},
         // Small limits and halos; a halo larger than the tile.
-        {2400, 201, windowProductTileBytes(12, 1), 200},
+        {2400, 201, skyTileBytes(SkyRequest{}), 200},
         {2400, 201, productTileBytes(2), 200},
-        {10000, 3000, windowProductTileBytes(12, 1), 2000},
+        {10000, 3000, skyTileBytes(SkyRequest{}), 2000},
         {7777, 50, productTileBytes(4), 500},
     };
     for (const PlanCase& c : cases) {
@@ -75,7 +77,7 @@ TEST(TilePlan, TilesFitTheMemoryLimitAndNoFewerEqualTilesWould) {
 
 TEST(TilePlan, AWholeExtentThatFitsIsOnePiece) {
     const CellWindow extent{0, 0, 1000, 800};
-    EXPECT_EQ(automaticTileCells(extent, 100, windowProductTileBytes(12, 1), tileMemoryBytes(4000e6)), 1000u);
+    EXPECT_EQ(automaticTileCells(extent, 100, skyTileBytes(SkyRequest{}), tileMemoryBytes(4000e6)), 1000u);
 }
 
 // ---- A run, measured --------------------------------------------------------------------------

@@ -108,11 +108,11 @@ double modelHorizonDeg(const Terrain& t, const HorizonParams& p, std::size_t col
             if (!std::isnan(s)) best = std::max(best, (s - h0) / d);
             // Where the line crosses a grid line of the minor axis before the next step: the
             // point there, linear between the two cells on that grid line.
+            if (!p.farFieldCrossings) continue;
             const long mNext = mm + farSign;
             const double yNext = y + slope * farSign;
             const double lo = std::min(y, yNext), hi = std::max(y, yNext);
             const double n = std::floor(hi - 1e-9);
-            if (!p.farFieldCrossings) continue;
             if (mNext < 0 || mNext >= M || !(n > lo + 1e-9) || n < 0 || n >= static_cast<double>(N)) continue;
             const double tc = (n - y) / (yNext - y);
             const double dc = (static_cast<double>(i) + tc) * stepM;
