@@ -227,7 +227,9 @@ void TemporaryFile::discard() noexcept {
 void removeTemporaryFiles() noexcept {
     for (Slot& s : gSlots) {
         int expected = kLive;
-        if (s.state.compare_exchange_strong(expected, kRemoving, std::memory_order_acquire)) ::unlink(s.path);
+        // A slot already removing is unlinked again: its file may have been created since.
+        if (s.state.compare_exchange_strong(expected, kRemoving, std::memory_order_acquire) || expected == kRemoving)
+            ::unlink(s.path);
     }
 }
 

@@ -72,8 +72,8 @@ private:
     bool done_ = false;
 };
 
-/// Unlinks every temporary file of this process that is neither committed nor removed yet.
-/// Async-signal-safe (atomics and unlink() over a fixed table): for a handler that ends the
+/// Unlinks every temporary file of this process not committed (again for names being removed: a
+/// writer may have created the file after the first unlink). Async-signal-safe (atomics and unlink() over a fixed table): for a handler that ends the
 /// process at once, and for std::terminate.
 void removeTemporaryFiles() noexcept;
 

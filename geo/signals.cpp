@@ -4,6 +4,7 @@
 #include "geo/output_file.h"
 
 #include <csignal>
+#include <ctime>
 #include <cstdlib>
 #include <exception>
 
@@ -29,6 +30,11 @@ void onSignal(int sig) {
         if (gOnFirstSignal) gOnFirstSignal();
         return;
     }
+    removeTemporaryFiles();
+    // A writer thread may have claimed a temporary name and not yet created the file when the
+    // names were unlinked (GDAL creates it just after): after a pause, unlink them all again.
+    const timespec pause{0, 20'000'000};
+    ::nanosleep(&pause, nullptr);
     removeTemporaryFiles();
     // The signal is blocked while its handler runs: with the default action restored it ends
     // the process as soon as this returns, with the status a shell expects from it.
