@@ -355,7 +355,8 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
 struct LineGeometry {
     bool xMajor;
     bool nearestLine;  // HorizonParams::nearestLine: one line serves each cell, into plane A
-    long delay = 0;    // HorizonParams::nearFieldSteps: cells are served this many steps behind the walk
+    long nearSteps = 0;  // HorizonParams::nearFieldSteps
+    long delay = 0;    // cells are served this many steps behind the walk: nearSteps, 0 along a grid axis
     bool crossings = false;  // HorizonParams::farFieldCrossings (with delay > 0)
     int farSign;
     double slope;
@@ -789,13 +790,19 @@ LineGeometry makeGeometry(const FullGridRef& g, const CellWindow& terrainCells, 
                           double maxDistanceM, bool nearestLine, int nearFieldSteps, bool farFieldCrossings) {
     LineGeometry geo;
     geo.nearestLine = nearestLine;
-    geo.delay = nearFieldSteps;
-    geo.crossings = nearFieldSteps > 0 && farFieldCrossings;
     geo.xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
     const double major = geo.xMajor ? region.dirCol : region.dirRow;
     const double minor = geo.xMajor ? region.dirRow : region.dirCol;
     geo.farSign = major >= 0 ? 1 : -1;
     geo.slope = snapSlope(minor / major);
+    // Along a grid axis each cell's scan line is its own ray through the cell centres: the line's
+    // hull holds the near field's points on centres, and cells are served as the walk reaches
+    // them, without delay. The stencil keeps only the points between centres (nearStencil): the
+    // bilinear surface is linear there, but the curvature drop favours the nearest point of a
+    // level stretch, and next to a void the reference's rule reweights the taps.
+    geo.nearSteps = nearFieldSteps;
+    geo.delay = geo.slope == 0.0 ? 0 : nearFieldSteps;
+    geo.crossings = geo.delay > 0 && farFieldCrossings;
     geo.majorSize = geo.xMajor ? g.width : g.height;
     geo.minorSize = geo.xMajor ? g.height : g.width;
     const CellWindow& w = region.window;
@@ -903,15 +910,15 @@ struct NearPoint {
 };
 
 /// The near field's points for cells of full-grid row `row`: the reference's quarter-cell steps
-/// along the region's direction up to `delay` line steps (or maxDistanceM), the same offsets for
+/// along the region's direction up to nearSteps line steps (or maxDistanceM), the same offsets for
 /// every cell of the row.
 void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row, double maxDistanceM, double invR,
                  std::vector<NearPoint>& out) {
     out.clear();
     const double stepM = kReferenceStepOfCell * std::min(g.cellWidthM[row], g.cellHeightM[row]);
     const double lineStepM = geo.stepLengthM[row];
-    const double reachM = std::min(static_cast<double>(geo.delay) * lineStepM, maxDistanceM);
-    const double denseM = std::min(static_cast<double>(std::min<long>(geo.delay, kDenseNearSteps)) * lineStepM, reachM);
+    const double reachM = std::min(static_cast<double>(geo.nearSteps) * lineStepM, maxDistanceM);
+    const double denseM = std::min(static_cast<double>(std::min<long>(geo.nearSteps, kDenseNearSteps)) * lineStepM, reachM);
     // Distances (metres) of the points: quarter cells up to denseM, and where the ray crosses a
     // grid line of either axis (the bilinear surface is linear along those lines).
     thread_local std::vector<double> ds;
@@ -940,6 +947,9 @@ void nearStencil(const LineGeometry& geo, const FullGridRef& g, std::size_t row,
         const auto snap = [](double v) { return std::abs(v - std::round(v)) < 1e-9 ? std::round(v) : v; };
         p.dc = snap(geo.xMajor ? major : minor);
         p.dr = snap(geo.xMajor ? minor : major);
+        // Along a grid axis the sweep serves each cell from the hull of its own row's or column's
+        // cell centres (no delay, see makeGeometry), which answers every point on a centre.
+        if (geo.delay == 0 && p.dc == std::round(p.dc) && p.dr == std::round(p.dr)) continue;
         p.invDistance = static_cast<float>(1.0 / d);
         p.drop = static_cast<float>(0.5 * d * invR);
         const double c0 = std::floor(p.dc), r0 = std::floor(p.dr);
@@ -1158,7 +1168,7 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
         }
     }
     const float* near = nullptr;
-    if (geo.delay > 0) {
+    if (geo.nearSteps > 0) {
         thread_local std::vector<NearPoint> stencil;
         thread_local std::vector<float> nearSlopes;
         thread_local std::vector<std::uint8_t> bad;

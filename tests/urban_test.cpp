@@ -207,6 +207,49 @@ TEST(NearField, SweepComputesItsStatedModel) {
     }
 }
 
+TEST(NearField, OnTheGridAxesTheUndelayedSweepGivesTheDelayedOnesModel) {
+    // Along a grid axis the sweep serves each cell from its own line's hull as the walk reaches
+    // it, and the stencil keeps only the near field's points between cell centres (makeGeometry,
+    // nearStencil); a hair off the axis the lines still run through the centres, but cells are
+    // served late and the whole stencil is taken. Both compute the same model. The points between
+    // centres matter: with the earth's curvature on 1 km cells the highest point of a level
+    // stretch is its first quarter cell, 0.003 deg above the next centre, and by the DEM's edge
+    // the heights are clamped. (Voids are left out: there the model itself changes off the axis,
+    // where a point beside a void's centre takes its valid neighbour's height; SweepComputesIts-
+    // StatedModel covers them on the axes. So is the outer ring of cells: off the axis one of the
+    // two lines serving it lies outside the grid, sampling nothing.)
+    const std::size_t W = 70, H = 60;
+    const Terrain t = makeTerrain(W, H, 1000.0, [](std::size_t c, std::size_t r) {
+        if (r >= 20 && r < 31 && c >= 20 && c < 41) return 500.0f;  // level plateau
+        return static_cast<float>(300 + 80 * std::sin(0.2 * static_cast<double>(c)) *
+                                            std::cos(0.14 * static_cast<double>(r)));
+    });
+    const auto worst = [&](const HorizonMap& a, const HorizonMap& b) {
+        double w = 0;
+        for (std::size_t r = 1; r + 1 < H; ++r)
+            for (std::size_t c = 1; c + 1 < W; ++c)
+                w = std::max(w, std::abs(static_cast<double>(a.angleDeg(c, r)) - b.angleDeg(c, r)));
+        return w;
+    };
+    for (const int steps : {4, 16}) {
+        for (const double az : {0.0, 90.0, 180.0, 270.0}) {
+            for (const double distance : {std::numeric_limits<double>::infinity(), 5500.0}) {
+                HorizonParams p;
+                p.maxDistanceM = distance;
+                p.nearFieldSteps = steps;
+                p.threads = 2;
+                p.azimuthDeg = az + 1e-7;
+                const HorizonMap offAxis = sweepHorizon(t, p);
+                p.azimuthDeg = az;
+                EXPECT_LT(worst(sweepHorizon(t, p), offAxis), 1e-5)
+                    << "near field " << steps << " az " << az << " distance " << distance;
+                p.nearFieldSteps = 0;  // the lines' centres alone: the quarter cells missed
+                EXPECT_GT(worst(sweepHorizon(t, p), offAxis), 2e-3) << "az " << az << " distance " << distance;
+            }
+        }
+    }
+}
+
 /// A box building of height H (metres) on flat ground: columns [c0, c1) x rows [r0, r1); 1 m cells.
 Terrain boxBuilding(std::size_t w, std::size_t h, std::size_t c0, std::size_t c1, std::size_t r0, std::size_t r1,
                     float H) {
