@@ -22,7 +22,7 @@ struct SunhoursOptions {
     double sunDiameterDeg = kSunDiameterDeg;
     double albedo = kDefaultAlbedo;
     std::optional<std::size_t> skyDirections;
-    std::string horizonMode = "exact";
+    std::string horizonMode = "auto";
 };
 
 SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
@@ -37,7 +37,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     r.sunDiameterDeg = o.sunDiameterDeg;
     r.albedo = o.albedo;
     r.skyDirections = o.skyDirections;
-    r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
+    if (o.horizonMode != "auto") r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
     r.search = o.search.request;
     return r;
 }
@@ -45,13 +45,19 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
 /// Bands of the output: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 constexpr std::size_t kSunhoursBands = 5;
 
-/// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions.
-TileBytes sunhoursGrids(std::size_t stackDirections) { return productTileBytes(kSunhoursBands + stackDirections); }
+/// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions (under
+/// `auto` those of a stack wherever the period may take one: the plan is not made yet).
+TileBytes sunhoursGrids(const SunhoursRequest& r) {
+    const std::size_t stack = r.stackDirections.value_or(
+        sunhoursInstantCount(r) >= kAutoStackMinInstants && r.search.quality != Quality::Full ? kDefaultStackDirections
+                                                                                               : 0);
+    return productTileBytes(kSunhoursBands + stack);
+}
 
 RasterCall sunhoursCall(const SunhoursOptions& o) {
     SunhoursRequest request = sunhoursRequest(o);
     // The memory of tiles counts the stack's directions too.
-    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request, sunhoursGrids(request.stackDirections),
+    return singleRasterCall("sunhours", o.dem, o.tiling, o.search.request, sunhoursGrids(request),
                             [request](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
                                 return sunhoursProduct(dem, w, request, p);
                             });
@@ -63,7 +69,7 @@ void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const DemSource dem = openDem(o.dem, ctx);
     notePlan(o.search, dem.geometry().terrain, ctx);
     // Tiles are sized for the bands and the stack's directions.
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(request.stackDirections), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, sunhoursGrids(request), ctx);
     const auto start = std::chrono::steady_clock::now();
     const SunhoursResult r = runRaster<SunhoursResult>(
         run, {{o.out, {}}}, ctx, o.dem.path,
@@ -98,9 +104,12 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
                     "Horizon directions of the sky term (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
     cmd->add_option("--horizon-mode", o->horizonMode,
-                    "exact (default: a sweep per instant along its sun azimuth) or interpolated[:N] (N directions "
+                    "auto, exact (a sweep per instant along its sun azimuth) or interpolated[:N] (N directions "
                     "swept once, 4..720, 64 by default; each instant's horizons interpolated in azimuth, and the "
-                    "sky term from the same N directions; close to exact, not the same bits)")
+                    "sky term from the same N directions; close to exact, not the same bits). auto: interpolated "
+                    "for periods of " + std::to_string(kAutoStackMinInstants) +
+                    " instants or more (2 days at 10 min) on terrain under --quality auto, where it costs less; "
+                    "else exact")
         ->capture_default_str();
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);

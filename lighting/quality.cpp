@@ -168,6 +168,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
 
     const double steepShare = g.steepStepShare();
     const bool surfaceModel = steepShare >= kSurfaceModelSteepShare;
+    plan.surfaceModel = surfaceModel;
     // The same rule under full: its claim is that auto adds at most the tolerance to full's
     // error, and a longer near field on terrain alone moves full's p99 by more than that.
     plan.nearFieldSteps = surfaceModel ? kSurfaceNearFieldSteps : kTerrainNearFieldSteps;

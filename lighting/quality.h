@@ -100,6 +100,9 @@ struct ScenePlan {
     bool integralNearestLine = true;
     /// The search distance was given by the user (--max-distance), not chosen by the plan.
     bool userDistance = false;
+    /// The DEM is a surface model (buildings, trees): at least kSurfaceModelSteepShare of its
+    /// neighbour steps are steeper than 45 deg.
+    bool surfaceModel = false;
     /// HorizonParams::nearFieldSteps of every sweep: kSurfaceNearFieldSteps on surface models
     /// (SteepSteps share at least kSurfaceModelSteepShare), else kTerrainNearFieldSteps (auto
     /// and full alike).

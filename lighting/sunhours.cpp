@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 #include <string>
 
 namespace demlight {
@@ -55,20 +56,37 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
             if (!std::isnan(t.heightsM.data()[i])) light.visibility.data()[i] = light.irradiance.data()[i] = 0.0f;
         return light;
     }
-    const double sectorDeg = 360.0 / static_cast<double>(n);
+    const double nD = static_cast<double>(n), sectorDeg = 360.0 / nD;
+    // Per row: the sun's angles and each cell's horizon interpolated at its own sun azimuth into
+    // buffers, then the vectorised shading pass of exact sun frames (NaN horizons at nodata give
+    // NaN light).
     parallelFor(0, h, threads, [&](std::size_t row) {
+        thread_local std::vector<double> buffer;
+        thread_local std::vector<float> horizonRow;
+        thread_local std::vector<const float*> stackRow;
+        buffer.resize(5 * w);
+        horizonRow.resize(w);
+        stackRow.resize(n);
+        for (std::size_t i = 0; i < n; ++i) stackRow[i] = stack.angleDeg[i].rowPtr(row);
+        detail::SunRowAngles angles{buffer.data(), buffer.data() + w, buffer.data() + 2 * w, buffer.data() + 3 * w,
+                                    buffer.data() + 4 * w};
         forEachSunInRow(field, row, w, [&](std::size_t col, const SunAngles& sun) {
-            if (!t.valid(col, row)) return;
-            const double azimuth = wrapAzimuthDeg(sun.azimuthDeg);
-            const double u = azimuth / sectorDeg;
-            const std::size_t i0 = static_cast<std::size_t>(u) % n, i1 = (i0 + 1) % n;
-            const double f = u - std::floor(u);
-            const double horizon = (1 - f) * stack.angleDeg[i0](col, row) + f * stack.angleDeg[i1](col, row);
-            const Enu nrm = normals.at(col, row);
-            const SunTerms terms = sunTerms(nrm, horizon, sun, sunDiameterDeg);
-            light.visibility(col, row) = static_cast<float>(terms.visibility);
-            light.irradiance(col, row) = static_cast<float>(terms.irradiance);
+            angles.sinAzimuth[col] = sun.sinAzimuth;
+            angles.cosAzimuth[col] = sun.cosAzimuth;
+            angles.sinElevation[col] = sun.sinElevation;
+            angles.cosElevation[col] = sun.cosElevation;
+            angles.elevationDeg[col] = sun.elevationDeg;
+            // Directions from the azimuth in [0, 360): the field's is unwrapped, within a turn of it.
+            double u = sun.azimuthDeg / sectorDeg;
+            while (u < 0.0) u += nD;
+            while (u >= nD) u -= nD;
+            const std::size_t i0 = std::min(static_cast<std::size_t>(u), n - 1), i1 = i0 + 1 == n ? 0 : i0 + 1;
+            const double f = u - static_cast<double>(i0);
+            horizonRow[col] = static_cast<float>((1 - f) * stackRow[i0][col] + f * stackRow[i1][col]);
         });
+        detail::shadeSunRow(horizonRow.data(), normals.east.rowPtr(row), normals.north.rowPtr(row),
+                            normals.up.rowPtr(row), angles, light.visibility.rowPtr(row), light.irradiance.rowPtr(row),
+                            w, sunDiameterDeg);
     });
     return light;
 }

@@ -111,6 +111,10 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         {"DEMLIGHT_LIT_VISIBILITY", formatNumber(kLitVisibility)},
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_HORIZON_MODE", stackDirections > 0 ? "interpolated:" + std::to_string(stackDirections) : "exact"},
+        {"DEMLIGHT_HORIZON_MODE_CHOICE", r.stackDirections ? std::string("given")
+                                         : "auto (interpolated on terrain under quality auto from " +
+                                               std::to_string(kAutoStackMinInstants) + " instants; " +
+                                               std::to_string(seq.instants.size()) + " here)"},
         {"DEMLIGHT_REFRACTION", formatNumber(params.frame.refraction)},
         {"DEMLIGHT_SKY_MODEL", "stewart-langer"},
         {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
@@ -144,6 +148,20 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
 
 }  // namespace
 
+std::size_t sunhoursInstantCount(const SunhoursRequest& r) {
+    const auto start = localDay(r.firstDay, r.zone).startUtc, end = localDay(r.lastDay, r.zone).endUtc;
+    // makeSequence's instants: start, start + step, ... before end, and end itself.
+    const auto steps = (end - start + r.step - std::chrono::milliseconds(1)) / r.step;
+    return static_cast<std::size_t>(steps) + 1;
+}
+
+std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& plan) {
+    if (r.stackDirections) return *r.stackDirections;
+    const bool interpolate =
+        plan.quality == Quality::Auto && !plan.surfaceModel && sunhoursInstantCount(r) >= kAutoStackMinInstants;
+    return interpolate ? kDefaultStackDirections : 0;
+}
+
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
     if (request.lastDay < request.firstDay)
@@ -156,11 +174,12 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
     if (!(request.albedo >= 0 && request.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
-    if (request.stackDirections != 0 && (request.stackDirections < 4 || request.stackDirections > 720))
-        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or 4..720");
+    if (request.stackDirections && *request.stackDirections != 0 &&
+        (*request.stackDirections < 4 || *request.stackDirections > 720))
+        throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
-    const std::size_t stackDirections = request.stackDirections;
+    const std::size_t stackDirections = sunhoursStackDirections(request, plan);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.

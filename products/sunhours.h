@@ -6,6 +6,8 @@
 #pragma once
 
 #include "geo/time.h"
+#include "lighting/quality.h"
+#include "lighting/sunhours.h"
 #include "products/product.h"
 #include "products/sky.h"
 #include "products/sun.h"
@@ -29,10 +31,11 @@ struct SunhoursRequest {
     double albedo = kDefaultAlbedo;  ///< C of the sky term's interreflection
     /// Directions of the sky term; none = the plan's.
     std::optional<std::size_t> skyDirections;
-    /// How each instant's sun horizons are found: 0 (the default) = an exact sweep along its own
-    /// azimuth; N = interpolated in azimuth from N directions swept once (sunLightFromStack, the
-    /// `interpolated:N` horizon mode; the stack also gives the sky term, over its N sectors).
-    std::size_t stackDirections = 0;
+    /// How each instant's sun horizons are found: 0 = an exact sweep along its own azimuth; N =
+    /// interpolated in azimuth from N directions swept once (sunLightFromStack, the
+    /// `interpolated:N` horizon mode; the stack also gives the sky term, over its N sectors);
+    /// none (the default, `auto`) = sunhoursStackDirections' choice.
+    std::optional<std::size_t> stackDirections;
     SearchRequest search;
 };
 
@@ -40,6 +43,21 @@ struct SunhoursResult : ProductResult {
     std::size_t instants = 0, instantsSwept = 0;
     std::size_t stackDirections = 0;  ///< the horizon mode that ran: 0 exact, N interpolated
 };
+
+/// The horizon mode `auto` takes the interpolated horizons (kDefaultStackDirections) for periods
+/// of at least this many instants, where sweeping the stack once costs less than a sweep per
+/// instant (docs/performance.md, "Sun hours: exact or interpolated").
+inline constexpr std::size_t kAutoStackMinInstants = 4 * kDefaultStackDirections;
+
+/// Instants of the request's period: every step from the first local day's start, and the last
+/// day's end.
+std::size_t sunhoursInstantCount(const SunhoursRequest& request);
+
+/// The stack directions a request runs with (0 = exact): its own when given; under `auto` (none)
+/// kDefaultStackDirections where the plan's quality is auto, the DEM is terrain (on surface
+/// models interpolating across a wall's corner in azimuth errs by ten times as much) and the
+/// period has at least kAutoStackMinInstants instants; otherwise 0.
+std::size_t sunhoursStackDirections(const SunhoursRequest& request, const ScenePlan& plan);
 
 /// Bands: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,

@@ -287,6 +287,41 @@ TEST(Products, AWindowIsTheWholeDemsAnswerOnItsCells) {
     EXPECT_GE(horizonHaloCells(dem, r), 1u);
 }
 
+// sunhours' horizon mode: a given one is kept; auto interpolates (kDefaultStackDirections) only
+// on terrain, under quality auto, for periods of at least kAutoStackMinInstants instants.
+TEST(Products, SunhoursAutoInterpolatesOnlyLongPeriodsOnTerrainUnderAuto) {
+    SunhoursRequest r;
+    r.zone = TimeZoneSpec::iana("UTC");
+    r.firstDay = r.lastDay = parseDate("2024-06-21");
+    r.step = std::chrono::minutes(10);
+    EXPECT_EQ(sunhoursInstantCount(r), 145u);  // 00:00, 00:10, ... 23:50 and 24:00
+    r.lastDay = parseDate("2024-06-22");
+    EXPECT_EQ(sunhoursInstantCount(r), 289u);
+    r.step = std::chrono::minutes(7);  // 2880 min = 411 steps of 7 min and 3 min left over
+    EXPECT_EQ(sunhoursInstantCount(r), 413u);
+    r.step = std::chrono::minutes(10);
+
+    ScenePlan terrain;
+    terrain.quality = Quality::Auto;
+    ScenePlan surface = terrain;
+    surface.surfaceModel = true;
+    ScenePlan full = terrain;
+    full.quality = Quality::Full;
+    EXPECT_GE(sunhoursInstantCount(r), kAutoStackMinInstants);
+    EXPECT_EQ(sunhoursStackDirections(r, terrain), kDefaultStackDirections);
+    EXPECT_EQ(sunhoursStackDirections(r, surface), 0u);
+    EXPECT_EQ(sunhoursStackDirections(r, full), 0u);
+    r.lastDay = r.firstDay;  // 145 instants: a sweep per instant costs less than the stack
+    EXPECT_LT(sunhoursInstantCount(r), kAutoStackMinInstants);
+    EXPECT_EQ(sunhoursStackDirections(r, terrain), 0u);
+    r.stackDirections = 16;  // given: kept everywhere
+    EXPECT_EQ(sunhoursStackDirections(r, surface), 16u);
+    EXPECT_EQ(sunhoursStackDirections(r, full), 16u);
+    r.stackDirections = 0;
+    r.lastDay = parseDate("2024-06-30");
+    EXPECT_EQ(sunhoursStackDirections(r, terrain), 0u);
+}
+
 TEST(Products, MessagesNameRequestFieldsNotFlags) {
     const DemSource& dem = rocky();
     const auto message = [](auto&& call) {
