@@ -52,16 +52,83 @@ stats csv skip 1 using 5 nooutput
 set xrange [STATS_min / 2 : STATS_max * 3]
 stats csv skip 1 using ($6 > floor ? $6 : floor) nooutput
 set yrange [STATS_min / 2 : STATS_max * 3]
+if (!exists("labels")) labels = 'bench_labels.csv'
 e(x) = x > floor ? x : floor
 fam(f) = strcol(1) eq f ? e($6) : NaN
 front = "< awk -F, 'NR > 1 && $9 == 1' " . csv . " | sort -t, -k5,5g"
-lab = 'sprintf("%s N=%d", strcol(2), $3)'
 plot front using 5:(e($6)) with lines lw 2 lc rgb "#d62728" title "Pareto front", \
      csv skip 1 using 5:(fam("sweep")) with points pt 7 ps 1.4 lc rgb "#1f77b4" title "demlight sweep", \
      '' skip 1 using 5:(fam("reference")) with points pt 9 ps 1.8 lc rgb "#2ca02c" title "demlight reference (sample)", \
      '' skip 1 using 5:(strcol(1) ne "sweep" && strcol(1) ne "reference" ? e($6) : NaN) with points pt 5 ps 2 lc rgb "#ff7f0e" title "peers", \
-     '' skip 1 using 5:(e($6)):(@lab) with labels left offset 1,0.6 font ",9" noenhanced notitle
+     labels skip 1 using 1:2 with lines lw 0.5 lc rgb "#909090" notitle, \
+     labels skip 1 using 3:4:5 with labels left font ",9" noenhanced notitle
 )gp";
+
+/// The chart's plot area in pixels (1100 x 700 with the key outside on the right, as gnuplot lays
+/// it out for kChartScript) and the size of a 9-point label's character.
+constexpr double kPlotWidthPx = 670, kPlotHeightPx = 590, kCharWidthPx = 6.6, kLabelHeightPx = 12, kMarkerPx = 9;
+constexpr double kErrorFloorDeg = 1e-3;  // the script's floor: error 0 is drawn there
+
+/// Where each row's label goes, so that no two labels overlap and none covers a point: the chart
+/// has the script's axes (log-log, from half the smallest to three times the largest value), and
+/// each label tries places around its point, nearest first, keeping the first that is free and
+/// inside the plot. Written as DIR/bench_labels.csv: the leader line's two ends (the point, then
+/// the label's anchor, a blank line between rows) and the label's text at the anchor.
+std::string chartLabels(const std::vector<BenchRow>& rows) {
+    if (rows.empty()) return "x,y,label_x,label_y,label\n";
+    auto shown = [](double err) { return std::max(err, kErrorFloorDeg); };
+    double x0 = rows[0].nsPerCellPerDirection, x1 = x0, y0 = shown(rows[0].medianErrorDeg), y1 = y0;
+    for (const BenchRow& r : rows) {
+        x0 = std::min(x0, r.nsPerCellPerDirection), x1 = std::max(x1, r.nsPerCellPerDirection);
+        y0 = std::min(y0, shown(r.medianErrorDeg)), y1 = std::max(y1, shown(r.medianErrorDeg));
+    }
+    const double lx0 = std::log(x0 / 2), lxs = std::log(x1 * 3) - lx0, ly0 = std::log(y0 / 2), lys = std::log(y1 * 3) - ly0;
+    struct Box {
+        double left, bottom, right, top;
+        bool meets(const Box& b) const { return left < b.right && b.left < right && bottom < b.top && b.bottom < top; }
+    };
+    std::vector<Box> taken;  // every point's marker, then each placed label
+    std::vector<std::pair<double, double>> at;  // each row's point in pixels
+    for (const BenchRow& r : rows) {
+        const double px = (std::log(r.nsPerCellPerDirection) - lx0) / lxs * kPlotWidthPx;
+        const double py = (std::log(shown(r.medianErrorDeg)) - ly0) / lys * kPlotHeightPx;
+        at.emplace_back(px, py);
+        taken.push_back({px - kMarkerPx, py - kMarkerPx, px + kMarkerPx, py + kMarkerPx});
+    }
+    std::ostringstream out;
+    out.precision(9);
+    out << "x,y,label_x,label_y,label\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const BenchRow& r = rows[i];
+        const std::string text = r.method + " N=" + std::to_string(r.directions);
+        const double w = kCharWidthPx * static_cast<double>(text.size());
+        const auto [px, py] = at[i];
+        // Anchors (the label's left end, vertically centred): right of the point, then left of it,
+        // each at rising distances above and below.
+        std::vector<std::pair<double, double>> tries;
+        for (double dy : {8.0, -8.0, 22.0, -22.0, 36.0, -36.0, 50.0, -50.0, 64.0, -64.0}) {
+            tries.emplace_back(px + 10, py + dy);
+            tries.emplace_back(px - 10 - w, py + dy);
+        }
+        std::pair<double, double> pick = tries.front();
+        for (const auto& [ax, ay] : tries) {
+            const Box box{ax, ay - kLabelHeightPx / 2, ax + w, ay + kLabelHeightPx / 2};
+            if (box.left < 0 || box.right > kPlotWidthPx || box.bottom < 0 || box.top > kPlotHeightPx) continue;
+            if (std::none_of(taken.begin(), taken.end(), [&](const Box& b) { return box.meets(b); })) {
+                pick = {ax, ay};
+                break;
+            }
+        }
+        taken.push_back({pick.first, pick.second - kLabelHeightPx / 2, pick.first + w, pick.second + kLabelHeightPx / 2});
+        const double ax = std::exp(lx0 + pick.first / kPlotWidthPx * lxs), ay = std::exp(ly0 + pick.second / kPlotHeightPx * lys);
+        // The leader runs from the point to the label's near end.
+        const double nearX = pick.first < px ? std::exp(lx0 + (pick.first + w) / kPlotWidthPx * lxs) : ax;
+        const double y = shown(r.medianErrorDeg);
+        out << r.nsPerCellPerDirection << ',' << y << ',' << ax << ',' << ay << ",\"" << text << "\"\n";
+        out << nearX << ',' << ay << ",,,\n\n";
+    }
+    return out.str();
+}
 
 std::string shellQuote(const std::string& s) {
     std::string q = "'";
@@ -187,6 +254,7 @@ void runBench(const BenchOptions& o, const CliContext& ctx) {
     const fs::path csv = dir / "bench.csv";
     std::ofstream(csv) << benchCsv(result.rows);
     std::ofstream(dir / "bench.gnuplot") << kChartScript;
+    std::ofstream(dir / "bench_labels.csv") << chartLabels(result.rows);
 
     std::string chart = "no chart: gnuplot is not installed";
     if (onPath("gnuplot")) {

@@ -361,6 +361,42 @@ TEST(CliOutputs, BenchWritesTimesAndErrorsForEveryRow) {
         }
     }
     EXPECT_EQ(rows, 1u + 3u * 2u);  // the reference, and three sweeps at 4 and 8 directions
+
+    // The chart's labels (bench_labels.csv, the point and the label's anchor per row): one per
+    // row, and no two overlapping on the chart's log-log plot area (670 x 590 px spanning half
+    // the smallest to three times the largest value; 9-point text, 6.6 px a character, 12 px
+    // high). The ys of the points are the CSV's medians, floored at the chart's 0.001 deg.
+    std::ifstream labelsFile(dir / "b" / "bench_labels.csv");
+    ASSERT_TRUE(std::getline(labelsFile, line));
+    EXPECT_EQ(line, "x,y,label_x,label_y,label");
+    struct Label {
+        double x, y, ax, ay;
+        std::string text;
+    };
+    std::vector<Label> labels;
+    while (std::getline(labelsFile, line)) {
+        const auto quote = line.find('"');
+        if (quote == std::string::npos) continue;  // a leader line's far end or the blank between rows
+        Label l{};
+        ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,", &l.x, &l.y, &l.ax, &l.ay), 4) << line;
+        l.text = line.substr(quote + 1, line.rfind('"') - quote - 1);
+        labels.push_back(l);
+    }
+    ASSERT_EQ(labels.size(), rows);
+    double x0 = labels[0].x, x1 = x0, y0 = labels[0].y, y1 = y0;
+    for (const Label& l : labels) {
+        x0 = std::min(x0, l.x), x1 = std::max(x1, l.x), y0 = std::min(y0, l.y), y1 = std::max(y1, l.y);
+    }
+    auto px = [&](double x) { return std::log(x / (x0 / 2)) / std::log(x1 * 3 / (x0 / 2)) * 670; };
+    auto py = [&](double y) { return std::log(y / (y0 / 2)) / std::log(y1 * 3 / (y0 / 2)) * 590; };
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+            const Label &a = labels[i], &b = labels[j];
+            const double aw = 6.6 * static_cast<double>(a.text.size()), bw = 6.6 * static_cast<double>(b.text.size());
+            const bool apart = px(a.ax) + aw <= px(b.ax) + 1e-6 || px(b.ax) + bw <= px(a.ax) + 1e-6 ||
+                               std::abs(py(a.ay) - py(b.ay)) >= 12 - 1e-6;
+            EXPECT_TRUE(apart) << a.text << " overlaps " << b.text;
+        }
 }
 
 // --date in a zone far from the DEM's (UTC at 122 W): the day's sunset falls after that zone's
