@@ -286,7 +286,7 @@ void registerBench(CLI::App& app, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand("bench", "Speed against accuracy of the horizon methods on your DEM (CSV and chart)");
     ctx.outputs[cmd->get_name()].kind = "folder";
     addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outDir, "Output folder: bench.csv, bench.gnuplot, bench.png, bench.svg")
+    cmd->add_option("-o,--output", o->outDir, "Output folder: bench.csv, bench.gnuplot, bench_labels.csv, bench.png, bench.svg")
         ->required()
         ->type_name("DIR");
     cmd->add_option("--crop", o->crop, "Cells a side of the centred crop measured (0 = the whole DEM)")
