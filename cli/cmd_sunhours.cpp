@@ -48,10 +48,7 @@ constexpr std::size_t kSunhoursBands = 5;
 /// Grids per cell a window holds (for tile sizes): the bands, and the stack's directions (under
 /// `auto` those of a stack wherever the period may take one: the plan is not made yet).
 TileBytes sunhoursGrids(const SunhoursRequest& r) {
-    const std::size_t stack = r.stackDirections.value_or(
-        sunhoursInstantCount(r) >= kAutoStackMinInstants && r.search.quality != Quality::Full ? kDefaultStackDirections
-                                                                                               : 0);
-    return productTileBytes(kSunhoursBands + stack);
+    return productTileBytes(kSunhoursBands + sunhoursStackDirectionsAtMost(r));
 }
 
 RasterCall sunhoursCall(const SunhoursOptions& o) {

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 #include <string>
+#include <vector>
 
 namespace demlight {
 namespace {

@@ -149,17 +149,18 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
 }  // namespace
 
 std::size_t sunhoursInstantCount(const SunhoursRequest& r) {
-    const auto start = localDay(r.firstDay, r.zone).startUtc, end = localDay(r.lastDay, r.zone).endUtc;
-    // makeSequence's instants: start, start + step, ... before end, and end itself.
-    const auto steps = (end - start + r.step - std::chrono::milliseconds(1)) / r.step;
-    return static_cast<std::size_t>(steps) + 1;
+    return makeSequence(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.zone, r.step).utc.size();
+}
+
+std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& r) {
+    if (r.stackDirections) return *r.stackDirections;
+    const bool longPeriod = r.search.quality == Quality::Auto && sunhoursInstantCount(r) >= kAutoStackMinInstants;
+    return longPeriod ? kDefaultStackDirections : 0;
 }
 
 std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& plan) {
     if (r.stackDirections) return *r.stackDirections;
-    const bool interpolate =
-        plan.quality == Quality::Auto && !plan.surfaceModel && sunhoursInstantCount(r) >= kAutoStackMinInstants;
-    return interpolate ? kDefaultStackDirections : 0;
+    return plan.quality == Quality::Auto && !plan.surfaceModel ? sunhoursStackDirectionsAtMost(r) : 0;
 }
 
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,

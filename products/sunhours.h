@@ -54,10 +54,14 @@ inline constexpr std::size_t kAutoStackMinInstants = 4 * kDefaultStackDirections
 std::size_t sunhoursInstantCount(const SunhoursRequest& request);
 
 /// The stack directions a request runs with (0 = exact): its own when given; under `auto` (none)
-/// kDefaultStackDirections where the plan's quality is auto, the DEM is terrain (on surface
-/// models interpolating across a wall's corner in azimuth errs by ten times as much) and the
-/// period has at least kAutoStackMinInstants instants; otherwise 0.
+/// kDefaultStackDirections where the plan's quality is auto, the period has at least
+/// kAutoStackMinInstants instants and the plan finds terrain (on surface models interpolating
+/// across a wall's corner in azimuth errs by ten times as much); otherwise 0.
 std::size_t sunhoursStackDirections(const SunhoursRequest& request, const ScenePlan& plan);
+
+/// The same before the DEM's plan is known (for sizing tiles), from the request's quality: what
+/// sunhoursStackDirections gives on terrain, so never fewer directions than it.
+std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& request);
 
 /// Bands: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
