@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <numbers>
 #include <string>
@@ -1036,6 +1037,32 @@ void nearPointRow(const float* __restrict h0, const float* __restrict t0, const 
     }
 }
 
+/// One stencil point for cells [begin, end) of a row by the reference's rule next to voids: the
+/// taps that are valid heights, reweighted by their weights' sum (the same fused multiply-adds,
+/// in the same order, as the scalar rule of nearFieldAt on taps inside the terrain), its slope
+/// max-ed into `best` where any tap is valid. Branch-free, so it vectorises like nearPointRow.
+template <int Taps>
+void nearPointRowReweighted(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
+                            const float* __restrict t2, const float* __restrict t3, const NearPoint& p,
+                            float* __restrict best, long begin, long end) {
+    const float w[4] = {p.weight[0], p.weight[1], p.weight[2], p.weight[3]};
+    // A zero-weight tap (the padding of a point on a cell centre or a grid line) never counts.
+    const bool used[4] = {w[0] > 0.0f, w[1] > 0.0f, w[2] > 0.0f, w[3] > 0.0f};
+    const float invD = p.invDistance, drop = p.drop;
+    for (long i = begin; i < end; ++i) {
+        const float h = h0[i];
+        const float d[4] = {t0[i] - h, t1[i] - h, Taps == 4 ? t2[i] - h : 0.0f, Taps == 4 ? t3[i] - h : 0.0f};
+        float sum = 0.0f, weight = 0.0f;
+        for (int k = 0; k < Taps; ++k) {
+            const bool ok = used[k] && d[k] == d[k];  // a NaN tap (void) drops out
+            sum = ok ? std::fma(w[k], d[k], sum) : sum;
+            weight = ok ? weight + w[k] : weight;
+        }
+        const float slope = std::fma(sum / weight, invD, -drop);  // NaN where no tap counted
+        best[i] = weight > 0.0f && slope > best[i] ? slope : best[i];
+    }
+}
+
 /// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
 /// (-inf where the near field holds no terrain). Each stencil point takes the vectorised loop
 /// over the cells whose taps for it are valid heights inside the terrain (heights relative to
@@ -1084,42 +1111,61 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
             nearPointRow<4>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
         }
     }
-    for (long i = 0; i < colsL; ++i) {
-        const bool fast = i >= fastBegin && i < fastEnd;
-        if (fast && !flag[i]) continue;
-        const std::size_t col = w.col0 + static_cast<std::size_t>(i);
-        if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) continue;
-        if (!fast) {
-            // Near the DEM's edge: the points whose taps leave the terrain by the reference's rule
-            // (clamped, ending where the ray leaves the grid), the others as taken above; next to
-            // a void, every point by that rule.
-            const std::size_t at = static_cast<std::size_t>(i);
-            if (flag[i]) {
-                out[at] = nearFieldAt(t, g, cells, col, row, stencil, [](std::size_t) { return false; });
-            } else {
-                const float edge = nearFieldAt(t, g, cells, col, row, stencil, [&](std::size_t q) {
-                    return i >= ranges[q].first && i < ranges[q].second;
-                });
-                out[at] = edge > out[at] ? edge : out[at];
-            }
-            continue;
+    // Cells inside every point's range with a void among their taps: each point again by the
+    // reference's rule, vectorised over runs of such cells (a run may take in unflagged cells
+    // between flagged ones; their values are not used).
+    // A nodata cell's own height flags it too; it has no horizon, so it takes no second pass.
+    for (long i = fastBegin; i < fastEnd; ++i) flag[i] = flag[i] && h0[i] == h0[i];
+    thread_local std::vector<float> reweighted;
+    reweighted.assign(cols, -std::numeric_limits<float>::infinity());
+    float* __restrict rwBest = reweighted.data();
+    constexpr long kRunGap = 16;  // unflagged cells a run may bridge
+    for (long i = fastBegin; i < fastEnd;) {
+        if (!flag[i]) {
+            // Most cells have no void among their taps: skip eight flags at a time.
+            std::uint64_t eight;
+            while (i + 8 <= fastEnd && (std::memcpy(&eight, flag + i, 8), eight == 0)) i += 8;
+            while (i < fastEnd && !flag[i]) ++i;
+            if (i == fastEnd) break;
         }
-        // Taps inside the terrain, some on voids: the same rule as nearFieldAt (void taps dropped,
-        // the rest reweighted) on the stencil's taps, which need no clamping here.
-        const float h = h0[i];
-        float slopeBest = -std::numeric_limits<float>::infinity();
+        long runEnd = i + 1, last = i;
+        while (runEnd < fastEnd && runEnd - last <= kRunGap) {
+            if (flag[runEnd]) last = runEnd;
+            ++runEnd;
+        }
+        runEnd = last + 1;
         for (const NearPoint& p : stencil) {
-            float sum = 0, weight = 0;
-            for (int k = 0; k < p.taps; ++k) {
-                const float v = h0[i + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k]];
-                if (std::isnan(v) || !(p.weight[k] > 0.0f)) continue;
-                sum = std::fma(p.weight[k], v - h, sum);
-                weight += p.weight[k];
+            const float* tap[4];
+            for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
+            if (p.taps == 2) {
+                nearPointRowReweighted<2>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
+            } else {
+                nearPointRowReweighted<4>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
             }
-            if (weight > 0.0f) slopeBest = std::max(slopeBest, std::fma(sum / weight, p.invDistance, -p.drop));
         }
-        out[static_cast<std::size_t>(i)] = slopeBest;
+        for (long c = i; c < runEnd; ++c) {
+            if (flag[c]) out[static_cast<std::size_t>(c)] = rwBest[c];
+        }
+        i = runEnd;
     }
+    // The cells outside [fastBegin, fastEnd), near the DEM's edge: the points whose taps leave
+    // the terrain by the reference's rule (clamped, ending where the ray leaves the grid), the
+    // others as taken above; next to a void, every point by that rule.
+    const auto edgeCell = [&](long i) {
+        const std::size_t col = w.col0 + static_cast<std::size_t>(i);
+        if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) return;
+        const std::size_t at = static_cast<std::size_t>(i);
+        if (flag[i]) {
+            out[at] = nearFieldAt(t, g, cells, col, row, stencil, [](std::size_t) { return false; });
+        } else {
+            const float edge = nearFieldAt(t, g, cells, col, row, stencil, [&](std::size_t q) {
+                return i >= ranges[q].first && i < ranges[q].second;
+            });
+            out[at] = edge > out[at] ? edge : out[at];
+        }
+    };
+    for (long i = 0; i < fastBegin; ++i) edgeCell(i);
+    for (long i = fastEnd; i < colsL; ++i) edgeCell(i);
 }
 
 /// combineRow's two-line case without flags, branch-free so the compiler vectorises it: the
