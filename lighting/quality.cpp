@@ -79,12 +79,16 @@ double cellAspectRatio(const Terrain& t) {
 }
 
 /// Surface models (SteepSteps share >= kSurfaceModelSteepShare) with the surface near field:
-/// the horizon targets for them, which tests/urban_test.cpp enforces on the shared surface
-/// models (measured there: median 0.030-0.035, p99 2.58-2.63 deg over every horizon).
-constexpr double kSurfaceMedianErrorDeg = 0.05;
-constexpr double kSurfaceP99ErrorDeg = 3.0;
+/// what one azimuth's band holds, which tests/urban_test.cpp enforces on the shared surface
+/// models azimuth by azimuth (measured there over the horizons the statement covers: worst
+/// median 0.098 deg, at 123.4 deg on Manhattan; worst p99 3.46 deg; on the grid axes 0.006-0.024
+/// deg). Pooled over seven azimuths, as issue 18 measured, every horizon: median 0.030-0.035,
+/// p99 2.58-2.63 deg.
+constexpr double kSurfaceMedianErrorDeg = 0.12;
+constexpr double kSurfaceP99ErrorDeg = 4.0;
 constexpr const char* kSurfaceErrorSource =
-    "sweep vs whole-DEM reference on two city and dune-edge surface models, tests/urban_test.cpp";
+    "sweep vs whole-DEM reference at each of 7 azimuths on two city and dune-edge surface models, "
+    "tests/urban_test.cpp";
 
 ExpectedError sweepExpectedError(const Terrain& t, double aboveElevationDeg) {
     const bool anisotropic = cellAspectRatio(t) >= kAnisotropicCellRatio;

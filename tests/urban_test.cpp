@@ -381,25 +381,49 @@ TEST(UrbanScenes, RowOfTowersAtAnObliqueAzimuth) {
 struct DsmStats {
     double median = 0, p99 = 0, misclassified = 0;
     std::size_t count = 0;
+    /// Per azimuth, over the horizons the plan's statement covers (reference at or above its
+    /// aboveElevationDeg): the worst median and the worst p99 of the seven, and where.
+    double worstAzimuthMedian = 0, worstAzimuthP99 = 0;
+    double worstMedianAzimuthDeg = 0, worstP99AzimuthDeg = 0;
 };
 
-DsmStats compareWithReference(const Terrain& t, const HorizonParams& base, std::size_t cells) {
+double quantile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+}
+
+DsmStats compareWithReference(const Terrain& t, const HorizonParams& base, std::size_t cells,
+                              double statedAboveDeg) {
     const std::vector<CellIndex> sample = sampleValidCells(t, cells, 20261202);
     std::vector<double> err;
     std::size_t wrongSide = 0;
+    DsmStats st;
     for (const double az : {0.0, 37.0, 90.0, 123.4, 200.0, 250.0, 301.7}) {
         HorizonParams p = base;
         p.azimuthDeg = az;
         const HorizonMap s = sweepHorizon(t, p);
         const std::vector<HorizonSample> ref = referenceHorizonAt(t, p, sample);
+        std::vector<double> covered;
         for (std::size_t i = 0; i < sample.size(); ++i) {
             const double a = s.angleDeg(sample[i].col, sample[i].row), b = ref[i].angleDeg;
             if (!(b > kNoHorizonDeg) && !(a > kNoHorizonDeg)) continue;
             err.push_back(std::abs(a - b));
             wrongSide += (a > 20.0) != (b > 20.0);
+            if (b >= statedAboveDeg) covered.push_back(std::abs(a - b));
+        }
+        if (covered.empty()) continue;
+        const double median = quantile(covered, 0.5), p99 = quantile(covered, 0.99);
+        std::cout << "  azimuth " << az << ": " << covered.size() << " horizons at or above " << statedAboveDeg
+                  << " deg, median " << median << " deg, p99 " << p99 << " deg\n";
+        if (median > st.worstAzimuthMedian) {
+            st.worstAzimuthMedian = median;
+            st.worstMedianAzimuthDeg = az;
+        }
+        if (p99 > st.worstAzimuthP99) {
+            st.worstAzimuthP99 = p99;
+            st.worstP99AzimuthDeg = az;
         }
     }
-    DsmStats st;
     st.count = err.size();
     std::sort(err.begin(), err.end());
     st.median = err[err.size() / 2];
@@ -420,15 +444,17 @@ TEST_P(SurfaceModel, HorizonsMeetTheTargetsAgainstTheReference) {
     ASSERT_TRUE(plan.farFieldCrossings) << "wall top edges beyond the near field";
     EXPECT_EQ(plan.skyDirections, kFullSkyDirections) << "sky integrals of a surface model need more sectors";
     const HorizonParams p = planHorizonParams(plan, kDefaultRefraction, 2);
-    const DsmStats st = compareWithReference(*dem, p, 1500);
+    const DsmStats st = compareWithReference(*dem, p, 1500, plan.expectedError.aboveElevationDeg);
     std::cout << GetParam() << ": " << st.count << " horizons, median " << st.median << " deg, p99 " << st.p99
               << " deg, lit/shaded at a 20 deg sun differ on " << 100 * st.misclassified << " %\n";
-    // The targets, and what the plan states (DEMLIGHT_EXPECTED_ERROR_DEG) for every horizon.
+    // Issue 18's targets, over every horizon of the seven azimuths pooled (as it measured them).
     EXPECT_LE(st.median, 0.05);
     EXPECT_LE(st.p99, 3.0);
     EXPECT_LE(st.misclassified, 0.01);
-    EXPECT_LE(st.median, plan.expectedError.medianDeg);
-    EXPECT_LE(st.p99, plan.expectedError.p99Deg);
+    // What the plan states (DEMLIGHT_EXPECTED_ERROR_DEG) holds for each azimuth's band on its own,
+    // over the horizons it covers.
+    EXPECT_LE(st.worstAzimuthMedian, plan.expectedError.medianDeg) << "at azimuth " << st.worstMedianAzimuthDeg;
+    EXPECT_LE(st.worstAzimuthP99, plan.expectedError.p99Deg) << "at azimuth " << st.worstP99AzimuthDeg;
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedDsms, SurfaceModel,
