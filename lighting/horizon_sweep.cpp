@@ -13,6 +13,7 @@
 #include <functional>
 #include <numbers>
 #include <string>
+#include <type_traits>
 
 namespace demlight {
 
@@ -1099,54 +1100,54 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
     float* __restrict best = out.data();
     std::uint8_t* __restrict flag = bad.data();
-    for (std::size_t q = 0; q < stencil.size(); ++q) {
-        const NearPoint& p = stencil[q];
-        const auto [begin, end] = ranges[q];
-        if (begin >= end) continue;
+    // Runs `pass` for point p with its taps' rows and its tap count as a constant (on a grid line
+    // the taps with weight are the first two).
+    const auto pointPass = [&](const NearPoint& p, auto&& pass) {
         const float* tap[4];
         for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
-        if (p.taps == 2) {  // on a grid line: the taps with weight are the first two
-            nearPointRow<2>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
+        if (p.taps == 2) {
+            pass(std::integral_constant<int, 2>{}, tap);
         } else {
-            nearPointRow<4>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
+            pass(std::integral_constant<int, 4>{}, tap);
         }
+    };
+    for (std::size_t q = 0; q < stencil.size(); ++q) {
+        const auto [begin, end] = ranges[q];
+        if (begin >= end) continue;
+        const NearPoint& p = stencil[q];
+        pointPass(p, [&](auto taps, const float* const* tap) {
+            nearPointRow<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
+        });
     }
-    // Cells inside every point's range with a void among their taps: each point again by the
-    // reference's rule, vectorised over runs of such cells (a run may take in unflagged cells
-    // between flagged ones; their values are not used).
-    // A nodata cell's own height flags it too; it has no horizon, so it takes no second pass.
+    // Cells inside every point's range with a void among their taps: every point again by the
+    // reference's rule, vectorised over runs of such cells (a run bridges up to kRunGap unflagged
+    // cells, whose values it does not use). A nodata cell is flagged by its own height; it has
+    // no horizon, so it is no part of a run.
     for (long i = fastBegin; i < fastEnd; ++i) flag[i] = flag[i] && h0[i] == h0[i];
     thread_local std::vector<float> reweighted;
-    reweighted.assign(cols, -std::numeric_limits<float>::infinity());
+    reweighted.resize(cols);
     float* __restrict rwBest = reweighted.data();
-    constexpr long kRunGap = 16;  // unflagged cells a run may bridge
-    for (long i = fastBegin; i < fastEnd;) {
-        if (!flag[i]) {
-            // Most cells have no void among their taps: skip eight flags at a time.
-            std::uint64_t eight;
-            while (i + 8 <= fastEnd && (std::memcpy(&eight, flag + i, 8), eight == 0)) i += 8;
-            while (i < fastEnd && !flag[i]) ++i;
-            if (i == fastEnd) break;
+    constexpr long kRunGap = 16;
+    for (long i = fastBegin; i < fastEnd; ++i) {
+        // Most cells have no void among their taps: skip their flags eight at a time (a flag at a
+        // time cost the dune-edge surface model's near field 1.48 -> 1.57x at 37 deg, measured).
+        for (std::uint64_t eight; i + 8 <= fastEnd && (std::memcpy(&eight, flag + i, 8), eight == 0);) i += 8;
+        if (!flag[i]) continue;
+        long last = i;
+        for (long c = i + 1; c < fastEnd && c - last <= kRunGap; ++c) {
+            if (flag[c]) last = c;
         }
-        long runEnd = i + 1, last = i;
-        while (runEnd < fastEnd && runEnd - last <= kRunGap) {
-            if (flag[runEnd]) last = runEnd;
-            ++runEnd;
-        }
-        runEnd = last + 1;
+        const long runEnd = last + 1;
+        std::fill(rwBest + i, rwBest + runEnd, -std::numeric_limits<float>::infinity());
         for (const NearPoint& p : stencil) {
-            const float* tap[4];
-            for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
-            if (p.taps == 2) {
-                nearPointRowReweighted<2>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
-            } else {
-                nearPointRowReweighted<4>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
-            }
+            pointPass(p, [&](auto taps, const float* const* tap) {
+                nearPointRowReweighted<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
+            });
         }
         for (long c = i; c < runEnd; ++c) {
             if (flag[c]) out[static_cast<std::size_t>(c)] = rwBest[c];
         }
-        i = runEnd;
+        i = last;
     }
     // The cells outside [fastBegin, fastEnd), near the DEM's edge: the points whose taps leave
     // the terrain by the reference's rule (clamped, ending where the ray leaves the grid), the

@@ -20,6 +20,13 @@ struct Sequence {
     std::vector<UtcInstant> utc;
 };
 
+/// How many instants makeSequence lays: start, start + step, ... before the last day's end, and
+/// that end itself.
+std::size_t sequenceLength(const LocalDay& first, const LocalDay& last, std::chrono::milliseconds step) {
+    const auto span = last.endUtc - first.startUtc;
+    return static_cast<std::size_t>((span + step - std::chrono::milliseconds(1)) / step) + 1;
+}
+
 /// Instants every step from the start of the first local day to the end of the last one.
 Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZoneSpec& zone,
                       std::chrono::milliseconds step) {
@@ -34,7 +41,10 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
         s.utc.push_back(t);
         s.instants.push_back({hours, clock});
     };
-    for (UtcInstant t = first.startUtc; t < last.endUtc; t += step) add(t, false);
+    const std::size_t n = sequenceLength(first, last, step);
+    s.utc.reserve(n);
+    s.instants.reserve(n);
+    for (std::size_t i = 0; i + 1 < n; ++i) add(first.startUtc + static_cast<long>(i) * step, false);
     add(last.endUtc, true);
     return s;
 }
@@ -149,7 +159,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
 }  // namespace
 
 std::size_t sunhoursInstantCount(const SunhoursRequest& r) {
-    return makeSequence(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.zone, r.step).utc.size();
+    return sequenceLength(localDay(r.firstDay, r.zone), localDay(r.lastDay, r.zone), r.step);
 }
 
 std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& r) {
@@ -159,8 +169,8 @@ std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& r) {
 }
 
 std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& plan) {
-    if (r.stackDirections) return *r.stackDirections;
-    return plan.quality == Quality::Auto && !plan.surfaceModel ? sunhoursStackDirectionsAtMost(r) : 0;
+    const bool autoOnTerrain = plan.quality == Quality::Auto && !plan.surfaceModel;
+    return r.stackDirections || autoOnTerrain ? sunhoursStackDirectionsAtMost(r) : 0;
 }
 
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,

@@ -34,8 +34,8 @@ PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider 
 # grids, so they run in Release only. So do the README's recipes (ReadmeRecipes): commands the
 # CLI tests already run under the sanitizers, at several times their Release CPU. So do two
 # accuracy comparisons over long periods on a sample (binned insolation against 290 per-instant
-# irradiance runs; two days of sun hours, exact against interpolated): 250 s of the stage's CPU,
-# on code that Products.SunhoursAutoInterpolatesOnlyLongPeriodsOnTerrainUnderAuto,
+# irradiance runs; two days of sun hours, exact against interpolated): 256 s of the stage's
+# 1068 s of test time, on code that Products.SunhoursAutoInterpolatesOnlyLongPeriodsOnTerrainUnderAuto,
 # CliOutputs.SunhoursInterpolatedHorizonsStayCloseToExact and the other InsolationProduct tests
 # run under the sanitizers.
 asan_skip='^SharedDems/|^RealDems/|OnARealTile$|OnRealTerrain$|^CliOutputs\.SunhoursAutoInterpolatesLongPeriodsOnTerrain$|^ReadmeRecipes$'

@@ -17,6 +17,7 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace demlight {
@@ -382,15 +383,21 @@ struct DsmStats {
     double median = 0, p99 = 0, misclassified = 0;
     std::size_t count = 0;
     /// Per azimuth, over the horizons the plan's statement covers (reference at or above its
-    /// aboveElevationDeg): the worst median and the worst p99 of the seven, and where.
+    /// aboveElevationDeg): the worst median and the worst p99 of all nine, and where.
     double worstAzimuthMedian = 0, worstAzimuthP99 = 0;
     double worstMedianAzimuthDeg = 0, worstP99AzimuthDeg = 0;
 };
 
-double quantile(std::vector<double> v, double q) {
+/// The q-quantile of v (sorted in place) as the pooled figures take it: element q * size.
+double quantile(std::vector<double>& v, double q) {
     std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+    return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
 }
+
+/// Issue 18's seven azimuths, pooled as it measured them; the two diagonals, whose p99 on one
+/// band is the highest measured, are checked band by band only.
+constexpr double kPooledAzimuthsDeg[] = {0.0, 37.0, 90.0, 123.4, 200.0, 250.0, 301.7};
+constexpr double kBandOnlyAzimuthsDeg[] = {45.0, 135.0};
 
 DsmStats compareWithReference(const Terrain& t, const HorizonParams& base, std::size_t cells,
                               double statedAboveDeg) {
@@ -398,10 +405,10 @@ DsmStats compareWithReference(const Terrain& t, const HorizonParams& base, std::
     std::vector<double> err;
     std::size_t wrongSide = 0;
     DsmStats st;
-    // Issue 18's seven azimuths, pooled; the two diagonals (whose p99 on one band is the highest
-    // measured) are checked azimuth by azimuth only.
-    for (const double az : {0.0, 37.0, 90.0, 123.4, 200.0, 250.0, 301.7, 45.0, 135.0}) {
-        const bool pooled = az != 45.0 && az != 135.0;
+    std::vector<std::pair<double, bool>> azimuths;  // (degrees, pooled)
+    for (const double az : kPooledAzimuthsDeg) azimuths.emplace_back(az, true);
+    for (const double az : kBandOnlyAzimuthsDeg) azimuths.emplace_back(az, false);
+    for (const auto& [az, pooled] : azimuths) {
         HorizonParams p = base;
         p.azimuthDeg = az;
         const HorizonMap s = sweepHorizon(t, p);
@@ -430,9 +437,8 @@ DsmStats compareWithReference(const Terrain& t, const HorizonParams& base, std::
         }
     }
     st.count = err.size();
-    std::sort(err.begin(), err.end());
-    st.median = err[err.size() / 2];
-    st.p99 = err[static_cast<std::size_t>(0.99 * static_cast<double>(err.size()))];
+    st.median = quantile(err, 0.5);
+    st.p99 = quantile(err, 0.99);
     st.misclassified = static_cast<double>(wrongSide) / static_cast<double>(err.size());
     return st;
 }
