@@ -1112,7 +1112,9 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         }
     };
     for (std::size_t q = 0; q < stencil.size(); ++q) {
-        const auto [begin, end] = ranges[q];
+        // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
+        const long begin = ranges[q].first;
+        const long end = ranges[q].second;
         if (begin >= end) continue;
         const NearPoint& p = stencil[q];
         pointPass(p, [&](auto taps, const float* const* tap) {
