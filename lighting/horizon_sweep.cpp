@@ -1156,8 +1156,8 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     // the terrain by the reference's rule (clamped, ending where the ray leaves the grid), the
     // others as taken above; next to a void, every point by that rule.
     const auto edgeCell = [&](long i) {
+        if (std::isnan(h0[i])) return;  // nodata: no horizon
         const std::size_t col = w.col0 + static_cast<std::size_t>(i);
-        if (std::isnan(t.heightsM(col - cells.col0, row - cells.row0))) return;
         const std::size_t at = static_cast<std::size_t>(i);
         if (flag[i]) {
             out[at] = nearFieldAt(t, g, cells, col, row, stencil, [](std::size_t) { return false; });
