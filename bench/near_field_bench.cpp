@@ -3,7 +3,9 @@
 // the near fields alternate (A B C A B C ...) and the median thread CPU time is reported, so a
 // busy machine slows them alike; the ratios to the first near field are the figures to quote.
 // Usage: demlight_near_field_bench DEM [--steps N ...] [--repeats R] [--cells C] [--max-distance M]
-//        (defaults: steps 0 and the scene plan's, 5 repeats, 1500 cells, the plan's distance;
+//                                  [--azimuths A ...]
+//        (defaults: steps 0 and the scene plan's, 5 repeats, 1500 cells, the plan's distance,
+//        azimuths 0 37 90 123.4;
 //        a step count ending in c, e.g. 4c, forces the far field's grid-line crossings on, one
 //        ending in n forces them off, a bare count takes the plan's choice)
 #include "geo/dem.h"
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     int repeats = 5;
     std::size_t cells = 1500;
     double maxDistanceM = 0;
+    std::vector<double> azimuths;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--steps" && i + 1 < argc) {
@@ -56,6 +59,8 @@ int main(int argc, char** argv) {
             repeats = std::max(1, std::atoi(argv[++i]));
         } else if (a == "--cells" && i + 1 < argc) {
             cells = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
+        } else if (a == "--azimuths" && i + 1 < argc) {
+            while (i + 1 < argc && argv[i + 1][0] != '-') azimuths.push_back(std::atof(argv[++i]));
         } else if (a == "--max-distance" && i + 1 < argc) {
             maxDistanceM = std::atof(argv[++i]);
         } else {
@@ -63,7 +68,9 @@ int main(int argc, char** argv) {
         }
     }
     if (path.empty()) {
-        std::fprintf(stderr, "usage: %s DEM [--steps N ...] [--repeats R] [--cells C] [--max-distance M]\n", argv[0]);
+        std::fprintf(stderr,
+                     "usage: %s DEM [--steps N ...] [--repeats R] [--cells C] [--max-distance M] [--azimuths A ...]\n",
+                     argv[0]);
         return 2;
     }
     try {
@@ -82,7 +89,8 @@ int main(int argc, char** argv) {
                     t.height(), plan.maxDistanceM, plan.nearFieldSteps);
         std::printf("%8s %6s %12s %7s %10s %8s %8s\n", "azimuth", "steps", "ns/cell/dir", "ratio", "median", "p99",
                     ">5 deg");
-        for (const double az : {0.0, 37.0, 90.0, 123.4}) {
+        if (azimuths.empty()) azimuths = {0.0, 37.0, 90.0, 123.4};
+        for (const double az : azimuths) {
             base.azimuthDeg = az;
             const std::vector<HorizonSample> ref = referenceHorizonAt(t, [&] {
                 HorizonParams r = base;
