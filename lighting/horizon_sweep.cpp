@@ -214,7 +214,23 @@ struct LineState {
     std::size_t prevLo, prevHi, prevHint;
     /// Delayed serving (nearFieldSteps > 0): the current hull's vertex the line's last tangent touched.
     std::size_t hint;
+    /// Range-limited sweeps: the highest g pushed in the current chunk and in the previous one
+    /// (-inf when empty), for prevChunkCannotRaise.
+    double maxG, prevMaxG;
 };
+
+/// Range-limited sweeps: true when no point of the previous chunk's hull can give a cell at
+/// (sigmaQ, gQ) a slope above `value` (the current chunk's answer), so that its tangent need not
+/// be searched. The bound is rangeSlope() to the highest g of that chunk at the distance that
+/// makes it steepest: its nearest point (the chunk's last, always a vertex) when that g is above
+/// the cell, else its farthest (its first, never popped). rangeSlope() rises with g and falls
+/// with the distance, operation by operation, so it bounds every vertex's; the comparison is
+/// strict because this copy of the expression may be contracted differently by the compiler.
+inline bool prevChunkCannotRaise(const LineState& line, double sigmaQ, double gQ, double invR, float value) {
+    const double rise = line.prevMaxG - gQ;
+    const double sigmaP = rise >= 0.0 ? line.buf[line.prevHi - 1].sigmaM : line.buf[line.prevLo].sigmaM;
+    return static_cast<float>(rise / (sigmaQ - sigmaP) - sigmaQ * invR) < value;
+}
 
 /// A line's walk reaches sigma (metres from the far edge) in a later chunk of maxDistanceM: the
 /// hull so far becomes the previous chunk's when the chunks are consecutive, else both empty.
@@ -225,9 +241,12 @@ inline void enterChunk(LineState& line, double sigma, double maxDistanceM) {
         line.prevHi = line.hi;
         line.prevHint = line.hi > 0 ? line.hi - 1 : 0;
         line.lo = line.hi;
+        line.prevMaxG = line.maxG;
     } else {
         line.prevLo = line.prevHi = line.lo = line.hi = 0;
+        line.prevMaxG = -std::numeric_limits<double>::infinity();
     }
+    line.maxG = -std::numeric_limits<double>::infinity();
     line.chunk = chunk;
     line.nextChunkM = static_cast<double>(line.chunk + 1) * maxDistanceM;
 }
@@ -516,7 +535,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         const long k = kBegin + static_cast<long>(b);
         const double edgeArc = sigmaTable ? 0.0 : arcAt(geo, static_cast<double>(k + geo.base[edge]) + geo.frac[edge]);
         lines[b] = {scratch.data() + b * lineCapacity, 0, 0, edgeArc, 0, maxDistanceM, limited ? &logs[b] : nullptr,
-                    0, 0, 0, 0};
+                    0, 0, 0, 0, -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
         if (limited) logs[b].reset(lineCapacity);
     }
     // With a near field (geo.delay steps), a cell is served `delay` steps after the walk passed
@@ -572,7 +591,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
                 *cell = value;
                 // The previous chunk, as for the undelayed walk below.
-                if (Limited && hullInRange && line.prevLo < line.prevHi) {
+                if (Limited && hullInRange && line.prevLo < line.prevHi &&
+                    !prevChunkCannotRaise(line, sigmaC, gCell, invR, value)) {
                     const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint, sigmaC,
                                                         gCell);
                     line.prevHint = v;
@@ -688,6 +708,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     if (limited) line.log->points[line.log->nPoints++] = {sigma, g, line.chunk};
                     line.hi = top;
                     line.buf[line.hi++] = {sigma, g};
+                    if (limited) line.maxG = std::max(line.maxG, g);
                 }
             }
         }
@@ -764,7 +785,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         // the cell is left to the exact pass. (A walk that starts inside that chunk
                         // has a hull of fewer points; every point within range is in both, so both
                         // find the same answer, the exact pass by the same rangeSlope.)
-                        if (Limited && line.prevLo < line.prevHi) {
+                        if (Limited && line.prevLo < line.prevHi &&
+                            !prevChunkCannotRaise(line, sigma, gCell, invR, value)) {
                             const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
                                                                 sigma, gCell);
                             line.prevHint = v;
@@ -786,6 +808,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     if (limited) line.log->points[line.log->nPoints++] = {sigma, gSample, line.chunk};
                     line.hi = top;
                     line.buf[line.hi++] = {sigma, gSample};
+                    if (limited) line.maxG = std::max(line.maxG, gSample);
                 }
             }
         }
