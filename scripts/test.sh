@@ -3,7 +3,7 @@
 # Python package) in Release, checks cmake --install and the C++ consumer example
 # (scripts/check_install.sh), runs the QGIS provider's tests (qgis/tests: qgis_process against
 # the CLI), runs the GoogleTest ones again, but for the real-DEM tests, under AddressSanitizer +
-# UBSan (the asan preset, clang), and runs each libFuzzer target for FUZZ_SECONDS (default 45).
+# UBSan (the asan preset, clang), and runs each libFuzzer target for FUZZ_SECONDS (default 30).
 # CI runs exactly this; what each stage costs on 2 cores and which tests the sanitizer stage
 # leaves to Release: docs/testing.md.
 set -euo pipefail
@@ -46,5 +46,5 @@ cmake --build --preset asan --target demlight demlight_tests demlight_fuzzers
 ctest --preset asan -j2 --timeout 900 -E "$asan_skip"
 
 stage "Fuzzing"
-scripts/fuzz.sh "${FUZZ_SECONDS:-45}"
+scripts/fuzz.sh "${FUZZ_SECONDS:-30}"
 stage "done"
