@@ -9,11 +9,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <functional>
 #include <numbers>
 #include <string>
 #include <type_traits>
+
+#if defined(__AVX512F__)
+// GCC 12 reports its own intrinsics' deliberately undefined start values (_mm512_undefined_*)
+// as maybe uninitialized where they are inlined.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+#pragma GCC diagnostic pop
+#endif
 
 namespace demlight {
 
@@ -314,6 +324,124 @@ inline double tangentSlope(const LineState& line, std::size_t i, double sigmaQ, 
     return (h[i].g - gQ) / (sigmaQ - h[i].sigmaM);
 }
 
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
+#define DEMLIGHT_SWEEP_AVX512 1
+/// Eight lines' delayed serving at once (sweepBlock's serveDelayed), one line per AVX-512 lane.
+/// Each lane makes the scalar loop's comparisons and arithmetic in the same order, written as the
+/// same expressions on vectors (so the compiler contracts them alike), and the same
+/// hull walk from the line's hint: the same bits. The branches of the scalar tangent search
+/// become masks, and its divisions one vector division per served plane.
+/// __m512d and __m512i are the compilers' vector types: + - * / act per lane.
+constexpr std::size_t kSimdLines = 8;
+
+inline __mmask8 steeperLanes(__m512d ga, __m512d sa, __m512d gb, __m512d sb, __m512d gQ, __m512d sQ) {
+    // slope(a) > slope(b), as tangentVertex's steeper()
+    const __m512d lhs = (ga - gQ) * (sQ - sb);
+    const __m512d rhs = (gb - gQ) * (sQ - sa);
+    return _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
+}
+
+/// What serveEightLines needs of a block: its line states and hull buffers, and where its lanes' cells lie.
+struct EightLines {
+    LineState* lines;  // the block's lines[b0, b0 + 8)
+    const HullPoint* hulls;  // the block's scratch: line b's hull starts at b * lineCapacity
+    std::size_t lineCapacity;
+    std::size_t b0;
+};
+
+/// Serves, for lines b0..b0+7 at one major index, the cell after each line (cell index
+/// idxA + lane * idxStride) into planeA and the cell before it (idxB + lane * idxStride) into
+/// planeB, every one of them inside the window; sigmaC is each lane's distance of the step.
+inline void serveEightLines(const EightLines& e, const float* H, float* planeA, float* planeB, long idxA, long idxB,
+                            long idxStride, __m512d sigmaC, double halfInvR, double invR) {
+    constexpr long long kStateWords = sizeof(LineState) / sizeof(long long);
+    static_assert(sizeof(LineState) % sizeof(long long) == 0 && sizeof(std::size_t) == sizeof(long long));
+    const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m512i stateIdx = _mm512_mullo_epi64(lane, _mm512_set1_epi64(kStateWords));
+    const auto* state = reinterpret_cast<const long long*>(e.lines + e.b0);
+    const __m512i lo = _mm512_i64gather_epi64(stateIdx, state + offsetof(LineState, lo) / 8, 8);
+    const __m512i hi = _mm512_i64gather_epi64(stateIdx, state + offsetof(LineState, hi) / 8, 8);
+    __m512i hint = _mm512_i64gather_epi64(stateIdx, state + offsetof(LineState, hint) / 8, 8);
+    const __m512i one = _mm512_set1_epi64(1);
+    // Hull vertex v of lane l: doubles 2 (hullStart_l + v) (σ) and that + 1 (g).
+    const __m512i hullStart = _mm512_mullo_epi64(
+        _mm512_add_epi64(lane, _mm512_set1_epi64(static_cast<long long>(e.b0))),
+        _mm512_set1_epi64(static_cast<long long>(e.lineCapacity)));
+    const auto* hullSigma = reinterpret_cast<const double*>(e.hulls);
+    const double* hullG = hullSigma + 1;
+    const __mmask8 hullNonEmpty = _mm512_cmplt_epi64_mask(lo, hi);
+    const __m512i hiLess1 = _mm512_sub_epi64(hi, one);
+    const __m512i cellStep = _mm512_mullo_epi64(lane, _mm512_set1_epi64(idxStride));
+    const __m512d dropC = sigmaC * sigmaC * _mm512_set1_pd(halfInvR);
+    const __m512d invRv = _mm512_set1_pd(invR);
+    float* const planes[2] = {planeA, planeB};
+    const long idx0[2] = {idxA, idxB};
+    for (int s = 0; s < 2; ++s) {
+        // The lanes' cells: consecutive along rows (Y-major lines), a row apart otherwise.
+        const __m512i cell = _mm512_add_epi64(_mm512_set1_epi64(idx0[s]), cellStep);
+        const __m256 h = idxStride == 1 ? _mm256_loadu_ps(H + idx0[s]) : _mm512_i64gather_ps(cell, H, 4);
+        const __m512d hc = _mm512_cvtps_pd(h);
+        const __mmask8 valid = _mm512_cmp_pd_mask(hc, hc, _CMP_ORD_Q);  // not nodata
+        const __mmask8 query = valid & hullNonEmpty;
+        const __m512d gCell = hc - dropC;
+        // tangentVertex from clamp(hint, lo, hi - 1): one step down or up, then on while it
+        // rises; (si, gi) follow vertex i.
+        __m512i i = _mm512_min_epi64(_mm512_max_epi64(hint, lo), hiLess1);
+        const auto vertex = [&](__mmask8 m, __m512i v, __m512d& sig, __m512d& g) {
+            const __m512i at = _mm512_slli_epi64(_mm512_add_epi64(hullStart, v), 1);
+            sig = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), m, at, hullSigma, 8);
+            g = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), m, at, hullG, 8);
+        };
+        __m512d si, gi;
+        vertex(query, i, si, gi);
+        __mmask8 down, up;
+        {
+            const __mmask8 hasFarther = query & _mm512_cmpgt_epi64_mask(i, lo);
+            __m512d sf, gf;
+            vertex(hasFarther, _mm512_sub_epi64(i, one), sf, gf);
+            down = hasFarther & steeperLanes(gf, sf, gi, si, gCell, sigmaC);
+            const __mmask8 hasNearer = query & ~down & _mm512_cmplt_epi64_mask(i, hiLess1);
+            __m512d sn, gn;
+            vertex(hasNearer, _mm512_add_epi64(i, one), sn, gn);
+            up = hasNearer & ~steeperLanes(gi, si, gn, sn, gCell, sigmaC);
+            i = _mm512_mask_sub_epi64(i, down, i, one);
+            i = _mm512_mask_add_epi64(i, up, i, one);
+            si = _mm512_mask_blend_pd(down, _mm512_mask_blend_pd(up, si, sn), sf);
+            gi = _mm512_mask_blend_pd(down, _mm512_mask_blend_pd(up, gi, gn), gf);
+        }
+        // Lanes that moved go on in the same direction while the next vertex is steeper (down)
+        // or not less steep (up).
+        for (;;) {
+            down &= _mm512_cmpgt_epi64_mask(i, lo);
+            up &= _mm512_cmplt_epi64_mask(i, hiLess1);
+            if (!(down | up)) break;
+            __m512d sNext, gNext;  // vertex i - 1 (down) or i + 1 (up)
+            vertex(down | up, _mm512_mask_add_epi64(_mm512_sub_epi64(i, one), up, i, one), sNext, gNext);
+            // down: steeper(i - 1, i); up: steeper(i, i + 1)
+            const __mmask8 st = steeperLanes(_mm512_mask_blend_pd(up, gNext, gi), _mm512_mask_blend_pd(up, sNext, si),
+                                             _mm512_mask_blend_pd(up, gi, gNext), _mm512_mask_blend_pd(up, si, sNext),
+                                             gCell, sigmaC);
+            down &= st;
+            up &= ~st;
+            i = _mm512_mask_sub_epi64(i, down, i, one);
+            i = _mm512_mask_add_epi64(i, up, i, one);
+            si = _mm512_mask_blend_pd(down | up, si, sNext);
+            gi = _mm512_mask_blend_pd(down | up, gi, gNext);
+        }
+        const __m512d slope = (gi - gCell) / (sigmaC - si) - sigmaC * invRv;
+        const __m256 none = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+        const __m256 value = _mm256_mask_blend_ps(query, none, _mm512_cvtpd_ps(slope));
+        if (idxStride == 1) {
+            _mm256_mask_storeu_ps(planes[s] + idx0[s], valid, value);
+        } else {
+            _mm512_mask_i64scatter_ps(planes[s], valid, cell, value, 4);
+        }
+        hint = _mm512_mask_blend_epi64(query, hint, i);
+    }
+    _mm512_i64scatter_epi64(const_cast<long long*>(state) + offsetof(LineState, hint) / 8, stateIdx, hint, 8);
+}
+#endif
+
 /// Second pass of a range-limited line (maxDistanceM = L). The first pass reset its hull whenever
 /// floor(σ/L) changed, so each cell saw exactly the points of its own chunk farther than itself,
 /// all within L. The points within L that it missed lie in the previous (farther) chunk with
@@ -546,10 +674,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
         const long baseC = geo.base[static_cast<std::size_t>(mc)];
         const double fracC = geo.frac[static_cast<std::size_t>(mc)];
-        for (std::size_t b = 0; b < nLines; ++b) {
+        const auto serveLine = [&](std::size_t b) {
             LineState& line = lines[b];
             const long n0 = kBegin + static_cast<long>(b) + baseC;
-            if (n0 < minorWin0 - 1 || n0 >= minorWin1) continue;
+            if (n0 < minorWin0 - 1 || n0 >= minorWin1) return;
             long servedCell[2] = {fracC > 0.0 ? n0 + 1 : n0, n0};
             int nServed = fracC > 0.0 ? 2 : 1;
             if (geo.nearestLine) {
@@ -608,7 +736,35 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     }
                 }
             }
+        };
+        std::size_t b = 0;
+#ifdef DEMLIGHT_SWEEP_AVX512
+        // Eight lines at once where both cells of every line are window cells; serveLine serves
+        // the rest, and every line of range-limited sweeps.
+        if (!Limited && fracC > 0.0 && !geo.nearestLine) {
+            for (; b + kSimdLines <= nLines; b += kSimdLines) {
+                const long n0 = kBegin + static_cast<long>(b) + baseC;
+                if (n0 < minorWin0 || n0 + static_cast<long>(kSimdLines) >= minorWin1) {
+                    for (std::size_t l = 0; l < kSimdLines; ++l) serveLine(b + l);
+                    continue;
+                }
+                __m512d sigmaC;
+                if (sigmaTable) {
+                    sigmaC = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(mc)]);
+                } else {
+                    alignas(64) double sigma[kSimdLines];
+                    for (std::size_t l = 0; l < kSimdLines; ++l)
+                        sigma[l] = lineDistance(geo, lines[b + l].edgeArcM,
+                                                static_cast<double>(n0 + static_cast<long>(l)) + fracC, mc);
+                    sigmaC = _mm512_load_pd(sigma);
+                }
+                const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
+                serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB,
+                                static_cast<long>(index(mc, n0 + 1)) - idxB, sigmaC, halfInvR, invR);
+            }
         }
+#endif
+        for (; b < nLines; ++b) serveLine(b);
     };
     // The cells within `delay` steps of the walk's start have no sample that far beyond them
     // (the walk starts at the DEM's far edge, or beyond every cell this block serves).
