@@ -341,7 +341,7 @@ inline __mmask8 steeperLanes(__m512d ga, __m512d sa, __m512d gb, __m512d sb, __m
     return _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
 }
 
-/// What serveEightLines needs of a block: its line states and hull buffers, and where its lanes' cells lie.
+/// What serveEightLines needs of a block: its line states and hull buffers, and its first lane's line.
 struct EightLines {
     LineState* lines;  // the block's lines[b0, b0 + 8)
     const HullPoint* hulls;  // the block's scratch: line b's hull starts at b * lineCapacity
@@ -674,6 +674,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
         const long baseC = geo.base[static_cast<std::size_t>(mc)];
         const double fracC = geo.frac[static_cast<std::size_t>(mc)];
+        // A line's distance at this step (metres from the far edge), for either serving path.
+        const auto sigmaOfLine = [&](std::size_t b, long n0) {
+            return sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(mc)]
+                              : lineDistance(geo, lines[b].edgeArcM, static_cast<double>(n0) + fracC, mc);
+        };
         const auto serveLine = [&](std::size_t b) {
             LineState& line = lines[b];
             const long n0 = kBegin + static_cast<long>(b) + baseC;
@@ -684,8 +689,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 servedCell[0] = fracC > 0.5 ? n0 + 1 : n0;
                 nServed = 1;
             }
-            const double sigmaC = sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(mc)]
-                                             : lineDistance(geo, line.edgeArcM, static_cast<double>(n0) + fracC, mc);
+            const double sigmaC = sigmaOfLine(b, n0);
             const double dropC = sigmaC * sigmaC * halfInvR;
             // Range limit: the chunk of the cell against the walk's (line.chunk, whose points the
             // hull [lo, hi) holds; [prevLo, prevHi) holds the chunk before it).
@@ -748,19 +752,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     for (std::size_t l = 0; l < kSimdLines; ++l) serveLine(b + l);
                     continue;
                 }
-                __m512d sigmaC;
-                if (sigmaTable) {
-                    sigmaC = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(mc)]);
-                } else {
-                    alignas(64) double sigma[kSimdLines];
-                    for (std::size_t l = 0; l < kSimdLines; ++l)
-                        sigma[l] = lineDistance(geo, lines[b + l].edgeArcM,
-                                                static_cast<double>(n0 + static_cast<long>(l)) + fracC, mc);
-                    sigmaC = _mm512_load_pd(sigma);
-                }
+                alignas(64) double sigma[kSimdLines];
+                for (std::size_t l = 0; l < kSimdLines; ++l) sigma[l] = sigmaOfLine(b + l, n0 + static_cast<long>(l));
                 const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
-                serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB,
-                                static_cast<long>(index(mc, n0 + 1)) - idxB, sigmaC, halfInvR, invR);
+                serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB, idxA - idxB,
+                                _mm512_load_pd(sigma), halfInvR, invR);
             }
         }
 #endif
