@@ -4,7 +4,8 @@
 // since before the near field (issue 18), so the same file built in a worktree of an earlier
 // commit times that commit's sweep: run the two builds in alternation and quote the median of
 // the per-round ratios (docs/performance.md, "Against the sweep before issue 18").
-// Usage: demlight_plan_bench DEM [REPEATS]   (default 9 repeats)
+// Usage: demlight_plan_bench DEM [REPEATS [AZIMUTH]]   (default 9 repeats; one azimuth in degrees
+// instead of the four, e.g. for a profiler)
 #include "geo/dem.h"
 #include "lighting/horizon.h"
 #include "lighting/quality.h"
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 9;
+    std::vector<double> azimuths{0.0, 37.0, 90.0, 123.4};
+    if (argc > 3) azimuths = {std::atof(argv[3])};
     try {
         const Dem dem = loadDem(argv[1]);
         const Terrain& t = dem.terrain;
@@ -44,7 +47,7 @@ int main(int argc, char** argv) {
         HorizonMap map;
         SweepBuffers buffers;
         const double cells = static_cast<double>(t.width()) * static_cast<double>(t.height());
-        for (const double az : {0.0, 37.0, 90.0, 123.4}) {
+        for (const double az : azimuths) {
             p.azimuthDeg = az;
             std::vector<double> s;
             for (int r = 0; r < repeats; ++r) {

@@ -500,11 +500,18 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
         const double boundDistM = q->sigmaM - (rise >= 0.0 ? hull[0].sigmaM : hull[top - 1].sigmaM);
         float& cell = *q->cell;
         if (static_cast<float>(rise / boundDistM - q->sigmaM * invR) <= cell) continue;
-        auto slopeTo = [&](std::size_t v) { return (hull[v].g - q->gCell) / (q->sigmaM - hull[v].sigmaM); };
+        // slope(v + 1) > slope(v), by cross multiplication (both distances are positive): two
+        // divisions a step made the search a chain of divisions, 2.3 of 44.5 ns per cell and
+        // direction on the 3601^2 tile at 37 deg.
+        const auto steeperNext = [&](std::size_t v) {
+            const HullPoint& a = hull[v];
+            const HullPoint& b = hull[v + 1];
+            return (b.g - q->gCell) * (q->sigmaM - a.sigmaM) > (a.g - q->gCell) * (q->sigmaM - b.sigmaM);
+        };
         std::size_t lo = 0, hi = top - 1;
         while (lo < hi) {
             const std::size_t mid = (lo + hi) / 2;
-            if (slopeTo(mid + 1) > slopeTo(mid)) lo = mid + 1; else hi = mid;
+            if (steeperNext(mid)) lo = mid + 1; else hi = mid;
         }
         cell = std::max(cell, rangeSlope(hull[lo].g, hull[lo].sigmaM, q->gCell, q->sigmaM, invR));
     }
