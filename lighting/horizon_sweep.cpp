@@ -1247,6 +1247,43 @@ void nearPointRow(const float* __restrict h0, const float* __restrict t0, const 
     }
 }
 
+/// G consecutive stencil points with the same taps for cells [begin, end) of a row: each as
+/// nearPointRow makes it, in order (the same operations per cell and point: the same bits), with
+/// the taps' differences taken once and `best` and `flag` read and written once for the G. The
+/// quarter-cell points of a near field's first steps share a cell's four corners three or four
+/// at a time.
+template <int Taps, int G>
+void nearPointsRow(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
+                   const float* __restrict t2, const float* __restrict t3, const NearPoint* p,
+                   float* __restrict best, std::uint8_t* __restrict flag, long begin, long end) {
+    float w[G][4], invD[G], drop[G];
+    for (int g = 0; g < G; ++g) {
+        for (int k = 0; k < 4; ++k) w[g][k] = p[g].weight[k];
+        invD[g] = p[g].invDistance;
+        drop[g] = p[g].drop;
+    }
+    for (long i = begin; i < end; ++i) {
+        const float h = h0[i];
+        const float d0 = t0[i] - h, d1 = t1[i] - h;
+        const float d2 = Taps == 4 ? t2[i] - h : 0.0f, d3 = Taps == 4 ? t3[i] - h : 0.0f;
+        float b = best[i];
+        bool nan = false;
+        for (int g = 0; g < G; ++g) {
+            float v = w[g][0] * d0;
+            v = std::fma(w[g][1], d1, v);
+            if constexpr (Taps == 4) {
+                v = std::fma(w[g][2], d2, v);
+                v = std::fma(w[g][3], d3, v);
+            }
+            const float slope = std::fma(v, invD[g], -drop[g]);
+            nan |= v != v;
+            b = slope > b ? slope : b;
+        }
+        flag[i] |= static_cast<std::uint8_t>(nan);
+        best[i] = b;
+    }
+}
+
 /// One stencil point for cells [begin, end) of a row by the reference's rule next to voids: the
 /// taps that are valid heights, reweighted by their weights' sum (the same fused multiply-adds,
 /// in the same order, as the scalar rule of nearFieldAt on taps inside the terrain), its slope
@@ -1320,14 +1357,31 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
             pass(std::integral_constant<int, 4>{}, tap);
         }
     };
-    for (std::size_t q = 0; q < stencil.size(); ++q) {
+    // Consecutive points with the same taps (and so the same range) in one pass, up to four.
+    const auto sameTaps = [](const NearPoint& a, const NearPoint& b) {
+        if (a.taps != b.taps) return false;
+        for (int k = 0; k < a.taps; ++k) {
+            if (a.tapCol[k] != b.tapCol[k] || a.tapRow[k] != b.tapRow[k]) return false;
+        }
+        return true;
+    };
+    for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
+        next = q + 1;
+        while (next < stencil.size() && next - q < 4 && sameTaps(stencil[q], stencil[next])) ++next;
         // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
         const long begin = ranges[q].first;
         const long end = ranges[q].second;
         if (begin >= end) continue;
         const NearPoint& p = stencil[q];
+        const std::size_t group = next - q;
         pointPass(p, [&](auto taps, const float* const* tap) {
-            nearPointRow<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end);
+            constexpr int kTaps = decltype(taps)::value;
+            switch (group) {
+            case 1: nearPointRow<kTaps>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end); break;
+            case 2: nearPointsRow<kTaps, 2>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 3: nearPointsRow<kTaps, 3>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            default: nearPointsRow<kTaps, 4>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            }
         });
     }
     // Cells inside every point's range with a void among their taps: every point again by the
