@@ -1284,6 +1284,41 @@ void nearPointsRow(const float* __restrict h0, const float* __restrict t0, const
     }
 }
 
+/// Two consecutive stencil points with taps of their own (a and b) for cells [begin, end) of a
+/// row: each as nearPointRow makes it, a then b (the same bits), the cell's height, `best` and
+/// `flag` read and written once for the two. Most of a surface model's points are grid-line
+/// crossings of two taps each, none sharing them.
+template <int Taps>
+void nearPointPairRow(const float* __restrict h0, const float* __restrict a0, const float* __restrict a1,
+                      const float* __restrict a2, const float* __restrict a3, const float* __restrict b0,
+                      const float* __restrict b1, const float* __restrict b2, const float* __restrict b3,
+                      const NearPoint& pa, const NearPoint& pb, float* __restrict best,
+                      std::uint8_t* __restrict flag, long begin, long end) {
+    const float wa0 = pa.weight[0], wa1 = pa.weight[1], wa2 = pa.weight[2], wa3 = pa.weight[3];
+    const float wb0 = pb.weight[0], wb1 = pb.weight[1], wb2 = pb.weight[2], wb3 = pb.weight[3];
+    const float invDa = pa.invDistance, dropA = pa.drop, invDb = pb.invDistance, dropB = pb.drop;
+    for (long i = begin; i < end; ++i) {
+        const float h = h0[i];
+        float va = wa0 * (a0[i] - h);
+        va = std::fma(wa1, a1[i] - h, va);
+        float vb = wb0 * (b0[i] - h);
+        vb = std::fma(wb1, b1[i] - h, vb);
+        if constexpr (Taps == 4) {
+            va = std::fma(wa2, a2[i] - h, va);
+            va = std::fma(wa3, a3[i] - h, va);
+            vb = std::fma(wb2, b2[i] - h, vb);
+            vb = std::fma(wb3, b3[i] - h, vb);
+        }
+        const float slopeA = std::fma(va, invDa, -dropA);
+        const float slopeB = std::fma(vb, invDb, -dropB);
+        float b = best[i];
+        b = slopeA > b ? slopeA : b;
+        b = slopeB > b ? slopeB : b;
+        flag[i] |= static_cast<std::uint8_t>((va != va) | (vb != vb));
+        best[i] = b;
+    }
+}
+
 /// One stencil point for cells [begin, end) of a row by the reference's rule next to voids: the
 /// taps that are valid heights, reweighted by their weights' sum (the same fused multiply-adds,
 /// in the same order, as the scalar rule of nearFieldAt on taps inside the terrain), its slope
@@ -1365,15 +1400,58 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         }
         return true;
     };
-    for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
-        next = q + 1;
+    const auto groupEnd = [&](std::size_t q) {
+        std::size_t next = q + 1;
         while (next < stencil.size() && next - q < 4 && sameTaps(stencil[q], stencil[next])) ++next;
+        return next;
+    };
+    const auto tapsOf = [&](const NearPoint& p, const float** tap) {
+        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
+    };
+    for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
+        next = groupEnd(q);
         // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
         const long begin = ranges[q].first;
         const long end = ranges[q].second;
-        if (begin >= end) continue;
         const NearPoint& p = stencil[q];
         const std::size_t group = next - q;
+        // A point alone, followed by another alone with as many taps: the two in one pass where
+        // both ranges hold the cell, each alone on the rest of its range (in the same order).
+        if (group == 1 && next < stencil.size() && groupEnd(next) == next + 1 && stencil[next].taps == p.taps) {
+            const NearPoint& pb = stencil[next];
+            const long beginB = ranges[next].first, endB = ranges[next].second;
+            const long both0 = std::max(begin, beginB), both1 = std::max(both0, std::min(end, endB));
+            const float* ta[4];
+            const float* tb[4];
+            tapsOf(p, ta);
+            tapsOf(pb, tb);
+            const auto single = [&](const NearPoint& pt, const float* const* tp, long b0, long b1) {
+                if (b0 >= b1) return;
+                if (pt.taps == 2) {
+                    nearPointRow<2>(h0, tp[0], tp[1], tp[2], tp[3], pt, best, flag, b0, b1);
+                } else {
+                    nearPointRow<4>(h0, tp[0], tp[1], tp[2], tp[3], pt, best, flag, b0, b1);
+                }
+            };
+            // Cells before the shared range, then the shared range, then after it: a cell's
+            // points still come a then b.
+            single(p, ta, begin, std::min(end, both0));
+            single(pb, tb, beginB, std::min(endB, both0));
+            if (both0 < both1) {
+                if (p.taps == 2) {
+                    nearPointPairRow<2>(h0, ta[0], ta[1], ta[2], ta[3], tb[0], tb[1], tb[2], tb[3], p, pb, best, flag,
+                                        both0, both1);
+                } else {
+                    nearPointPairRow<4>(h0, ta[0], ta[1], ta[2], ta[3], tb[0], tb[1], tb[2], tb[3], p, pb, best, flag,
+                                        both0, both1);
+                }
+            }
+            single(p, ta, std::max(begin, both1), end);
+            single(pb, tb, std::max(beginB, both1), endB);
+            next = next + 1;
+            continue;
+        }
+        if (begin >= end) continue;
         pointPass(p, [&](auto taps, const float* const* tap) {
             constexpr int kTaps = decltype(taps)::value;
             switch (group) {
