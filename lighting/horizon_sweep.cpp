@@ -18,11 +18,15 @@
 
 #if defined(__AVX512F__)
 // GCC 12 reports its own intrinsics' deliberately undefined start values (_mm512_undefined_*)
-// as maybe uninitialized where they are inlined.
+// as maybe uninitialized where they are inlined; clang has no such warning.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <immintrin.h>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 #endif
 
 namespace demlight {
@@ -298,15 +302,18 @@ inline std::size_t hullTopAfterPops(const LineState& line, double sigma, double 
 
 
 
+/// slope(a) > slope(b) from a cell at (sigmaQ, gQ) nearer than both points, by cross
+/// multiplication (both distances are positive): no division.
+inline bool steeperFrom(const HullPoint& a, const HullPoint& b, double sigmaQ, double gQ) {
+    return (a.g - gQ) * (sigmaQ - b.sigmaM) > (b.g - gQ) * (sigmaQ - a.sigmaM);
+}
+
 /// Largest g-space slope from (sigmaQ, gQ) to the hull, walking from vertex i (the slope from a
 /// point nearer than every vertex is unimodal along an upper hull). Slopes are compared by cross
 /// multiplication (all distances are positive), so only the answer costs a division.
 inline std::size_t tangentVertex(const HullPoint* h, std::size_t lo, std::size_t hi, std::size_t i, double sigmaQ,
                                  double gQ) {
-    // slope(a) > slope(b)  <=>  (g_a - gQ)(σQ - σ_b) > (g_b - gQ)(σQ - σ_a)
-    auto steeper = [&](std::size_t a, std::size_t b) {
-        return (h[a].g - gQ) * (sigmaQ - h[b].sigmaM) > (h[b].g - gQ) * (sigmaQ - h[a].sigmaM);
-    };
+    auto steeper = [&](std::size_t a, std::size_t b) { return steeperFrom(h[a], h[b], sigmaQ, gQ); };
     bool moved = false;
     while (i > lo && steeper(i - 1, i)) {
         --i;
@@ -335,7 +342,7 @@ inline double tangentSlope(const LineState& line, std::size_t i, double sigmaQ, 
 constexpr std::size_t kSimdLines = 8;
 
 inline __mmask8 steeperLanes(__m512d ga, __m512d sa, __m512d gb, __m512d sb, __m512d gQ, __m512d sQ) {
-    // slope(a) > slope(b), as tangentVertex's steeper()
+    // slope(a) > slope(b), as steeperFrom()
     const __m512d lhs = (ga - gQ) * (sQ - sb);
     const __m512d rhs = (gb - gQ) * (sQ - sa);
     return _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
@@ -500,18 +507,12 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
         const double boundDistM = q->sigmaM - (rise >= 0.0 ? hull[0].sigmaM : hull[top - 1].sigmaM);
         float& cell = *q->cell;
         if (static_cast<float>(rise / boundDistM - q->sigmaM * invR) <= cell) continue;
-        // slope(v + 1) > slope(v), by cross multiplication (both distances are positive): two
-        // divisions a step made the search a chain of divisions, 2.3 of 44.5 ns per cell and
-        // direction on the 3601^2 tile at 37 deg.
-        const auto steeperNext = [&](std::size_t v) {
-            const HullPoint& a = hull[v];
-            const HullPoint& b = hull[v + 1];
-            return (b.g - q->gCell) * (q->sigmaM - a.sigmaM) > (a.g - q->gCell) * (q->sigmaM - b.sigmaM);
-        };
+        // Slopes compared without divisions: two a step made the search a chain of divisions,
+        // 2.3 of 44.5 ns per cell and direction on the 3601^2 tile at 37 deg.
         std::size_t lo = 0, hi = top - 1;
         while (lo < hi) {
             const std::size_t mid = (lo + hi) / 2;
-            if (steeperNext(mid)) lo = mid + 1; else hi = mid;
+            if (steeperFrom(hull[mid + 1], hull[mid], q->sigmaM, q->gCell)) lo = mid + 1; else hi = mid;
         }
         cell = std::max(cell, rangeSlope(hull[lo].g, hull[lo].sigmaM, q->gCell, q->sigmaM, invR));
     }
@@ -1224,38 +1225,29 @@ float nearFieldAt(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     return best;
 }
 
-/// One stencil point for cells [begin, end) of a row: the bilinear height relative to the
-/// cell's own (fused multiply-adds in a fixed order), its slope max-ed into `best`, and `flag` set
-/// where a tap is nodata (NaN). Taps = 2 skips the zero-weight taps 2 and 3.
+/// A stencil point's bilinear height relative to the cell's own, from the differences d of its
+/// taps' heights to the cell's (fused multiply-adds in a fixed order; NaN where a tap is nodata).
+/// Taps = 2 skips the zero-weight taps 2 and 3. Every fast pass below evaluates it thus.
 template <int Taps>
-void nearPointRow(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
-                  const float* __restrict t2, const float* __restrict t3, const NearPoint& p,
-                  float* __restrict best, std::uint8_t* __restrict flag, long begin, long end) {
-    const float w0 = p.weight[0], w1 = p.weight[1], w2 = p.weight[2], w3 = p.weight[3];
-    const float invD = p.invDistance, drop = p.drop;
-    for (long i = begin; i < end; ++i) {
-        const float h = h0[i];
-        float v = w0 * (t0[i] - h);
-        v = std::fma(w1, t1[i] - h, v);
-        if constexpr (Taps == 4) {
-            v = std::fma(w2, t2[i] - h, v);
-            v = std::fma(w3, t3[i] - h, v);
-        }
-        const float slope = std::fma(v, invD, -drop);
-        flag[i] |= static_cast<std::uint8_t>(v != v);
-        best[i] = slope > best[i] ? slope : best[i];
+inline float nearPointRise(const float* w, float d0, float d1, float d2, float d3) {
+    float v = w[0] * d0;
+    v = std::fma(w[1], d1, v);
+    if constexpr (Taps == 4) {
+        v = std::fma(w[2], d2, v);
+        v = std::fma(w[3], d3, v);
     }
+    return v;
 }
 
-/// G consecutive stencil points with the same taps for cells [begin, end) of a row: each as
-/// nearPointRow makes it, in order (the same operations per cell and point: the same bits), with
-/// the taps' differences taken once and `best` and `flag` read and written once for the G. The
-/// quarter-cell points of a near field's first steps share a cell's four corners three or four
-/// at a time.
-template <int Taps, int G>
-void nearPointsRow(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
-                   const float* __restrict t2, const float* __restrict t3, const NearPoint* p,
-                   float* __restrict best, std::uint8_t* __restrict flag, long begin, long end) {
+/// G consecutive stencil points p[0, G) with the same taps for cells [begin, end) of a row: each
+/// point's slope max-ed into `best` in order, `flag` set where a tap is nodata (NaN). With G > 1
+/// the taps' differences are taken once and `best` and `flag` read and written once for the G
+/// (the quarter-cell points of a near field's first steps share a cell's four corners three or
+/// four at a time); each point's operations are those of G = 1, so the bits are too.
+template <int Taps, int G = 1>
+void nearPointRow(const float* __restrict h0, const float* __restrict t0, const float* __restrict t1,
+                  const float* __restrict t2, const float* __restrict t3, const NearPoint* p,
+                  float* __restrict best, std::uint8_t* __restrict flag, long begin, long end) {
     float w[G][4], invD[G], drop[G];
     for (int g = 0; g < G; ++g) {
         for (int k = 0; k < 4; ++k) w[g][k] = p[g].weight[k];
@@ -1269,12 +1261,7 @@ void nearPointsRow(const float* __restrict h0, const float* __restrict t0, const
         float b = best[i];
         bool nan = false;
         for (int g = 0; g < G; ++g) {
-            float v = w[g][0] * d0;
-            v = std::fma(w[g][1], d1, v);
-            if constexpr (Taps == 4) {
-                v = std::fma(w[g][2], d2, v);
-                v = std::fma(w[g][3], d3, v);
-            }
+            const float v = nearPointRise<Taps>(w[g], d0, d1, d2, d3);
             const float slope = std::fma(v, invD[g], -drop[g]);
             nan |= v != v;
             b = slope > b ? slope : b;
@@ -1284,33 +1271,32 @@ void nearPointsRow(const float* __restrict h0, const float* __restrict t0, const
     }
 }
 
-/// Two consecutive stencil points with taps of their own (a and b) for cells [begin, end) of a
-/// row: each as nearPointRow makes it, a then b (the same bits), the cell's height, `best` and
+/// Two consecutive stencil points with taps of their own (ta, tb) for cells [begin, end) of a
+/// row: each as nearPointRow makes it, pa then pb (the same bits), the cell's height, `best` and
 /// `flag` read and written once for the two. Most of a surface model's points are grid-line
 /// crossings of two taps each, none sharing them.
 template <int Taps>
-void nearPointPairRow(const float* __restrict h0, const float* __restrict a0, const float* __restrict a1,
-                      const float* __restrict a2, const float* __restrict a3, const float* __restrict b0,
-                      const float* __restrict b1, const float* __restrict b2, const float* __restrict b3,
+void nearPointPairRow(const float* __restrict h0, const float* const* ta, const float* const* tb,
                       const NearPoint& pa, const NearPoint& pb, float* __restrict best,
                       std::uint8_t* __restrict flag, long begin, long end) {
-    const float wa0 = pa.weight[0], wa1 = pa.weight[1], wa2 = pa.weight[2], wa3 = pa.weight[3];
-    const float wb0 = pb.weight[0], wb1 = pb.weight[1], wb2 = pb.weight[2], wb3 = pb.weight[3];
-    const float invDa = pa.invDistance, dropA = pa.drop, invDb = pb.invDistance, dropB = pb.drop;
+    const float* __restrict a0 = ta[0];
+    const float* __restrict a1 = ta[1];
+    const float* __restrict a2 = ta[2];
+    const float* __restrict a3 = ta[3];
+    const float* __restrict b0 = tb[0];
+    const float* __restrict b1 = tb[1];
+    const float* __restrict b2 = tb[2];
+    const float* __restrict b3 = tb[3];
+    const float* wa = pa.weight;
+    const float* wb = pb.weight;
     for (long i = begin; i < end; ++i) {
         const float h = h0[i];
-        float va = wa0 * (a0[i] - h);
-        va = std::fma(wa1, a1[i] - h, va);
-        float vb = wb0 * (b0[i] - h);
-        vb = std::fma(wb1, b1[i] - h, vb);
-        if constexpr (Taps == 4) {
-            va = std::fma(wa2, a2[i] - h, va);
-            va = std::fma(wa3, a3[i] - h, va);
-            vb = std::fma(wb2, b2[i] - h, vb);
-            vb = std::fma(wb3, b3[i] - h, vb);
-        }
-        const float slopeA = std::fma(va, invDa, -dropA);
-        const float slopeB = std::fma(vb, invDb, -dropB);
+        const float va = nearPointRise<Taps>(wa, a0[i] - h, a1[i] - h, Taps == 4 ? a2[i] - h : 0.0f,
+                                             Taps == 4 ? a3[i] - h : 0.0f);
+        const float vb = nearPointRise<Taps>(wb, b0[i] - h, b1[i] - h, Taps == 4 ? b2[i] - h : 0.0f,
+                                             Taps == 4 ? b3[i] - h : 0.0f);
+        const float slopeA = std::fma(va, pa.invDistance, -pa.drop);
+        const float slopeB = std::fma(vb, pb.invDistance, -pb.drop);
         float b = best[i];
         b = slopeA > b ? slopeA : b;
         b = slopeB > b ? slopeB : b;
@@ -1383,9 +1369,12 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     std::uint8_t* __restrict flag = bad.data();
     // Runs `pass` for point p with its taps' rows and its tap count as a constant (on a grid line
     // the taps with weight are the first two).
+    const auto tapsOf = [&](const NearPoint& p, const float** tap) {
+        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
+    };
     const auto pointPass = [&](const NearPoint& p, auto&& pass) {
         const float* tap[4];
-        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
+        tapsOf(p, tap);
         if (p.taps == 2) {
             pass(std::integral_constant<int, 2>{}, tap);
         } else {
@@ -1405,9 +1394,6 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         while (next < stencil.size() && next - q < 4 && sameTaps(stencil[q], stencil[next])) ++next;
         return next;
     };
-    const auto tapsOf = [&](const NearPoint& p, const float** tap) {
-        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
-    };
     for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
         next = groupEnd(q);
         // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
@@ -1421,33 +1407,30 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
             const NearPoint& pb = stencil[next];
             const long beginB = ranges[next].first, endB = ranges[next].second;
             const long both0 = std::max(begin, beginB), both1 = std::max(both0, std::min(end, endB));
-            const float* ta[4];
-            const float* tb[4];
-            tapsOf(p, ta);
-            tapsOf(pb, tb);
-            const auto single = [&](const NearPoint& pt, const float* const* tp, long b0, long b1) {
+            // One point alone on [b0, b1).
+            const auto single = [&](const NearPoint& pt, long b0, long b1) {
                 if (b0 >= b1) return;
-                if (pt.taps == 2) {
-                    nearPointRow<2>(h0, tp[0], tp[1], tp[2], tp[3], pt, best, flag, b0, b1);
-                } else {
-                    nearPointRow<4>(h0, tp[0], tp[1], tp[2], tp[3], pt, best, flag, b0, b1);
-                }
+                pointPass(pt, [&](auto taps, const float* const* tap) {
+                    nearPointRow<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], &pt, best, flag, b0, b1);
+                });
             };
             // Cells before the shared range, then the shared range, then after it: a cell's
             // points still come a then b.
-            single(p, ta, begin, std::min(end, both0));
-            single(pb, tb, beginB, std::min(endB, both0));
+            single(p, begin, std::min(end, both0));
+            single(pb, beginB, std::min(endB, both0));
             if (both0 < both1) {
+                const float* ta[4];
+                const float* tb[4];
+                tapsOf(p, ta);
+                tapsOf(pb, tb);
                 if (p.taps == 2) {
-                    nearPointPairRow<2>(h0, ta[0], ta[1], ta[2], ta[3], tb[0], tb[1], tb[2], tb[3], p, pb, best, flag,
-                                        both0, both1);
+                    nearPointPairRow<2>(h0, ta, tb, p, pb, best, flag, both0, both1);
                 } else {
-                    nearPointPairRow<4>(h0, ta[0], ta[1], ta[2], ta[3], tb[0], tb[1], tb[2], tb[3], p, pb, best, flag,
-                                        both0, both1);
+                    nearPointPairRow<4>(h0, ta, tb, p, pb, best, flag, both0, both1);
                 }
             }
-            single(p, ta, std::max(begin, both1), end);
-            single(pb, tb, std::max(beginB, both1), endB);
+            single(p, std::max(begin, both1), end);
+            single(pb, std::max(beginB, both1), endB);
             next = next + 1;
             continue;
         }
@@ -1455,10 +1438,10 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         pointPass(p, [&](auto taps, const float* const* tap) {
             constexpr int kTaps = decltype(taps)::value;
             switch (group) {
-            case 1: nearPointRow<kTaps>(h0, tap[0], tap[1], tap[2], tap[3], p, best, flag, begin, end); break;
-            case 2: nearPointsRow<kTaps, 2>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            case 3: nearPointsRow<kTaps, 3>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            default: nearPointsRow<kTaps, 4>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 1: nearPointRow<kTaps>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 2: nearPointRow<kTaps, 2>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 3: nearPointRow<kTaps, 3>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            default: nearPointRow<kTaps, 4>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
             }
         });
     }
