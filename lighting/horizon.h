@@ -197,6 +197,16 @@ HorizonMap sweepHorizon(const Terrain& terrain, const HorizonParams& params,
 /// many (sky and aperture directions, sun frames) so each sweep refills memory already mapped.
 struct SweepBuffers {
     Grid<float> planeB;
+    /// A bitmap of the terrain's valid cells for one scan orientation (X-major or Y-major lines),
+    /// built by the first sweep that needs it and kept for the next sweeps of the same heights
+    /// grid (the same data, width and height): callers that share buffers between sweeps must
+    /// not change the heights in between.
+    struct ValidBits {
+        const float* heights = nullptr;
+        std::size_t width = 0, height = 0;
+        std::vector<std::uint64_t> words;  // empty when every cell is valid
+    };
+    ValidBits validBits[2];  // [0]: X-major lines, [1]: Y-major
 };
 
 /// sweepHorizon() writing into `out` (resized to the terrain if its shape differs) and reusing

@@ -8,8 +8,10 @@
 #include "src/parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <numbers>
@@ -624,10 +626,86 @@ inline double lineDistance(const LineGeometry& geo, double edgeArc, double y, lo
 
 /// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
 /// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
+std::uint64_t lowBits(std::size_t n) { return n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1; }
+
+/// Bit j % 64 of out[m] for the cells m of a row (X-major lines: minor index j is the row).
+void setRowBits(std::uint64_t* __restrict out, const float* __restrict row, std::size_t width, unsigned bit) {
+    for (std::size_t m = 0; m < width; ++m) out[m] |= static_cast<std::uint64_t>(row[m] == row[m]) << bit;
+}
+
+/// Bits 0..n-1 for cells 0..n-1 of a run along a row (Y-major lines: minor index j is the column).
+std::uint64_t rowRunBits(const float* __restrict row, std::size_t n) {
+    std::uint64_t w = 0;
+    for (std::size_t j = 0; j < n; ++j) w |= static_cast<std::uint64_t>(row[j] == row[j]) << j;
+    return w;
+}
+
+/// Which of a terrain's cells hold a height, one bit each, laid out along one scan orientation:
+/// the cells a block of lines meets at one step (one major index, consecutive minor indices) are
+/// one or two words, where the heights are a cell a row apart (X-major lines: a column). Half
+/// of a coastal tile is sea: its steps are told by this test, without reading their heights.
+/// Bit (m, j) is at words[(j / 64) * majorSize + m] (a step's words next to the next step's);
+/// no words when every cell is valid. Indices are the terrain's (major - majorLo, minor - minorLo).
+class ValidCells {
+public:
+    /// The bitmap of `bits`, built first unless it is this terrain's heights grid's.
+    ValidCells(const Terrain& t, bool xMajor, int threads, SweepBuffers::ValidBits& bits)
+        : majorSize_(xMajor ? t.width() : t.height()) {
+        if (bits.heights != t.heightsM.data() || bits.width != t.width() || bits.height != t.height()) {
+            build(t, xMajor, threads, bits.words);
+            bits.heights = t.heightsM.data();
+            bits.width = t.width();
+            bits.height = t.height();
+        }
+        words_ = bits.words.empty() ? nullptr : bits.words.data();
+    }
+    /// Whether any of cells j0..j1 (inclusive, j0 <= j1) at major index m holds a height.
+    bool any(long m, long j0, long j1) const {
+        if (!words_) return true;
+        const auto at = [&](long j) {
+            return words_[static_cast<std::size_t>(j / 64) * majorSize_ + static_cast<std::size_t>(m)];
+        };
+        const long w0 = j0 / 64, w1 = j1 / 64;
+        if (w0 == w1) return (at(j0) >> (j0 % 64)) & lowBits(static_cast<std::size_t>(j1 - j0 + 1));
+        if (at(j0) >> (j0 % 64)) return true;
+        for (long w = w0 + 1; w < w1; ++w)
+            if (at(w * 64)) return true;
+        return at(j1) & lowBits(static_cast<std::size_t>(j1 % 64 + 1));
+    }
+
+private:
+    void build(const Terrain& t, bool xMajor, int threads, std::vector<std::uint64_t>& words) const {
+        const std::size_t W = t.width(), H = t.height();
+        const std::size_t minorSize = xMajor ? H : W, groups = (minorSize + 63) / 64;
+        words.assign(groups * majorSize_, 0);
+        std::atomic<bool> anyVoid{false};
+        parallelFor(0, groups, threads, [&](std::size_t g) {
+            std::uint64_t* out = words.data() + g * majorSize_;
+            const std::size_t j0 = g * 64, n = std::min<std::size_t>(64, minorSize - j0);
+            const std::uint64_t full = lowBits(n);
+            bool voids = false;
+            if (xMajor) {
+                for (std::size_t j = j0; j < j0 + n; ++j) setRowBits(out, t.heightsM.rowPtr(j), W, static_cast<unsigned>(j % 64));
+                for (std::size_t m = 0; m < W && !voids; ++m) voids = out[m] != full;
+            } else {
+                for (std::size_t m = 0; m < H; ++m) {
+                    out[m] = rowRunBits(t.heightsM.rowPtr(m) + j0, n);
+                    voids = voids || out[m] != full;
+                }
+            }
+            if (voids) anyVoid = true;
+        });
+        if (!anyVoid) words.clear();
+    }
+
+    std::size_t majorSize_;
+    const std::uint64_t* words_ = nullptr;
+};
+
 template <bool XMajor, bool Limited>
 void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
                 long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
-                RangeLog* logs) {
+                RangeLog* logs, const ValidCells& valid) {
     const std::size_t W = t.width();
     const float* H = t.heightsM.data();
     // With a near field a line also takes a point where it crosses a grid line between steps.
@@ -646,6 +724,12 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     auto index = [W, mLo, nLo](long m, long j) {
         return XMajor ? static_cast<std::size_t>(j - nLo) * W + static_cast<std::size_t>(m - mLo)
                       : static_cast<std::size_t>(m - mLo) * W + static_cast<std::size_t>(j - nLo);
+    };
+    // Whether any of minor indices j0..j1 at step m (clipped to the terrain) holds a height.
+    auto heightsAt = [&valid, mLo, nLo, nHi](long m, long j0, long j1) {
+        j0 = std::max(j0, nLo);
+        j1 = std::min(j1, nHi - 1);
+        return j0 <= j1 && valid.any(m - mLo, j0 - nLo, j1 - nLo);
     };
 
     // A block serves window cells only where one of its lines is within a cell of the window's
@@ -681,6 +765,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     auto serveDelayed = [&](long mc) {
         if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
         const long baseC = geo.base[static_cast<std::size_t>(mc)];
+        // Nodata cells are not served: a step of only those has nothing to do.
+        if (!heightsAt(mc, kBegin + baseC, kEnd + baseC)) return;
         const double fracC = geo.frac[static_cast<std::size_t>(mc)];
         // A line's distance at this step (metres from the far edge), for either serving path.
         const auto sigmaOfLine = [&](std::size_t b, long n0) {
@@ -797,7 +883,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
             const long aheadBase = geo.base[static_cast<std::size_t>(ahead)];
             const long j0 = std::max(nLo, kBegin + aheadBase - 1);
             const long j1 = std::min(nHi - 1, kEnd + aheadBase + 1);
-            if (j0 <= j1) {
+            // (A step of only nodata cells reads and writes none of them.)
+            if (j0 <= j1 && heightsAt(ahead, j0, j1)) {
                 if constexpr (XMajor) {
                     for (long j = j0; j <= j1; ++j) {
                         __builtin_prefetch(H + index(ahead, j));
@@ -821,12 +908,13 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
             const long j0 = std::max(nLo, kBegin + servedBase - 1);
             const long j1 = std::min(nHi - 1, kEnd + servedBase + 1);
             const long stride = XMajor ? 1 : kFloatsPerCacheLine;
-            for (long j = j0; j <= j1; j += stride) {
+            const bool any = j0 <= j1 && heightsAt(servedAhead, j0, j1);
+            for (long j = j0; any && j <= j1; j += stride) {
                 __builtin_prefetch(H + index(servedAhead, j));
                 __builtin_prefetch(planeA + index(servedAhead, j), 1);
                 if (!geo.nearestLine) __builtin_prefetch(planeB + index(servedAhead, j), 1);
             }
-            if (j0 <= j1) {
+            if (any) {
                 __builtin_prefetch(H + index(servedAhead, j1));
                 __builtin_prefetch(planeA + index(servedAhead, j1), 1);
                 if (!geo.nearestLine) __builtin_prefetch(planeB + index(servedAhead, j1), 1);
@@ -841,9 +929,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // the lines only advance their distances: nothing is sampled, served or pushed. The
         // range limit's chunk bookkeeping catches up at the next valid sample, which is the same:
         // a chunk boundary crossed over nodata leaves an empty hull behind either way.
-        bool allNodata = anyInside;
-        for (long j = std::max(nLo, n0First); allNodata && j <= std::min(nHi - 1, n0Last + 1); ++j)
-            allNodata = std::isnan(H[index(m, j)]);
+        const bool allNodata = anyInside && !heightsAt(m, n0First, n0Last + 1);
         // With a near field, the far field follows the bilinear surface between steps too: where
         // the lines cross a grid line of the minor axis between the previous step and this one
         // (the same crossing for every line, at fraction tc of the step), each takes a point
@@ -857,7 +943,9 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 const long n = std::max(basePrev, base);
                 const double yPrev = static_cast<double>(basePrev) + fracPrev, yNow = static_cast<double>(base) + frac;
                 const double tc = (static_cast<double>(n) - yPrev) / (yNow - yPrev);
-                const bool bothSteps = prev >= mLo && prev < geo.majorHi;
+                // (Only nodata on both grid lines: no line takes a point.)
+                const bool bothSteps = prev >= mLo && prev < geo.majorHi &&
+                                       (heightsAt(prev, kBegin + n, kEnd - 1 + n) || heightsAt(m, kBegin + n, kEnd - 1 + n));
                 for (std::size_t b = 0; bothSteps && b < nLines; ++b) {
                     LineState& line = lines[b];
                     const long j = kBegin + static_cast<long>(b) + n;
@@ -1691,6 +1779,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
         const CellWindow& w = region.window;
+        const ValidCells valid(terrain, geo.xMajor, threads, buffers.validBits[geo.xMajor ? 0 : 1]);
         // Every served cell of plane A is written; plane B only where frac > 0, read only there.
         parallelFor(0, nBlocks, threads, [&](std::size_t blockIndex) {
             if (progress && progress->cancelled()) return;
@@ -1700,7 +1789,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
             const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
             const auto run = [&]<bool XMajor, bool Limited>() {
                 sweepBlock<XMajor, Limited>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
-                                            out.angleDeg.data(), planeB.data(), scratch, logs);
+                                            out.angleDeg.data(), planeB.data(), scratch, logs, valid);
             };
             // A range limit longer than every line (the whole DEM searched) changes nothing.
             const bool limited = std::isfinite(params.maxDistanceM) && params.maxDistanceM <= geo.spanBoundM;

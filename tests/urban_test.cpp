@@ -209,6 +209,49 @@ TEST(NearField, SweepComputesItsStatedModel) {
     }
 }
 
+TEST(NearField, StepsOverSeaAndIslandsKeepTheModel) {
+    // The sweep tells a step whose cells are all nodata from a bitmap of valid cells, one bit per
+    // cell in words of 64 along the scan's minor axis, and skips it (no samples, no serving, no
+    // prefetch). A coast with sea over half of the city and islands of one to three cells on
+    // both sides of the words' boundaries (64, 128), in the sea: every cell against
+    // the model, on and off the axes (both orientations of the bitmap), with and without a range
+    // limit, two lines and one.
+    Terrain t = smallCity();
+    Grid<float>& g = t.heightsM;
+    for (std::size_t r = 0; r < g.height(); ++r)
+        for (std::size_t c = 0; c < g.width(); ++c)
+            if (static_cast<double>(c) + 0.7 * static_cast<double>(r) > 120.0 + 10.0 * std::sin(0.15 * static_cast<double>(r)))
+                g(c, r) = kNaN;
+    for (const auto& [c, r] : {std::pair<std::size_t, std::size_t>{63, 110}, {64, 110}, {65, 110}, {127, 63}, {128, 64},
+                               {100, 63}, {100, 64}, {63, 127}, {64, 128}, {149, 129}, {128, 127}})
+        g(c, r) = 25.0f;
+    for (const auto& [D, crossings] : {std::pair{4, true}, std::pair{16, false}}) {
+        for (const double az : {0.0, 37.0, 90.0, 143.5, 225.0, 301.7}) {
+            for (const double distance : {std::numeric_limits<double>::infinity(), 40.3}) {
+                for (const bool nearest : {false, true}) {
+                    HorizonParams p = flat(az, D);
+                    p.maxDistanceM = distance;
+                    p.nearestLine = nearest;
+                    p.farFieldCrossings = crossings;
+                    const HorizonMap s = sweepHorizon(t, p);
+                    double worst = 0;
+                    for (std::size_t r = 0; r < t.height(); ++r) {
+                        for (std::size_t c = 0; c < t.width(); ++c) {
+                            if (!t.valid(c, r)) {
+                                ASSERT_TRUE(std::isnan(s.angleDeg(c, r)));
+                                continue;
+                            }
+                            worst = std::max(worst, std::abs(s.angleDeg(c, r) - modelHorizonDeg(t, p, c, r)));
+                        }
+                    }
+                    EXPECT_LT(worst, 2e-3) << "D " << D << " az " << az << " distance " << distance
+                                           << (nearest ? " nearest line" : " two lines");
+                }
+            }
+        }
+    }
+}
+
 TEST(NearField, OnTheGridAxesTheUndelayedSweepGivesTheDelayedOnesModel) {
     // Along a grid axis the sweep serves each cell from its own line's hull as the walk reaches
     // it, and the stencil keeps only the near field's points between cell centres (makeGeometry,
