@@ -1425,6 +1425,15 @@ void nearPointRowReweighted(const float* __restrict h0, const float* __restrict 
 /// the cell's own, fused multiply-adds in a fixed order, so a cell gets the same bits whichever
 /// tile it is in); cells next to voids take the reference's rule on the same taps, and the points
 /// of cells near the DEM's edge whose taps leave it take nearFieldAt's.
+/// The cells [first, last] of a row's n heights that hold a height, as [first, last + 1): the
+/// runs of nodata at the row's ends (a coastal DEM's sea) left out; empty where all are nodata.
+std::pair<long, long> validSpan(const float* h, long n) {
+    long v0 = 0, v1 = n;
+    while (v0 < v1 && std::isnan(h[v0])) ++v0;
+    while (v1 > v0 && std::isnan(h[v1 - 1])) --v1;
+    return {v0, v1};
+}
+
 void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t row,
                   const CellWindow& w, const std::vector<NearPoint>& stencil, std::vector<float>& out,
                   std::vector<std::uint8_t>& bad) {
@@ -1438,21 +1447,25 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     ranges.resize(stencil.size());
     const long r = static_cast<long>(row - cells.row0);
     const long c0 = static_cast<long>(w.col0 - cells.col0);
+    const float* H = t.heightsM.data();
+    const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
+    // Nodata cells have no horizon (the combine keeps their NaN whatever the near field is): the
+    // ranges leave out the row's runs of them at both ends (a coastal DEM's sea). The valid
+    // cells keep their ranges, and so their points and edge rules.
+    const auto [valid0, valid1] = validSpan(h0, colsL);
     long fastBegin = 0, fastEnd = colsL;
     for (std::size_t q = 0; q < stencil.size(); ++q) {
         const NearPoint& p = stencil[q];
         const long dcMin = *std::min_element(p.tapCol, p.tapCol + 4), dcMax = *std::max_element(p.tapCol, p.tapCol + 4);
         const long drMin = *std::min_element(p.tapRow, p.tapRow + 4), drMax = *std::max_element(p.tapRow, p.tapRow + 4);
         const bool rowsInside = r + drMin >= 0 && r + drMax < static_cast<long>(t.height());
-        const long begin = rowsInside ? std::clamp(-dcMin - c0, 0L, colsL) : colsL;
-        const long end = rowsInside ? std::clamp(static_cast<long>(W) - dcMax - c0, begin, colsL) : begin;
+        const long begin = rowsInside ? std::clamp(-dcMin - c0, valid0, valid1) : valid1;
+        const long end = rowsInside ? std::clamp(static_cast<long>(W) - dcMax - c0, begin, valid1) : begin;
         ranges[q] = {begin, end};
         fastBegin = std::max(fastBegin, begin);
         fastEnd = std::min(fastEnd, end);
     }
     fastEnd = std::max(fastEnd, fastBegin);
-    const float* H = t.heightsM.data();
-    const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
     float* __restrict best = out.data();
     std::uint8_t* __restrict flag = bad.data();
     // Runs `pass` for point p with its taps' rows and its tap count as a constant (on a grid line
@@ -1638,26 +1651,34 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
         nearFieldRow(terrain, g, terrainCells, row, w, stencil, nearSlopes, bad);
         near = nearSlopes.data();
     }
+    // Plane A stays NaN at nodata cells (never served): the runs of them at the row's ends are
+    // left so (a coastal DEM's sea).
+    const auto [valid0, valid1] = validSpan(terrain.heightsM.data() + offset, static_cast<long>(cols));
+    const auto first = static_cast<std::size_t>(valid0), span = static_cast<std::size_t>(valid1 - valid0);
+    if (near) near += first;
+    planeA += first;
+    planeB += first;
     if (geo.nearestLine) {
         // One line per cell: plane A holds the tangents.
         const float none = -std::numeric_limits<float>::infinity();
         float* a = planeA + offset;
-        for (std::size_t i = 0; i < cols; ++i) {
+        for (std::size_t i = 0; i < span; ++i) {
             float slope = a[i];
             if (near) slope = near[i] > slope ? near[i] : slope;
             const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
             a[i] = slope == none ? static_cast<float>(kNoHorizonDeg) : angle;
         }
     } else if (geo.xMajor) {
+        const double* fracs = geo.frac.data() + w.col0 + first;
         if (near) {
-            combineTwoLines<true, true>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, near, cols);
+            combineTwoLines<true, true>(planeA + offset, planeB + offset, fracs, 0.0, near, span);
         } else {
-            combineTwoLines<true, false>(planeA + offset, planeB + offset, geo.frac.data() + w.col0, 0.0, near, cols);
+            combineTwoLines<true, false>(planeA + offset, planeB + offset, fracs, 0.0, near, span);
         }
     } else if (near) {
-        combineTwoLines<false, true>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, cols);
+        combineTwoLines<false, true>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, span);
     } else {
-        combineTwoLines<false, false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, cols);
+        combineTwoLines<false, false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, span);
     }
 }
 
