@@ -76,8 +76,11 @@ DisplayBytes::DisplayBytes(const PreviewParams& p) {
 }
 
 std::uint8_t DisplayBytes::operator()(double linear) const {
-    return static_cast<std::uint8_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), linear) -
-                                     thresholds_.begin());
+    // std::upper_bound's answer (the thresholds not above `linear`; all 255 for NaN) without its
+    // unpredictable branches: eight halvings of a fixed width, each a compare and an add.
+    std::size_t i = 0;
+    for (std::size_t step = 128; step > 0; step /= 2) i += linear < thresholds_[i + step - 1] ? 0 : step;
+    return static_cast<std::uint8_t>(i);
 }
 
 Rgb toDisplay(const Rgb& x, const PreviewParams& p) {

@@ -125,6 +125,13 @@ TEST(PreviewRig, DisplayBytesMatchGammaAndRounding) {
         EXPECT_GE(exact, total - 2) << exposure << " " << gamma;
         EXPECT_EQ(bytes(0.0), 0);
         EXPECT_EQ(bytes(1e9), 255);
+        // Exactly at each step (the header's thresholds ((k + 1/2) / 255)^gamma / exposure): the
+        // byte is k + 1 there and k just below, as upper_bound over the thresholds gives.
+        for (int k = 0; k < 255; ++k) {
+            const double t = std::pow((k + 0.5) / 255.0, gamma) / exposure;
+            ASSERT_EQ(bytes(t), k + 1) << k;
+            ASSERT_EQ(bytes(std::nextafter(t, 0.0)), k) << k;
+        }
     }
 }
 
