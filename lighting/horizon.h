@@ -204,7 +204,7 @@ struct SweepBuffers {
     struct ValidBits {
         const float* heights = nullptr;
         std::size_t width = 0, height = 0;
-        std::vector<std::uint64_t> words;  // empty when every cell is valid
+        std::vector<std::uint64_t> words;  // empty where few cells are nodata (not worth a bitmap)
     };
     ValidBits validBits[2];  // [0]: X-major lines, [1]: Y-major
 };
