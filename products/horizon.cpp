@@ -49,9 +49,16 @@ HorizonResult computeHorizons(const Dem& dem, const ScenePlan& plan, const Horiz
     meta.insert({{"DEMLIGHT_METHOD", horizonMethodName(request.method)}, {"DEMLIGHT_AZIMUTHS_DEG", azimuthList}});
     HorizonResult out{makeResult(dem, "horizon", meta), makeResult(dem, "horizon", meta), params.maxDistanceM};
     out.truncation.flagNodata = kTruncationMaskNodata;
+    // Shared by the directions' sweeps: scratch planes, and the bitmap of valid cells.
+    SweepBuffers buffers;
     for (double az : request.azimuthsDeg) {
         params.azimuthDeg = az;
-        HorizonMap map = reference ? referenceHorizon(t, params, &counter) : sweepHorizon(t, params, &counter);
+        HorizonMap map;
+        if (reference) {
+            map = referenceHorizon(t, params, &counter);
+        } else {
+            sweepHorizonInto(t, params, map, buffers, &counter);
+        }
         // The mask says nothing at DEM voids.
         const float* h = t.heightsM.data();
         std::uint8_t* flag = map.truncated.data();
