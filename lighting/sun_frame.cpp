@@ -136,7 +136,7 @@ const char* sunSweepStrategyName(SunSweepStrategy s) {
 }
 
 SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
-                         const SunFrameParams& params, ProgressCounter* progress) {
+                         const SunFrameParams& params, ProgressCounter* progress, SweepBuffers* sharedBuffers) {
     SunFrame frame;
     const float nan = std::numeric_limits<float>::quiet_NaN();
     frame.light.visibility = Grid<float>(t.width(), t.height(), nan);
@@ -220,7 +220,8 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     }
     frame.strategy = fixedSweeps.empty() ? SunSweepStrategy::Following : SunSweepStrategy::Interpolating;
     std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
-    SweepBuffers buffers;
+    SweepBuffers ownBuffers;
+    SweepBuffers& buffers = sharedBuffers ? *sharedBuffers : ownBuffers;
     std::erase_if(fixedSweeps, [](const FixedSweep& sweep) { return !sweep.params.window; });
     if (frame.strategy == SunSweepStrategy::Following) {
         frame.sweepRegions = sweepHorizonInto(t, hp, horizons[0], buffers, progress);

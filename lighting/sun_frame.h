@@ -126,8 +126,11 @@ double sunSearchDistanceM(const Terrain& terrain, double lowestSunElevationDeg,
 /// over the cells they bracket, interpolated linearly in azimuth per cell. The tolerance is
 /// params.directionToleranceDeg, or when that is 0, one cell of sideways drift at the sun's search
 /// distance (sunSearchDistanceM: no shadow is cast from farther). When the sun's upper limb is
-/// below the horizon everywhere, every valid cell gets 0 without any sweep.
+/// below the horizon everywhere, every valid cell gets 0 without any sweep. `buffers`: the
+/// sweeps' scratch, kept by callers that compute many frames of one terrain (see SweepBuffers);
+/// null: the frame's own.
 SunFrame computeSunFrame(const Terrain& terrain, const Normals& normals, const SunField& field,
-                         const SunFrameParams& params, ProgressCounter* progress = nullptr);
+                         const SunFrameParams& params, ProgressCounter* progress = nullptr,
+                         SweepBuffers* buffers = nullptr);
 
 }  // namespace demlight

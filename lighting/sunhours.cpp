@@ -104,6 +104,7 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
     out.firstLitClock = Grid<float>(w, h, nan);
     out.lastLitClock = Grid<float>(w, h, nan);
 
+    SweepBuffers buffers;  // the instants' sweeps' scratch and valid-cell bitmap
     for (std::size_t i = 0; i < instants.size(); ++i) {
         // Trapezoid weights (hours): half the neighbouring intervals.
         const double before = i > 0 ? instants[i].hours - instants[i - 1].hours : 0.0;
@@ -117,7 +118,7 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
                 frame.light = sunLightFromStack(t, normals, *params.stack, field, params.frame.sunDiameterDeg,
                                                 params.frame.threads);
             else
-                frame = computeSunFrame(t, normals, field, params.frame);
+                frame = computeSunFrame(t, normals, field, params.frame, nullptr, &buffers);
             ++out.instantsSwept;
         }
         const double clock = instants[i].clockHours;

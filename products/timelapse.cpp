@@ -231,6 +231,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
     }
     const std::string method =
         request.stackDirections > 0 ? "sweep, interpolated:" + std::to_string(request.stackDirections) : "sweep";
+    SweepBuffers buffers;  // the frames' sweeps' scratch and valid-cell bitmap
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = instants[i];
         // The whole DEM's sun, read by this window (SunField::onTile): the same bits on its cells.
@@ -244,7 +245,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
             counter.advance(t.heightsM.size());
             out.sunUp = field.elevationRange().second > -request.sunDiameterDeg / 2;
         } else {
-            frame = computeSunFrame(t, normals, field, sp, &counter);
+            frame = computeSunFrame(t, normals, field, sp, &counter, &buffers);
             out.sunUp = frame.sweepRegions > 0;
         }
         counter.throwIfCancelled();
