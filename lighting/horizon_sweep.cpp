@@ -1670,13 +1670,12 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
     // left so (a coastal DEM's sea).
     const auto [valid0, valid1] = validSpan(terrain.heightsM.data() + offset, static_cast<long>(cols));
     const auto first = static_cast<std::size_t>(valid0), span = static_cast<std::size_t>(valid1 - valid0);
+    const std::size_t at = offset + first;  // (plane B is empty, null, with one line per cell)
     if (near) near += first;
-    planeA += first;
-    planeB += first;
     if (geo.nearestLine) {
         // One line per cell: plane A holds the tangents.
         const float none = -std::numeric_limits<float>::infinity();
-        float* a = planeA + offset;
+        float* a = planeA + at;
         for (std::size_t i = 0; i < span; ++i) {
             float slope = a[i];
             if (near) slope = near[i] > slope ? near[i] : slope;
@@ -1686,14 +1685,14 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
     } else if (geo.xMajor) {
         const double* fracs = geo.frac.data() + w.col0 + first;
         if (near) {
-            combineTwoLines<true, true>(planeA + offset, planeB + offset, fracs, 0.0, near, span);
+            combineTwoLines<true, true>(planeA + at, planeB + at, fracs, 0.0, near, span);
         } else {
-            combineTwoLines<true, false>(planeA + offset, planeB + offset, fracs, 0.0, near, span);
+            combineTwoLines<true, false>(planeA + at, planeB + at, fracs, 0.0, near, span);
         }
     } else if (near) {
-        combineTwoLines<false, true>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, span);
+        combineTwoLines<false, true>(planeA + at, planeB + at, nullptr, geo.frac[row], near, span);
     } else {
-        combineTwoLines<false, false>(planeA + offset, planeB + offset, nullptr, geo.frac[row], near, span);
+        combineTwoLines<false, false>(planeA + at, planeB + at, nullptr, geo.frac[row], near, span);
     }
 }
 
