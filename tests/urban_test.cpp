@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <iostream>
 #include <limits>
 #include <iterator>
@@ -175,57 +176,11 @@ Terrain smallCity() {
     return makeUniformTerrain(std::move(g), 1.0);
 }
 
-TEST(NearField, SweepComputesItsStatedModel) {
-    // Every cell of a city with walls, a void and the DEM's edges, at azimuths on and off the
-    // axes, with and without a range limit (40.3 m: chunks begin within the near field of some
-    // cells), two lines and one: the sweep's delayed hull queries, range passes and near-field
-    // loops against the model computed cell by cell.
-    const Terrain t = smallCity();
-    for (const auto& [D, crossings] : {std::pair{4, true}, std::pair{4, false}, std::pair{16, true}, std::pair{16, false}}) {
-        for (const double az : {0.0, 37.0, 90.0, 143.5, 225.0, 301.7}) {
-            for (const double distance : {std::numeric_limits<double>::infinity(), 40.3}) {
-                for (const bool nearest : {false, true}) {
-                    HorizonParams p = flat(az, D);
-                    p.maxDistanceM = distance;
-                    p.nearestLine = nearest;
-                    p.farFieldCrossings = crossings;
-                    const HorizonMap s = sweepHorizon(t, p);
-                    double worst = 0;
-                    for (std::size_t r = 0; r < t.height(); ++r) {
-                        for (std::size_t c = 0; c < t.width(); ++c) {
-                            if (!t.valid(c, r)) {
-                                ASSERT_TRUE(std::isnan(s.angleDeg(c, r)));
-                                continue;
-                            }
-                            const double dd = std::abs(s.angleDeg(c, r) - modelHorizonDeg(t, p, c, r));
-                            worst = std::max(worst, dd);
-                        }
-                    }
-                    EXPECT_LT(worst, 2e-3) << "D " << D << (crossings ? "" : " without crossings") << " az " << az << " distance " << distance
-                                           << (nearest ? " nearest line" : " two lines");
-                }
-            }
-        }
-    }
-}
-
-TEST(NearField, StepsOverSeaAndIslandsKeepTheModel) {
-    // The sweep tells a step whose cells are all nodata from a bitmap of valid cells, one bit per
-    // cell in words of 64 along the scan's minor axis, and skips it (no samples, no serving, no
-    // prefetch). A coast with sea over half of the city and islands of one to three cells on
-    // both sides of the words' boundaries (64, 128), in the sea: every cell against
-    // the model, on and off the axes (both orientations of the bitmap), with and without a range
-    // limit, two lines and one.
-    Terrain t = smallCity();
-    Grid<float>& g = t.heightsM;
-    for (std::size_t r = 0; r < g.height(); ++r)
-        for (std::size_t c = 0; c < g.width(); ++c)
-            if (static_cast<double>(c) + 0.7 * static_cast<double>(r) > 120.0 + 10.0 * std::sin(0.15 * static_cast<double>(r)))
-                g(c, r) = kNaN;
-    for (const auto& [c, r] : {std::pair<std::size_t, std::size_t>{63, 110}, {64, 110}, {65, 110}, {127, 63}, {128, 64},
-                               {100, 63}, {100, 64}, {63, 127}, {64, 128}, {149, 129}, {128, 127}})
-        g(c, r) = 25.0f;
-    for (const auto& [D, crossings] : {std::pair{4, true}, std::pair{16, false}}) {
+/// Every cell of `t` against the model (within 2e-3 deg; NaN at nodata), for each near field
+/// (steps, crossings) at azimuths on and off the axes, with and without a range limit (40.3 m:
+/// chunks begin within the near field of some cells), two lines and one.
+void expectSweepGivesTheModel(const Terrain& t, std::initializer_list<std::pair<int, bool>> nearFields) {
+    for (const auto& [D, crossings] : nearFields) {
         for (const double az : {0.0, 37.0, 90.0, 143.5, 225.0, 301.7}) {
             for (const double distance : {std::numeric_limits<double>::infinity(), 40.3}) {
                 for (const bool nearest : {false, true}) {
@@ -244,12 +199,36 @@ TEST(NearField, StepsOverSeaAndIslandsKeepTheModel) {
                             worst = std::max(worst, std::abs(s.angleDeg(c, r) - modelHorizonDeg(t, p, c, r)));
                         }
                     }
-                    EXPECT_LT(worst, 2e-3) << "D " << D << " az " << az << " distance " << distance
-                                           << (nearest ? " nearest line" : " two lines");
+                    EXPECT_LT(worst, 2e-3) << "D " << D << (crossings ? "" : " without crossings") << " az " << az
+                                           << " distance " << distance << (nearest ? " nearest line" : " two lines");
                 }
             }
         }
     }
+}
+
+TEST(NearField, SweepComputesItsStatedModel) {
+    // A city with walls, a void and the DEM's edges: the sweep's delayed hull queries, range
+    // passes and near-field loops against the model computed cell by cell.
+    expectSweepGivesTheModel(smallCity(), {{4, true}, {4, false}, {16, true}, {16, false}});
+}
+
+TEST(NearField, StepsOverSeaAndIslandsKeepTheModel) {
+    // The sweep tells a step whose cells are all nodata from a bitmap of valid cells, one bit per
+    // cell in words of 64 along the scan's minor axis, and skips it (no samples, no serving, no
+    // prefetch). A coast with sea over half of the city and islands of one to three cells on
+    // both sides of the words' boundaries (64, 128), in the sea: every cell against the model,
+    // on and off the axes (both orientations of the bitmap).
+    Terrain t = smallCity();
+    Grid<float>& g = t.heightsM;
+    for (std::size_t r = 0; r < g.height(); ++r)
+        for (std::size_t c = 0; c < g.width(); ++c)
+            if (static_cast<double>(c) + 0.7 * static_cast<double>(r) > 120.0 + 10.0 * std::sin(0.15 * static_cast<double>(r)))
+                g(c, r) = kNaN;
+    for (const auto& [c, r] : {std::pair<std::size_t, std::size_t>{63, 110}, {64, 110}, {65, 110}, {127, 63}, {128, 64},
+                               {100, 63}, {100, 64}, {63, 127}, {64, 128}, {149, 129}, {128, 127}})
+        g(c, r) = 25.0f;
+    expectSweepGivesTheModel(t, {{4, true}, {16, false}});
 }
 
 TEST(NearField, OnTheGridAxesTheUndelayedSweepGivesTheDelayedOnesModel) {
