@@ -678,10 +678,10 @@ public:
     }
 
 private:
-    /// The bitmap is kept where at least this share of the cells is nodata. Its tests cost a few
-    /// per cent where voids are scattered and few steps of a block meet only nodata (the dune
-    /// edge's 5 %: 51.4 -> 52.9 ns at 37 deg); on the half-sea N48W125 tile they save 9 %.
-    /// Below it the sweep reads a step's heights until it finds one, as before.
+    /// The bitmap is kept where at least this share of the cells is nodata: where voids are few
+    /// and scattered, few steps of a block meet only nodata, and its extra tests (serving,
+    /// prefetching) cost more than they skip (measured: docs/performance.md, "Sea and other
+    /// large voids skipped"). Below it the sweep reads a step's heights until it finds one.
     static constexpr double kBitmapVoidShare = 0.1;
 
     void build(const Terrain& t, bool xMajor, int threads, std::vector<std::uint64_t>& words) const {
