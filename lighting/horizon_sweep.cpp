@@ -625,8 +625,7 @@ inline double lineDistance(const LineGeometry& geo, double edgeArc, double y, lo
     return std::abs(arcAt(geo, y) - edgeArc) * geo.invAbsSlope;
 }
 
-/// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
-/// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
+/// A word with its n lowest bits set (all 64 for n >= 64).
 std::uint64_t lowBits(std::size_t n) { return n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1; }
 
 /// Bit j % 64 of out[m] for the cells m of a row (X-major lines: minor index j is the row).
@@ -709,6 +708,8 @@ private:
     const std::uint64_t* words_ = nullptr;
 };
 
+/// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
+/// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
 template <bool XMajor, bool Limited>
 void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
                 long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
@@ -960,7 +961,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 const double tc = (static_cast<double>(n) - yPrev) / (yNow - yPrev);
                 // (Only nodata on both grid lines: no line takes a point.)
                 const bool bothSteps = prev >= mLo && prev < geo.majorHi &&
-                                       (mayHaveHeights(prev, kBegin + n, kEnd - 1 + n) || mayHaveHeights(m, kBegin + n, kEnd - 1 + n));
+                                       (mayHaveHeights(prev, kBegin + n, kEnd - 1 + n) ||
+                                        mayHaveHeights(m, kBegin + n, kEnd - 1 + n));
                 for (std::size_t b = 0; bothSteps && b < nLines; ++b) {
                     LineState& line = lines[b];
                     const long j = kBegin + static_cast<long>(b) + n;
@@ -1434,12 +1436,6 @@ void nearPointRowReweighted(const float* __restrict h0, const float* __restrict 
     }
 }
 
-/// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
-/// (-inf where the near field holds no terrain). Each stencil point takes the vectorised loop
-/// over the cells whose taps for it are valid heights inside the terrain (heights relative to
-/// the cell's own, fused multiply-adds in a fixed order, so a cell gets the same bits whichever
-/// tile it is in); cells next to voids take the reference's rule on the same taps, and the points
-/// of cells near the DEM's edge whose taps leave it take nearFieldAt's.
 /// The cells [first, last] of a row's n heights that hold a height, as [first, last + 1): the
 /// runs of nodata at the row's ends (a coastal DEM's sea) left out; empty where all are nodata.
 std::pair<long, long> validSpan(const float* h, long n) {
@@ -1449,6 +1445,12 @@ std::pair<long, long> validSpan(const float* h, long n) {
     return {v0, v1};
 }
 
+/// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
+/// (-inf where the near field holds no terrain). Each stencil point takes the vectorised loop
+/// over the cells whose taps for it are valid heights inside the terrain (heights relative to
+/// the cell's own, fused multiply-adds in a fixed order, so a cell gets the same bits whichever
+/// tile it is in); cells next to voids take the reference's rule on the same taps, and the points
+/// of cells near the DEM's edge whose taps leave it take nearFieldAt's.
 void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t row,
                   const CellWindow& w, const std::vector<NearPoint>& stencil, std::vector<float>& out,
                   std::vector<std::uint8_t>& bad) {
