@@ -510,8 +510,8 @@ void limitRangePass(const RangeLog& log, double maxDistanceM, double invR, std::
         const double boundDistM = q->sigmaM - (rise >= 0.0 ? hull[0].sigmaM : hull[top - 1].sigmaM);
         float& cell = *q->cell;
         if (static_cast<float>(rise / boundDistM - q->sigmaM * invR) <= cell) continue;
-        // Slopes compared without divisions: two a step made the search a chain of divisions,
-        // 2.3 of 44.5 ns per cell and direction on the 3601^2 tile at 37 deg.
+        // Slopes compared without divisions: two a step made the search a chain of divisions
+        // (docs/performance.md, "The range pass without divisions").
         std::size_t lo = 0, hi = top - 1;
         while (lo < hi) {
             const std::size_t mid = (lo + hi) / 2;
@@ -1436,15 +1436,6 @@ void nearPointRowReweighted(const float* __restrict h0, const float* __restrict 
     }
 }
 
-/// The cells [first, last] of a row's n heights that hold a height, as [first, last + 1): the
-/// runs of nodata at the row's ends (a coastal DEM's sea) left out; empty where all are nodata.
-std::pair<long, long> validSpan(const float* h, long n) {
-    long v0 = 0, v1 = n;
-    while (v0 < v1 && std::isnan(h[v0])) ++v0;
-    while (v1 > v0 && std::isnan(h[v1 - 1])) --v1;
-    return {v0, v1};
-}
-
 /// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
 /// (-inf where the near field holds no terrain). Each stencil point takes the vectorised loop
 /// over the cells whose taps for it are valid heights inside the terrain (heights relative to
@@ -1452,8 +1443,8 @@ std::pair<long, long> validSpan(const float* h, long n) {
 /// tile it is in); cells next to voids take the reference's rule on the same taps, and the points
 /// of cells near the DEM's edge whose taps leave it take nearFieldAt's.
 void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cells, std::size_t row,
-                  const CellWindow& w, const std::vector<NearPoint>& stencil, std::vector<float>& out,
-                  std::vector<std::uint8_t>& bad) {
+                  const CellWindow& w, RowSpan heights, const std::vector<NearPoint>& stencil,
+                  std::vector<float>& out, std::vector<std::uint8_t>& bad) {
     const std::size_t cols = w.col1 - w.col0, W = t.width();
     const long colsL = static_cast<long>(cols);
     out.assign(cols, -std::numeric_limits<float>::infinity());
@@ -1467,9 +1458,9 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
     const float* H = t.heightsM.data();
     const float* h0 = H + static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0);
     // Nodata cells have no horizon (the combine keeps their NaN whatever the near field is): the
-    // ranges leave out the row's runs of them at both ends (a coastal DEM's sea). The valid
-    // cells keep their ranges, and so their points and edge rules.
-    const auto [valid0, valid1] = validSpan(h0, colsL);
+    // ranges leave out the row's runs of them at both ends, `heights` (window columns). The
+    // valid cells keep their ranges, and so their points and edge rules.
+    const auto valid0 = static_cast<long>(heights.first), valid1 = static_cast<long>(heights.end);
     long fastBegin = 0, fastEnd = colsL;
     for (std::size_t q = 0; q < stencil.size(); ++q) {
         const NearPoint& p = stencil[q];
@@ -1659,26 +1650,26 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
             for (std::size_t i = 0; i < cols; ++i) flags[i] = std::min(major, minor[i]) * stepM < maxDistanceM;
         }
     }
+    // Plane A stays NaN at nodata cells (never served): the runs of them at the row's ends are
+    // left so, here and in the near field (a coastal DEM's sea).
+    const RowSpan span = nonNanSpan(terrain.heightsM.data() + offset, cols);
     const float* near = nullptr;
     if (geo.nearSteps > 0) {
         thread_local std::vector<NearPoint> stencil;
         thread_local std::vector<float> nearSlopes;
         thread_local std::vector<std::uint8_t> bad;
         nearStencil(geo, g, row, maxDistanceM, invR, stencil);
-        nearFieldRow(terrain, g, terrainCells, row, w, stencil, nearSlopes, bad);
+        nearFieldRow(terrain, g, terrainCells, row, w, span, stencil, nearSlopes, bad);
         near = nearSlopes.data();
     }
-    // Plane A stays NaN at nodata cells (never served): the runs of them at the row's ends are
-    // left so (a coastal DEM's sea).
-    const auto [valid0, valid1] = validSpan(terrain.heightsM.data() + offset, static_cast<long>(cols));
-    const auto first = static_cast<std::size_t>(valid0), span = static_cast<std::size_t>(valid1 - valid0);
+    const std::size_t first = span.first, n = span.end - span.first;
     const std::size_t at = offset + first;  // (plane B is empty, null, with one line per cell)
     if (near) near += first;
     if (geo.nearestLine) {
         // One line per cell: plane A holds the tangents.
         const float none = -std::numeric_limits<float>::infinity();
         float* a = planeA + at;
-        for (std::size_t i = 0; i < span; ++i) {
+        for (std::size_t i = 0; i < n; ++i) {
             float slope = a[i];
             if (near) slope = near[i] > slope ? near[i] : slope;
             const float angle = static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
@@ -1687,14 +1678,14 @@ void combineRow(const LineGeometry& geo, const Terrain& terrain, const FullGridR
     } else if (geo.xMajor) {
         const double* fracs = geo.frac.data() + w.col0 + first;
         if (near) {
-            combineTwoLines<true, true>(planeA + at, planeB + at, fracs, 0.0, near, span);
+            combineTwoLines<true, true>(planeA + at, planeB + at, fracs, 0.0, near, n);
         } else {
-            combineTwoLines<true, false>(planeA + at, planeB + at, fracs, 0.0, near, span);
+            combineTwoLines<true, false>(planeA + at, planeB + at, fracs, 0.0, near, n);
         }
     } else if (near) {
-        combineTwoLines<false, true>(planeA + at, planeB + at, nullptr, geo.frac[row], near, span);
+        combineTwoLines<false, true>(planeA + at, planeB + at, nullptr, geo.frac[row], near, n);
     } else {
-        combineTwoLines<false, false>(planeA + at, planeB + at, nullptr, geo.frac[row], near, span);
+        combineTwoLines<false, false>(planeA + at, planeB + at, nullptr, geo.frac[row], near, n);
     }
 }
 

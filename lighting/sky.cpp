@@ -452,23 +452,21 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         float* s2 = sumSin2_.rowPtr(row);
         // A NaN horizon (a nodata cell) makes all three sums NaN whatever else is added (pass 1
         // for s1, s2 and K under a narrow sector or a level plane; pass 2 for K otherwise): the
-        // runs of them at the row's ends (a coastal DEM's sea) are set so without computing.
-        std::size_t c0 = 0, c1 = width;
-        while (c0 < c1 && std::isnan(h[c0])) ++c0;
-        while (c1 > c0 && std::isnan(h[c1 - 1])) --c1;
+        // runs of them at the row's ends (a coastal DEM's sea) are set so without computing, and
+        // both passes take only the cells between them.
+        const auto [c0, c1] = nonNanSpan(h, width);
         for (const auto& [from, to] : {std::pair{std::size_t{0}, c0}, std::pair{c1, width}}) {
             std::fill(k + from, k + to, kNaNf);
             std::fill(s1 + from, s1 + to, kNaNf);
             std::fill(s2 + from, s2 + to, kNaNf);
-            std::fill(rises + from, rises + to, std::uint8_t{0});
         }
         // Pass 1, vectorised: the SVF sums of every cell, and K where the plane stays below.
         accumulateRowFast(h + c0, e + c0, n + c0, u + c0, k + c0, s1 + c0, s2 + c0, rises + c0, c1 - c0, fast);
         // Pass 2: the cells whose tangent plane rises above the horizon somewhere in the sector
         // (about a fifth of the tilted ones on real terrain), exactly in double.
-        for (std::size_t col = 0; col < width; ++col) {
+        for (std::size_t col = c0; col < c1; ++col) {
             // Eight flags at a time: most are clear.
-            if (std::uint64_t eight; col + 8 <= width && (col & 7) == 0 &&
+            if (std::uint64_t eight; col + 8 <= c1 && (col & 7) == 0 &&
                                      (std::memcpy(&eight, rises + col, 8), eight == 0)) {
                 col += 7;
                 continue;

@@ -60,6 +60,18 @@ struct CellIndex {
     std::size_t col = 0, row = 0;
 };
 
+/// The cells [first, last + 1) of a row of n values between its runs of NaN (nodata) at both
+/// ends, which the passes over a coastal DEM's rows leave out (its sea); empty where all are NaN.
+struct RowSpan {
+    std::size_t first = 0, end = 0;
+};
+inline RowSpan nonNanSpan(const float* row, std::size_t n) {
+    std::size_t first = 0, end = n;
+    while (first < end && row[first] != row[first]) ++first;
+    while (end > first && row[end - 1] != row[end - 1]) --end;
+    return {first, end};
+}
+
 /// The window's cells of a grid as a grid of their own; an empty grid stays empty.
 template <class T>
 Grid<T> cropGrid(const Grid<T>& g, const CellWindow& w) {
