@@ -457,6 +457,50 @@ TEST(SkyGrid, MatchesPerCellKernelsAndIsThreadDeterministic) {
         }
 }
 
+TEST(SkyGrid, NodataRunsAtRowEndsAreNaNAndLeaveTheOtherCells) {
+    // The accumulation leaves out a row's runs of NaN horizons at both ends (a coastal DEM's sea)
+    // and sets their sums to NaN. Cells are accumulated independently, so every other cell must
+    // keep the bits it has without those NaNs, and every cell with a NaN horizon must end NaN
+    // in every map, its normal being valid. Runs of 1, 3 and 17 cells (the vectorised pass then
+    // starts off its alignment), a whole row, and a run in one direction only.
+    const int d = 16;
+    const std::size_t w = 40, h = 6;
+    const TestScene clean = randomScene(w, h, d, 31);
+    TestScene coast = clean;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const auto blank = [&](std::size_t row, std::size_t c0, std::size_t c1, int only = -1) {
+        for (int i = 0; i < d; ++i)
+            if (only < 0 || i == only)
+                for (std::size_t c = c0; c < c1; ++c) coast.horizons[static_cast<std::size_t>(i)](c, row) = nan;
+    };
+    blank(0, 0, 1);
+    blank(0, 37, 40);
+    blank(1, 0, 17);
+    blank(2, 0, 40);
+    blank(3, 23, 40);
+    blank(4, 0, 3, 5);  // direction 5 only
+    const SkyPatches patches = parseSkyPatches("sectors:4");
+    const SkyMaps a = computeSky(pointers(coast.horizons), coast.east, coast.north, coast.up, 0.3, patches, 2);
+    const SkyMaps b = computeSky(pointers(clean.horizons), clean.east, clean.north, clean.up, 0.3, patches, 2);
+    std::size_t nanCells = 0;
+    for (std::size_t r = 0; r < h; ++r)
+        for (std::size_t c = 0; c < w; ++c) {
+            bool anyNan = false;
+            for (const Grid<float>& g : coast.horizons) anyNan = anyNan || std::isnan(g(c, r));
+            for (const auto& [mapA, mapB] : {std::pair{&a.svfHorizontal, &b.svfHorizontal},
+                                             std::pair{&a.skyFraction, &b.skyFraction}, std::pair{&a.skyK, &b.skyK},
+                                             std::pair{&a.skyFactor, &b.skyFactor}, std::pair{&a.patchK[2], &b.patchK[2]}}) {
+                if (anyNan) {
+                    EXPECT_TRUE(std::isnan((*mapA)(c, r))) << c << " " << r;
+                } else {
+                    EXPECT_EQ(std::memcmp(&(*mapA)(c, r), &(*mapB)(c, r), sizeof(float)), 0) << c << " " << r;
+                }
+            }
+            nanCells += anyNan;
+        }
+    EXPECT_EQ(nanCells, 1u + 3u + 17u + 40u + 17u + 3u);
+}
+
 TEST(SkyGrid, StreamingInAnyOrderAndAlbedoRaster) {
     const int d = 8;
     const TestScene s = randomScene(9, 5, d, 5);

@@ -216,7 +216,9 @@ TEST(NearField, SweepComputesItsStatedModel) {
 TEST(NearField, StepsOverSeaAndIslandsKeepTheModel) {
     // The sweep tells a step whose cells are all nodata from a bitmap of valid cells, one bit per
     // cell in words of 64 along the scan's minor axis, and skips it (no samples, no serving, no
-    // prefetch). A coast with sea over half of the city and islands of one to three cells on
+    // prefetch), where at least 10 % of the cells are nodata (below, it reads the heights, as
+    // SweepComputesItsStatedModel's city with one void block does). A coast with sea over half
+    // of the city (so the bitmap is used) and islands of one to three cells on
     // both sides of the words' boundaries (64, 128), in the sea: every cell against the model,
     // on and off the axes (both orientations of the bitmap).
     Terrain t = smallCity();
