@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <limits>
 
 namespace demlight {
 namespace {
@@ -73,9 +75,38 @@ Rgb previewRadiance(const Enu& n, const Rgb& albedo, double sunVisibility, doubl
 DisplayBytes::DisplayBytes(const PreviewParams& p) {
     for (int k = 0; k < 255; ++k)
         thresholds_[static_cast<std::size_t>(k)] = std::pow((k + 0.5) / 255.0, p.gamma) / p.exposure;
+    thresholds_[255] = std::numeric_limits<double>::quiet_NaN();
+    const double* t = thresholds_.data();
+    const double* tEnd = t + 255;
+    // The table needs thresholds that are ordered, non-negative and finite.
+    if (!std::is_sorted(t, tEnd) || !(t[0] >= 0.0) || !std::isfinite(t[254])) return;
+    const std::uint64_t keyLo = std::bit_cast<std::uint64_t>(t[0]) >> kShift;
+    const std::uint64_t keyHi = std::bit_cast<std::uint64_t>(t[254]) >> kShift;
+    if (keyHi - keyLo + 1 > kMaxTableSize) return;
+    std::vector<std::uint8_t> below(keyHi - keyLo + 1);
+    for (std::uint64_t key = keyLo; key <= keyHi; ++key) {
+        const double start = std::bit_cast<double>(key << kShift), next = std::bit_cast<double>((key + 1) << kShift);
+        const auto first = std::lower_bound(t, tEnd, start), end = std::lower_bound(t, tEnd, next);
+        if (end - first > 2) return;  // operator() makes two compares per bucket
+        below[key - keyLo] = static_cast<std::uint8_t>(first - t);
+    }
+    below_ = std::move(below);
+    keyLo_ = keyLo;
 }
 
 std::uint8_t DisplayBytes::operator()(double linear) const {
+    const auto bits = std::bit_cast<std::uint64_t>(linear);
+    if (below_.empty() || (bits >> 63) != 0) return search(linear);
+    // (Below the first bucket the key wraps around: both ends are outside the table.)
+    const std::uint64_t bucket = (bits >> kShift) - keyLo_;
+    if (bucket >= below_.size()) return (bits >> kShift) < keyLo_ ? 0 : 255;  // under t[0]; over t[254] or NaN
+    std::size_t i = below_[bucket];
+    i += linear >= thresholds_[i] ? 1 : 0;
+    i += linear >= thresholds_[i] ? 1 : 0;
+    return static_cast<std::uint8_t>(i);
+}
+
+std::uint8_t DisplayBytes::search(double linear) const {
     // std::upper_bound's answer (the thresholds not above `linear`; all 255 for NaN) without its
     // unpredictable branches: eight halvings of a fixed width, each a compare and an add.
     std::size_t i = 0;

@@ -58,17 +58,31 @@ Rgb toDisplay(const Rgb& linear, const PreviewParams& params);
 
 /// The 8-bit display value of one linear channel, lround(255 · toDisplay), without a pow per
 /// pixel: the byte is the number of thresholds ((k + 1/2) / 255)^gamma / exposure, k = 0..254,
-/// at or below the value (where the rounding steps), found by binary search. renderPreview uses
-/// it for every pixel.
+/// at or below the value (where the rounding steps), as std::upper_bound over them gives.
+/// renderPreview uses it for every pixel, so the count is read from a table: a non-negative
+/// double's bits order it like its value, so its top bits (exponent and kTableMantissaBits of
+/// mantissa) name a bucket, the table holds the count below each bucket's first double, and two
+/// compares with the thresholds add those within the bucket. Where thresholds crowd more than
+/// two to a bucket or span too many buckets (extreme gamma or exposure), and for negative values,
+/// a binary search over the thresholds answers instead.
 class DisplayBytes {
 public:
     explicit DisplayBytes(const PreviewParams& params);
     std::uint8_t operator()(double linear) const;
 
-private:
-    std::array<double, 255> thresholds_{};
-};
+    static constexpr int kTableMantissaBits = 9;
+    static constexpr std::size_t kMaxTableSize = std::size_t{1} << 16;
 
+private:
+    std::uint8_t search(double linear) const;
+
+    static constexpr int kShift = 52 - kTableMantissaBits;
+    /// The 255 thresholds, then NaN: a compare past the last one never counts.
+    std::array<double, 256> thresholds_{};
+    /// Per bucket (key - keyLo_), the thresholds below its first double; empty: no table.
+    std::vector<std::uint8_t> below_;
+    std::uint64_t keyLo_ = 0;
+};
 
 /// Renders every cell (one pixel per cell). sunVisibility and skyLight have the normals' shape;
 /// albedoRgb is empty (use params.albedo) or three linear grids of that shape. Nodata cells

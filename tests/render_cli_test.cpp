@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -132,6 +134,46 @@ TEST(PreviewRig, DisplayBytesMatchGammaAndRounding) {
             ASSERT_EQ(bytes(t), k + 1) << k;
             ASSERT_EQ(bytes(std::nextafter(t, 0.0)), k) << k;
         }
+    }
+}
+
+// The byte is std::upper_bound over the header's thresholds for every double, whichever way
+// DisplayBytes finds it (its bucket table, or its binary search where the table is not kept):
+// at, just below and just above each threshold, at the table's bucket edges around them, on a
+// dense sweep of magnitudes, and at zero, negatives, denormals, infinity and NaN. The settings
+// include ones where the table is kept (gamma 0.15: two thresholds share some buckets) and ones
+// where it cannot be (exposure 0; gamma 0.1 and 0.05: three or more share a bucket; gamma 40:
+// the thresholds span too many buckets).
+TEST(PreviewRig, DisplayBytesIsUpperBoundOverTheThresholdsForEveryValue) {
+    const std::pair<double, double> settings[] = {{1.0, 2.2}, {1.7, 2.2}, {0.5, 1.8}, {1.0, 1.0}, {2.5, 2.2},
+                                                  {1.0, 0.15}, {1.0, 0.1}, {1.0, 0.05}, {1.0, 40.0}, {0.0, 2.2},
+                                                  {1e-3, 3.0}};
+    for (const auto& [exposure, gamma] : settings) {
+        demlight::PreviewParams p;
+        p.exposure = exposure;
+        p.gamma = gamma;
+        const demlight::DisplayBytes bytes(p);
+        std::vector<double> t(255);
+        for (int k = 0; k < 255; ++k) t[static_cast<std::size_t>(k)] = std::pow((k + 0.5) / 255.0, gamma) / exposure;
+        const auto expected = [&](double v) {
+            return static_cast<long>(std::upper_bound(t.begin(), t.end(), v) - t.begin());
+        };
+        std::vector<double> values = {0.0, -0.0, -1.0, -1e-300, 4.9e-324, 1e-310, 1e-300, 1e300,
+                                      std::numeric_limits<double>::infinity(),
+                                      -std::numeric_limits<double>::infinity(),
+                                      std::numeric_limits<double>::max()};
+        constexpr int shift = 52 - demlight::DisplayBytes::kTableMantissaBits;
+        for (const double th : t) {
+            values.insert(values.end(), {th, std::nextafter(th, 0.0), std::nextafter(th, 1e308)});
+            // The first double of th's bucket, the last of the one before, and the next bucket's.
+            const std::uint64_t key = std::bit_cast<std::uint64_t>(th) >> shift;
+            for (const std::uint64_t edge : {key << shift, (key + 1) << shift})
+                values.insert(values.end(), {std::bit_cast<double>(edge), std::bit_cast<double>(edge - 1)});
+        }
+        for (int i = -4000; i <= 400; ++i) values.push_back(std::pow(10.0, i / 100.0));
+        for (const double v : values) ASSERT_EQ(static_cast<long>(bytes(v)), expected(v)) << v << " " << exposure << " " << gamma;
+        EXPECT_EQ(bytes(std::numeric_limits<double>::quiet_NaN()), 255);
+        EXPECT_EQ(bytes(-std::numeric_limits<double>::quiet_NaN()), 255);
     }
 }
 
