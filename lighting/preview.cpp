@@ -10,6 +10,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace demlight {
@@ -84,26 +85,17 @@ DisplayBytes::DisplayBytes(const PreviewParams& p) {
     const std::uint64_t keyHi = std::bit_cast<std::uint64_t>(t[254]) >> kShift;
     if (keyHi - keyLo + 1 > kMaxTableSize) return;
     std::vector<std::uint8_t> below(keyHi - keyLo + 1);
+    bool twoPerBucket = false;
     for (std::uint64_t key = keyLo; key <= keyHi; ++key) {
         const double start = std::bit_cast<double>(key << kShift), next = std::bit_cast<double>((key + 1) << kShift);
         const auto first = std::lower_bound(t, tEnd, start), end = std::lower_bound(t, tEnd, next);
-        if (end - first > 2) return;  // operator() makes two compares per bucket
+        if (end - first > 2) return;  // operator() makes at most two compares per bucket
+        twoPerBucket = twoPerBucket || end - first == 2;
         below[key - keyLo] = static_cast<std::uint8_t>(first - t);
     }
     below_ = std::move(below);
+    twoPerBucket_ = twoPerBucket;
     keyLo_ = keyLo;
-}
-
-std::uint8_t DisplayBytes::operator()(double linear) const {
-    const auto bits = std::bit_cast<std::uint64_t>(linear);
-    if (below_.empty() || (bits >> 63) != 0) return search(linear);
-    // (Below the first bucket the key wraps around: both ends are outside the table.)
-    const std::uint64_t bucket = (bits >> kShift) - keyLo_;
-    if (bucket >= below_.size()) return (bits >> kShift) < keyLo_ ? 0 : 255;  // under t[0]; over t[254] or NaN
-    std::size_t i = below_[bucket];
-    i += linear >= thresholds_[i] ? 1 : 0;
-    i += linear >= thresholds_[i] ? 1 : 0;
-    return static_cast<std::uint8_t>(i);
 }
 
 std::uint8_t DisplayBytes::search(double linear) const {
@@ -154,9 +146,11 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
                 if (!std::isnan(r) && !std::isnan(g) && !std::isnan(b)) a = {r, g, b};
             }
             const Rgb lin = radiance(n, a, vis, rig, sky, params);
-            px[0] = toDisplayByte(lin.r);
-            px[1] = toDisplayByte(lin.g);
-            px[2] = toDisplayByte(lin.b);
+            // (The three lookups before any store: a byte store could alias the table.)
+            const std::uint8_t r = toDisplayByte(lin.r), g = toDisplayByte(lin.g), b = toDisplayByte(lin.b);
+            px[0] = r;
+            px[1] = g;
+            px[2] = b;
             px[3] = 255;
         }
     });
@@ -209,7 +203,11 @@ ColumnTaps columnTaps(std::size_t inWidth, std::size_t outWidth) {
     return ct;
 }
 
-std::uint8_t toByte(double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
+/// Four doubles in one vector register, and four bytes (GCC and Clang vector extensions):
+/// + - * / act per lane.
+using Double4 = double __attribute__((vector_size(32)));
+using Byte4 = std::uint8_t __attribute__((vector_size(4)));
+using Int4 = std::int32_t __attribute__((vector_size(16)));
 
 }  // namespace
 
@@ -235,19 +233,29 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
     out.width = outWidth;
     out.height = rows;
     out.rgba.assign(outWidth * rows * 4, 0);
-    parallelFor(0, rows, 0, [&](std::size_t row) {
-        const std::uint8_t* in = image.rgba.data() + row * cols * 4;
-        std::uint8_t* q = out.rgba.data() + row * outWidth * 4;
+    // (Pointers held in locals: the byte stores could alias the vectors' own fields.)
+    const Tap* const taps = ct.taps.data();
+    const std::size_t* const first = ct.first.data();
+    const std::uint8_t* const src = image.rgba.data();
+    std::uint8_t* const dst = out.rgba.data();
+    parallelFor(0, rows, 0, [&, taps, first, src, dst](std::size_t row) {
+        const std::uint8_t* in = src + row * cols * 4;
+        std::uint8_t* q = dst + row * outWidth * 4;
         for (std::size_t j = 0; j < outWidth; ++j, q += 4) {
-            double colour[3] = {0, 0, 0};
-            double opaqueWeight = 0, alpha = 0, weight = 0;
-            for (std::size_t t = ct.first[j]; t < ct.first[j + 1]; ++t) {
-                const std::uint8_t* p = in + ct.taps[t].col * 4;
-                const double w = ct.taps[t].weight;
+            // R, G, B and alpha as the four lanes of one vector: each lane makes the same
+            // operations as a scalar per channel would (a product and a sum per tap, one
+            // division), so the bytes are those of a loop over the channels.
+            Double4 sum = {0, 0, 0, 0};
+            double opaqueWeight = 0, weight = 0;
+            const Tap* const end = taps + first[j + 1];
+            for (const Tap* tap = taps + first[j]; tap != end; ++tap) {
+                const std::uint8_t* p = in + tap->col * 4;
+                const double w = tap->weight;
                 weight += w;
                 if (p[3] == 0) continue;  // nodata: no colour, no coverage
-                for (int k = 0; k < 3; ++k) colour[k] += w * p[k];
-                alpha += w * p[3];
+                Byte4 bytes;
+                std::memcpy(&bytes, p, sizeof bytes);
+                sum += w * __builtin_convertvector(__builtin_convertvector(bytes, Int4), Double4);
                 opaqueWeight += w;
             }
             if (opaqueWeight == 0) {
@@ -255,8 +263,14 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
                 q[3] = 0;
                 continue;
             }
-            for (int k = 0; k < 3; ++k) q[k] = toByte(colour[k] / opaqueWeight);
-            q[3] = toByte(alpha / weight);
+            // Colour over the opaque taps' weight, alpha over all of it.
+            const Double4 mean = sum / Double4{opaqueWeight, opaqueWeight, opaqueWeight, weight};
+            // lround of each lane, clamped to a byte: the means are 0-255, and for v >= 0,
+            // trunc(v + 0.49999999999999994) is lround(v) (the sum cannot round up to the next
+            // integer unless v's fraction is at least 1/2).
+            const Int4 rounded = __builtin_convertvector(mean + 0.49999999999999994, Int4);
+            const Byte4 out4 = __builtin_convertvector(rounded < 0 ? 0 : rounded > 255 ? 255 : rounded, Byte4);
+            std::memcpy(q, &out4, sizeof out4);
         }
     });
     return out;

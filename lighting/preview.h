@@ -13,6 +13,7 @@
 #include "src/terrain.h"
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -61,14 +62,15 @@ Rgb toDisplay(const Rgb& linear, const PreviewParams& params);
 /// at or below the value (where the rounding steps), as std::upper_bound over them gives.
 /// renderPreview uses it for every pixel, so the count is read from a table: a non-negative
 /// double's bits order it like its value, so its top bits (exponent and kTableMantissaBits of
-/// mantissa) name a bucket, the table holds the count below each bucket's first double, and two
-/// compares with the thresholds add those within the bucket. Where thresholds crowd more than
+/// mantissa) name a bucket, the table holds the count below each bucket's first double, and one
+/// or two compares with the thresholds add those within the bucket (one where no bucket holds
+/// two, as with the default gamma). Where thresholds crowd more than
 /// two to a bucket or span too many buckets (extreme gamma or exposure), and for negative values,
 /// a binary search over the thresholds answers instead.
 class DisplayBytes {
 public:
     explicit DisplayBytes(const PreviewParams& params);
-    std::uint8_t operator()(double linear) const;
+    std::uint8_t operator()(double linear) const;  // (inline below: renderPreview calls it per pixel)
 
     static constexpr int kTableMantissaBits = 9;
     static constexpr std::size_t kMaxTableSize = std::size_t{1} << 16;
@@ -82,7 +84,20 @@ private:
     /// Per bucket (key - keyLo_), the thresholds below its first double; empty: no table.
     std::vector<std::uint8_t> below_;
     std::uint64_t keyLo_ = 0;
+    bool twoPerBucket_ = false;  ///< some bucket holds two thresholds: a second compare
 };
+
+inline std::uint8_t DisplayBytes::operator()(double linear) const {
+    const auto bits = std::bit_cast<std::uint64_t>(linear);
+    if (below_.empty() || (bits >> 63) != 0) return search(linear);
+    // (Below the first bucket the key wraps around: both ends are outside the table.)
+    const std::uint64_t bucket = (bits >> kShift) - keyLo_;
+    if (bucket >= below_.size()) return (bits >> kShift) < keyLo_ ? 0 : 255;  // under t[0]; over t[254] or NaN
+    std::size_t i = below_[bucket];
+    i += linear >= thresholds_[i] ? 1 : 0;
+    if (twoPerBucket_) i += linear >= thresholds_[i] ? 1 : 0;
+    return static_cast<std::uint8_t>(i);
+}
 
 /// Renders every cell (one pixel per cell). sunVisibility and skyLight have the normals' shape;
 /// albedoRgb is empty (use params.albedo) or three linear grids of that shape. Nodata cells

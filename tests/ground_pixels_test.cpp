@@ -6,8 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
+#include <vector>
 
 namespace demlight {
 namespace {
@@ -152,6 +157,67 @@ TEST(GroundPixels, NodataStaysTransparent) {
 TEST(GroundPixels, RefusesAPictureOfAnotherSize) {
     EXPECT_THROW(toGroundPixels(filled(10, 5, {0, 0, 0, 255}), cellTerrain(10, 6, 30, 60)), Error);
     EXPECT_THROW(toGroundPixels(filled(11, 5, {0, 0, 0, 255}), cellTerrain(10, 5, 30, 60)), Error);
+}
+
+/// The header's rule written out per channel, one pixel at a time: each output pixel's input
+/// columns and weights (area covered when shrinking, linear between centres when stretching), the
+/// colour averaged over the opaque ones, alpha over all, each rounded half away from zero.
+std::array<std::uint8_t, 4> referencePixel(const Image8& img, std::size_t row, std::size_t j, std::size_t outWidth) {
+    const std::size_t inWidth = img.width;
+    const double scale = static_cast<double>(inWidth) / static_cast<double>(outWidth);
+    std::vector<std::pair<std::size_t, double>> taps;
+    if (outWidth < inWidth) {
+        const double a = static_cast<double>(j) * scale, b = static_cast<double>(j + 1) * scale;
+        for (std::size_t k = static_cast<std::size_t>(std::floor(a)); k < inWidth && static_cast<double>(k) < b; ++k) {
+            const double w = std::min(static_cast<double>(k + 1), b) - std::max(static_cast<double>(k), a);
+            if (w > 0) taps.emplace_back(k, w);
+        }
+    } else {
+        const double x = std::clamp((static_cast<double>(j) + 0.5) * scale - 0.5, 0.0, static_cast<double>(inWidth - 1));
+        const auto k0 = static_cast<std::size_t>(std::floor(x));
+        const std::size_t k1 = std::min(k0 + 1, inWidth - 1);
+        const double t = x - static_cast<double>(k0);
+        if (1.0 - t > 0) taps.emplace_back(k0, 1.0 - t);
+        if (k1 != k0 && t > 0) taps.emplace_back(k1, t);
+    }
+    double colour[3] = {0, 0, 0}, alpha = 0, opaque = 0, all = 0;
+    for (const auto& [k, w] : taps) {
+        const std::uint8_t* p = pixel(img, k, row);
+        all += w;
+        if (p[3] == 0) continue;
+        for (int c = 0; c < 3; ++c) colour[c] += w * p[c];
+        alpha += w * p[3];
+        opaque += w;
+    }
+    if (opaque == 0) return {kNodataGrey, kNodataGrey, kNodataGrey, 0};
+    auto byte = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+    return {byte(colour[0] / opaque), byte(colour[1] / opaque), byte(colour[2] / opaque), byte(alpha / all)};
+}
+
+// Every pixel of random pictures (random colours, alpha, and transparent runs) shrunk and
+// stretched by several factors is the rule's per-channel answer, byte for byte: the resampler
+// works on the four channels at once and must round each as lround does, halves up.
+TEST(GroundPixels, EveryPixelIsTheRulesPerChannelAnswer) {
+    std::mt19937 rng(20261204);
+    std::uniform_int_distribution<int> byte(0, 255), coin(0, 9);
+    for (const double widthM : {9.0, 20.0, 29.0, 30.0 * 2.0 / 3.0, 41.0, 60.0, 75.0, 133.0}) {
+        Image8 img = filled(97, 6, {0, 0, 0, 255});
+        for (std::size_t i = 0; i < 97 * 6; ++i) {
+            std::uint8_t* p = img.rgba.data() + i * 4;
+            for (int k = 0; k < 4; ++k) p[k] = static_cast<std::uint8_t>(byte(rng));
+            if (coin(rng) == 0) p[3] = 0;                               // scattered nodata
+            if (i % 97 >= 40 && i % 97 < 47) p[3] = 0;                  // a transparent run
+            if (coin(rng) == 1) p[0] = p[1] = p[2] = (i % 2) ? 255 : 0;  // halves between neighbours
+        }
+        const Image8 out = toGroundPixels(img, cellTerrain(97, 6, widthM, 30));
+        for (std::size_t r = 0; r < 6; ++r)
+            for (std::size_t j = 0; j < out.width; ++j) {
+                const auto want = referencePixel(img, r, j, out.width);
+                for (int k = 0; k < 4; ++k)
+                    ASSERT_EQ(pixel(out, j, r)[k], want[static_cast<std::size_t>(k)])
+                        << "width " << widthM << " row " << r << " col " << j << " channel " << k;
+            }
+    }
 }
 
 }  // namespace
