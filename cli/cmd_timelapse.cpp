@@ -17,8 +17,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -158,8 +160,8 @@ public:
     void frame(TimelapseFrame&& f) {
         index_.add(f);
         wait();
-        writing_ = std::async(std::launch::async, [this, f = std::move(f)] {
-            if (formats_.count("tif")) write(f.lightmap, frameName(f.index, n_, "tif"));
+        writing_ = std::async(std::launch::async, [this, f = std::move(f)]() mutable {
+            if (formats_.count("tif")) writeFrame(std::move(f.lightmap), frameName(f.index, n_, "tif"));
             if (formats_.count("png") || formats_.count("mp4"))
                 writeImage((fs::path(o_.outDir) / frameName(f.index, n_, "png")).string(), f.preview);
             if (gif_) gif_->add(downsample(f.preview, o_.gifSize));
@@ -180,6 +182,69 @@ private:
     void wait() {
         if (writing_.valid()) writing_.get();
     }
+    /// A frame's GeoTIFF. When its cells equal the previous frame's, bit for bit, and both are
+    /// dark (every cell +0 or NaN: the sun down at both instants), the previous file is copied
+    /// with this frame's metadata instead: encoding the cells again (libtiff's floating-point
+    /// predictor over every byte) is most of a night frame's time.
+    void writeFrame(ProductResult&& lightmap, const std::string& name) {
+        std::optional<DarkFrame> dark = darkFrame(lightmap, name);
+        if (previous_ && dark && *previous_ == *dark) {
+            // From the file that was encoded, not from a copy: each copy appends a directory.
+            copyRasterWithMetadata((fs::path(o_.outDir) / previous_->name).string(),
+                                   (fs::path(o_.outDir) / name).string(), resultMetadata(lightmap, ctx_));
+            return;
+        }
+        write(lightmap, name);
+        previous_ = std::move(dark);
+    }
+    /// What decides a dark frame's file but for its metadata values: the layout, the metadata's
+    /// keys, and per band its description and a bitmap of its NaN cells (all other cells +0).
+    /// About two bits per cell, where keeping the frame itself to compare would take 64.
+    struct DarkFrame {
+        std::string name;  ///< its file, in the output folder (not compared)
+        std::vector<std::string> keys, bandNames;
+        std::vector<std::vector<std::uint64_t>> nanCells;
+        std::uint32_t nanBits = 0;  ///< the one bit pattern of its NaN cells
+        std::size_t width = 0, height = 0;
+        double nodata = 0;
+        GeoReference ref;
+        bool operator==(const DarkFrame& o) const {
+            return keys == o.keys && bandNames == o.bandNames && nanCells == o.nanCells && nanBits == o.nanBits &&
+                   width == o.width && height == o.height && nodata == o.nodata &&
+                   ref.geoTransform == o.ref.geoTransform && ref.crsWkt == o.ref.crsWkt;
+        }
+    };
+    /// The frame as a DarkFrame, or none when a cell holds anything but +0 or NaN (of one bit
+    /// pattern), or a band is not Float32.
+    static std::optional<DarkFrame> darkFrame(const ProductResult& r, const std::string& name) {
+        DarkFrame d;
+        d.name = name;
+        d.nodata = r.nodata;
+        d.ref = r.ref;
+        if (r.flagNodata || r.bands.empty()) return std::nullopt;
+        for (const auto& [key, value] : r.metadata) d.keys.push_back(key);
+        bool nanSeen = false;
+        for (const ProductBand& b : r.bands) {
+            if (b.values.empty()) return std::nullopt;
+            d.bandNames.push_back(b.name + "\n" + b.unit + "\n" + std::to_string(static_cast<int>(b.resampling)));
+            d.width = b.values.width();
+            d.height = b.values.height();
+            const std::size_t n = b.values.size();
+            std::vector<std::uint64_t> nan((n + 63) / 64, 0);
+            const float* v = b.values.data();
+            for (std::size_t i = 0; i < n; ++i) {
+                std::uint32_t bits;
+                std::memcpy(&bits, v + i, sizeof bits);
+                if (bits == 0) continue;
+                if (!std::isnan(v[i]) || (nanSeen && bits != d.nanBits)) return std::nullopt;
+                nanSeen = true;
+                d.nanBits = bits;
+                nan[i / 64] |= std::uint64_t{1} << (i % 64);
+            }
+            d.nanCells.push_back(std::move(nan));
+        }
+        return d;
+    }
     const TimelapseOptions& o_;
     const std::set<std::string>& formats_;
     std::size_t n_;
@@ -187,6 +252,8 @@ private:
     FrameIndex index_;
     std::unique_ptr<GifWriter> gif_;
     std::future<void> writing_;
+    /// The last frame GeoTIFF encoded, when dark (the writing thread's); copies leave it.
+    std::optional<DarkFrame> previous_;
 };
 
 TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std::string>& formats, const Dem& dem) {

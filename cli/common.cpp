@@ -133,6 +133,14 @@ void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& 
     }
 }
 
+std::map<std::string, std::string> resultMetadata(const ProductResult& result, const CliContext& ctx,
+                                                  const std::map<std::string, std::string>& extra) {
+    std::map<std::string, std::string> metadata = result.metadata;
+    metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
+    for (const auto& [k, v] : extra) metadata[k] = v;
+    return metadata;
+}
+
 void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,
                  const std::string& inputPath, const std::map<std::string, std::string>& extra) {
     WriteOptions w;
@@ -140,9 +148,7 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Cl
     w.creationOptions = out.creationOptions;
     w.fixedPoint = out.fixedPoint;
     w.nodata = result.flagNodata.value_or(result.nodata);
-    w.metadata = result.metadata;
-    w.metadata["DEMLIGHT_COMMAND"] = ctx.commandLine;
-    for (const auto& [k, v] : extra) w.metadata[k] = v;
+    w.metadata = resultMetadata(result, ctx, extra);
     // Ctrl-C while writing stops the write (its temporary file removed) like any other work;
     // nothing is drawn, so the notes stay as they are.
     w.progress = [](double, const std::string&) { return !cancelRequested(); };

@@ -53,6 +53,11 @@ void addSearchOptions(CLI::App* cmd, SearchOptions& o);
 /// Notes about the plan the product will make: unused options, and with -v the plan itself.
 void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& ctx);
 
+/// The metadata writeResult gives a product result's file: its own items, DEMLIGHT_COMMAND and
+/// `extra`.
+std::map<std::string, std::string> resultMetadata(const ProductResult& result, const CliContext& ctx,
+                                                  const std::map<std::string, std::string>& extra = {});
+
 /// Writes a product result to `out` (atomically), with DEMLIGHT_COMMAND added; `extra` items
 /// are added to its metadata. Refuses to overwrite `inputPath`.
 void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,

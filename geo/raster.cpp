@@ -653,6 +653,31 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     tmp.commit();
 }
 
+void copyRasterWithMetadata(const std::string& source, const std::string& path,
+                            const std::map<std::string, std::string>& metadata) {
+    detail::ensureGdal();
+    checkOutputFile(path);
+    checkRasterPath(path);
+    TemporaryFile tmp(path, TemporaryNaming::Suffix);
+    const auto fail = [&](const std::string& reason) {
+        const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), reason);
+        tmp.discard();
+        return Error(message);
+    };
+    std::error_code ec;
+    fs::copy_file(source, tmp.path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) throw fail("copying '" + source + "': " + ec.message());
+    detail::takeGdalError();
+    static const char* const kGTiffOnly[] = {"GTiff", nullptr};
+    DatasetPtr ds(GDALDataset::FromHandle(
+        GDALOpenEx(tmp.path().c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE, kGTiffOnly, nullptr, nullptr)));
+    if (!ds) throw fail(detail::takeGdalError());
+    for (const auto& [key, value] : metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
+    GDALClose(GDALDataset::ToHandle(ds.release()));
+    if (const std::string closeError = detail::takeGdalError(); !closeError.empty()) throw fail(closeError);
+    tmp.commit();
+}
+
 struct RasterSink::State {
     std::string path;
     std::size_t width, height;

@@ -157,6 +157,15 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath = {});
 
+/// Writes to `path` a copy of the GeoTIFF `source` (a file writeRaster wrote) with the dataset
+/// metadata items `metadata` set, each replacing the item of that key: the cells, bands,
+/// georeference and layout are the source's, not encoded again. For a raster whose cells equal
+/// a file already written (a time-lapse's night frames). Atomic and checked as writeRaster:
+/// a temporary name in `path`'s folder, renamed on success; GDAL rewrites the metadata in the
+/// copy's TIFF directory (appended to the file, the tiles untouched).
+void copyRasterWithMetadata(const std::string& source, const std::string& path,
+                            const std::map<std::string, std::string>& metadata);
+
 /// What a written raster holds, for checks and reports (read back through GDAL).
 struct RasterSummary {
     std::string driver;

@@ -141,6 +141,52 @@ TEST(WriteRaster, RefusesBadTargetsWithoutLeavingFiles) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }
 
+// A copy with new metadata has the source's cells, bands and georeference, the new values of
+// the items given and the source's other items; it leaves no temporary or sidecar file, and a
+// missing source is an error that leaves nothing at the target.
+TEST(WriteRaster, CopyWithMetadataKeepsTheCellsAndChangesTheItems) {
+    const fs::path dir = scratchDir("copymeta");
+    Grid<float> a(300, 260, 0.0f), b(300, 260, 0.25f);
+    for (std::size_t i = 0; i < 300; ++i) a(i, i % 260) = std::numeric_limits<float>::quiet_NaN();
+    b(7, 9) = 3.5f;
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    WriteOptions opt;
+    opt.metadata = {{"DEMLIGHT_FRAME", "0"}, {"DEMLIGHT_TIME_UTC", "2024-06-21T07:00:00Z"}, {"DEMLIGHT_KEPT", "k"}};
+    opt.nodata = -32768;
+    const std::string src = (dir / "frame_000.tif").string(), out = (dir / "frame_001.tif").string();
+    writeRaster(src, {{&a, nullptr, "sun_visibility", "fraction"}, {&b, nullptr, "sun_irradiance", "W"}}, ref, opt);
+    copyRasterWithMetadata(src, out, {{"DEMLIGHT_FRAME", "1"}, {"DEMLIGHT_TIME_UTC", "2024-06-21T07:15:00.5Z longer"}});
+
+    const RasterSummary s = inspectRaster(out), s0 = inspectRaster(src);
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_FRAME"), "1");
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_TIME_UTC"), "2024-06-21T07:15:00.5Z longer");
+    EXPECT_EQ(s.metadata.at("DEMLIGHT_KEPT"), "k");
+    EXPECT_EQ(s0.metadata.at("DEMLIGHT_FRAME"), "0");  // the source is left as it was
+    EXPECT_EQ(s.ref.geoTransform, ref.geoTransform);
+    EXPECT_NE(s.ref.crsWkt.find("UTM zone 11N"), std::string::npos);
+    EXPECT_EQ(s.descriptions, s0.descriptions);
+    EXPECT_EQ(s.units, s0.units);
+    ASSERT_TRUE(s.nodata.has_value());
+    EXPECT_EQ(*s.nodata, -32768.0);
+    EXPECT_EQ(s.imageStructure, s0.imageStructure);
+    const std::vector<Grid<float>> back = readRasterBands(out);
+    ASSERT_EQ(back.size(), 2u);
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        ASSERT_EQ(std::isnan(back[0].data()[k]), std::isnan(a.data()[k])) << k;
+        if (!std::isnan(a.data()[k])) {
+            ASSERT_EQ(back[0].data()[k], a.data()[k]) << k;
+        }
+        ASSERT_EQ(back[1].data()[k], b.data()[k]) << k;
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);  // no .aux.xml, no .tmp
+
+    EXPECT_THROW(copyRasterWithMetadata((dir / "none.tif").string(), (dir / "x.tif").string(), {}), Error);
+    EXPECT_FALSE(fs::exists(dir / "x.tif"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+}
+
 TEST(ReadRaster, RefusesRotatedGeotransformAndMissingCrs) {
     const fs::path dir = scratchDir("badgeo");
     Grid<float> a(3, 3, 5.0f);

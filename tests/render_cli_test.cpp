@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -312,6 +313,102 @@ TEST(TimelapseCli, FramesMatchDemlightSun) {
         ASSERT_NEAR(fv, sv, 1e-5) << k;  // visibility
     }
     EXPECT_GT(compared, frame[0].size() / 2);
+    fs::remove_all(d);
+}
+
+// Night frames after the first are written as copies of its file with their own metadata
+// (FrameWriter): each must hold what encoding it would have, its own frame number, times and sun
+// in its metadata, and the frames' cells; a day frame after them is encoded (its cells differ).
+TEST(TimelapseCli, NightFramesCopiedHoldTheirOwnMetadataAndTheCells) {
+    const fs::path d = scratch("tlnight");
+    std::string err;
+    // 02:00-05:40 local: eleven frames with the sun far below the horizon, then dawn.
+    ASSERT_EQ(runCli("timelapse '" + kDem + "' -o '" + (d / "out").string() +
+                         "' --start 2024-06-21T02:00 --end 2024-06-21T06:00 --step 20m "
+                         "--tz America/Los_Angeles --formats tif --sky-directions 4",
+                     &err),
+              0)
+        << err;
+    // The frames' instants and suns from frames.csv.
+    std::ifstream csv(d / "out" / "frames.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(csv, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+        rows.push_back(f);
+    }
+    ASSERT_EQ(rows.size(), 13u);
+    const auto frameFile = [&](std::size_t i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%03zu.tif", i);
+        return (d / "out" / name).string();
+    };
+    const std::vector<demlight::Grid<float>> first = demlight::readRasterBands(frameFile(0));
+    const demlight::RasterSummary s0 = demlight::inspectRaster(frameFile(0));
+    std::size_t sameAsFirst = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const demlight::RasterSummary s = demlight::inspectRaster(frameFile(i));
+        EXPECT_EQ(s.metadata.at("DEMLIGHT_FRAME"), std::to_string(i));
+        EXPECT_EQ(s.metadata.at("DEMLIGHT_TIME_LOCAL"), rows[i][1]) << i;
+        EXPECT_EQ(s.metadata.at("DEMLIGHT_TIME_UTC"), rows[i][2]) << i;
+        EXPECT_EQ(s.metadata.at("DEMLIGHT_SUN_AZIMUTH_DEG"), rows[i][3]) << i;
+        EXPECT_EQ(s.metadata.at("DEMLIGHT_SUN_ELEVATION_DEG"), rows[i][4]) << i;
+        EXPECT_EQ(s.descriptions, s0.descriptions);
+        EXPECT_EQ(s.units, s0.units);
+        EXPECT_EQ(s.nodata, s0.nodata);
+        EXPECT_EQ(s.ref.geoTransform, s0.ref.geoTransform);
+        EXPECT_EQ(s.imageStructure, s0.imageStructure);
+        const std::vector<demlight::Grid<float>> bands = demlight::readRasterBands(frameFile(i));
+        ASSERT_EQ(bands.size(), 2u);
+        bool same = true;
+        for (std::size_t b = 0; b < 2; ++b)
+            for (std::size_t k = 0; k < bands[b].size(); ++k) {
+                const float x = bands[b].data()[k], y = first[b].data()[k];
+                same = same && (x == y || (std::isnan(x) && std::isnan(y)));
+            }
+        sameAsFirst += same;
+        // A copy's TIFF directory follows its tiles (GDAL rewrote it at the end); an encoded
+        // frame's comes first. Classic little-endian TIFF: the first directory's offset at byte 4.
+        const std::vector<unsigned char> bytes = readFile(frameFile(i));
+        ASSERT_GT(bytes.size(), 8u);
+        std::uint32_t ifd = 0;
+        std::memcpy(&ifd, bytes.data() + 4, sizeof ifd);
+        if (std::stod(rows[i][4]) < -15.0) {
+            EXPECT_TRUE(same) << "night frame " << i;
+            EXPECT_EQ(ifd < bytes.size() / 2, i == 0) << "night frame " << i << " written by copy unless the first";
+        }
+    }
+    EXPECT_GE(sameAsFirst, 9u);
+    EXPECT_LT(sameAsFirst, rows.size());  // dawn: the last frames are lit
+    // A night frame alone (so encoded) is the copied frame's file but for the command and number.
+    ASSERT_EQ(runCli("timelapse '" + kDem + "' -o '" + (d / "one").string() +
+                         "' --start 2024-06-21T03:00 --end 2024-06-21T03:00 "
+                         "--tz America/Los_Angeles --formats tif --sky-directions 4",
+                     &err),
+              0)
+        << err;
+    demlight::RasterSummary alone = demlight::inspectRaster((d / "one" / "frame_000.tif").string());
+    demlight::RasterSummary copied = demlight::inspectRaster(frameFile(3));
+    for (auto* m : {&alone.metadata, &copied.metadata}) {
+        m->erase("DEMLIGHT_COMMAND");
+        m->erase("DEMLIGHT_FRAME");
+    }
+    EXPECT_EQ(copied.metadata, alone.metadata);
+    const auto aloneBands = demlight::readRasterBands((d / "one" / "frame_000.tif").string());
+    const auto copiedBands = demlight::readRasterBands(frameFile(3));
+    for (std::size_t b = 0; b < 2; ++b)
+        for (std::size_t k = 0; k < aloneBands[b].size(); ++k) {
+            const float x = aloneBands[b].data()[k], y = copiedBands[b].data()[k];
+            ASSERT_TRUE(x == y || (std::isnan(x) && std::isnan(y))) << b << " " << k;
+        }
+    // Only the outputs are left in the folder: no temporary file, no GDAL sidecar.
+    for (const auto& e : fs::directory_iterator(d / "out")) {
+        const std::string n = e.path().filename().string();
+        EXPECT_TRUE((n.starts_with("frame_") && n.ends_with(".tif")) || n == "sky_k.tif" || n == "frames.csv") << n;
+    }
     fs::remove_all(d);
 }
 
