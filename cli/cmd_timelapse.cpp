@@ -51,6 +51,8 @@ struct TimelapseOptions {
     int fitDegree = 0;
     std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
     bool overwrite = false;         ///< replace the outputs of an earlier time-lapse in the folder
+    /// GDAL creation options of every GeoTIFF it writes (--co), over the GTiff defaults.
+    std::vector<std::string> creationOptions;
 };
 
 std::set<std::string> parseFormats(const std::string& text) {
@@ -175,6 +177,7 @@ public:
     void write(const ProductResult& r, const std::string& name) {
         OutputOptions out;
         out.path = (fs::path(o_.outDir) / name).string();
+        out.creationOptions = o_.creationOptions;
         writeResult(r, out, ctx_, o_.dem.path);
     }
 
@@ -320,6 +323,7 @@ std::vector<RasterTarget> tiledTargets(const TimelapseOptions& o, const Timelaps
     const auto target = [&](const std::string& name) {
         RasterTarget t;
         t.out.path = (fs::path(o.outDir) / name).string();
+        t.out.creationOptions = o.creationOptions;
         return t;
     };
     std::vector<RasterTarget> targets{target(kSkyFile)};
@@ -370,6 +374,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
     checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
+    checkCreationOptions("GTiff", o.creationOptions);  // before the work, not at the first file
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
     const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), ctx);
@@ -438,6 +443,10 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
         ->capture_default_str();
     cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)")
         ->capture_default_str();
+    cmd->add_option("--co", o->creationOptions,
+                    "GDAL creation option KEY=VALUE of its GeoTIFFs (frames, sky_k.tif, sequence_fit.tif; also -co; "
+                    "repeatable), over the defaults (tiled, ZSTD level 1, PREDICTOR=3): e.g. -co COMPRESS=DEFLATE "
+                    "for readers without ZSTD, -co PREDICTOR=1 for faster frames in larger files");
     cmd->add_option("--fps", o->fps, "GIF frames per second")->check(finiteRange(1, 100))->capture_default_str();
     cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
         ->check(finiteRange(16, 100000))

@@ -653,6 +653,19 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     tmp.commit();
 }
 
+void checkCreationOptions(const std::string& format, const std::vector<std::string>& userOptions) {
+    detail::ensureGdal();
+    if (format != "GTiff" && format != "COG")
+        throw Error("output format '" + format + "' is not supported (-of GTiff or COG)");
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
+    if (!driver) throw Error("GDAL has no '" + format + "' driver");
+    WriteOptions options;
+    options.format = format;
+    options.creationOptions = userOptions;
+    validateUserCreationOptions(driver, options);
+    (void)creationOptions(options, GDT_Float32);  // throws on an option that is not KEY=VALUE
+}
+
 void copyRasterWithMetadata(const std::string& source, const std::string& path,
                             const std::map<std::string, std::string>& metadata) {
     detail::ensureGdal();

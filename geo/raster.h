@@ -146,6 +146,11 @@ void checkRasterPath(const std::string& path);
 /// run streaming gigabytes of output fills whatever its memory budget.
 void setRasterCacheBytes(double bytes);
 
+/// Checks user creation options (KEY=VALUE) against `format`'s driver ("GTiff" or "COG") as
+/// writeRaster will: a key or value the driver does not list is an Error. For checking them
+/// before a long computation.
+void checkCreationOptions(const std::string& format, const std::vector<std::string>& userOptions);
+
 /// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success
 /// (geo/output_file.h); a failure or a cancel leaves neither `path` changed nor a temporary file.
 /// All bands must be the same shape. Refuses to overwrite `inputPath` when given, a `path` that is not

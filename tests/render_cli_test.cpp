@@ -412,6 +412,41 @@ TEST(TimelapseCli, NightFramesCopiedHoldTheirOwnMetadataAndTheCells) {
     fs::remove_all(d);
 }
 
+// --co reaches every GeoTIFF of a time-lapse, the night frames written as copies included, and
+// changes how they are stored, not what they hold; an option GDAL does not list fails before
+// any work, leaving no folder.
+TEST(TimelapseCli, CreationOptionsReachEveryGeoTiffAndABadOneFailsFirst) {
+    const fs::path d = scratch("tlco");
+    std::string err;
+    const std::string run = "timelapse '" + kDem + "' --start 2024-06-21T02:00 --end 2024-06-21T06:00 --step 1h "
+                            "--tz America/Los_Angeles --formats tif --sky-directions 4 -o '";
+    ASSERT_EQ(runCli(run + (d / "co").string() + "' -co COMPRESS=DEFLATE -co PREDICTOR=1", &err), 0) << err;
+    ASSERT_EQ(runCli(run + (d / "default").string() + "'", &err), 0) << err;
+    std::size_t tifs = 0;
+    for (const auto& e : fs::directory_iterator(d / "co")) {
+        if (e.path().extension() != ".tif") continue;
+        ++tifs;
+        const demlight::RasterSummary s = demlight::inspectRaster(e.path().string());
+        EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "DEFLATE") << e.path();
+        EXPECT_EQ(s.imageStructure.count("PREDICTOR"), 0u) << e.path();
+        const auto a = demlight::readRasterBands(e.path().string());
+        const auto b = demlight::readRasterBands((d / "default" / e.path().filename()).string());
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t k = 0; k < a.size(); ++k)
+            for (std::size_t i = 0; i < a[k].size(); ++i) {
+                const float x = a[k].data()[i], y = b[k].data()[i];
+                ASSERT_TRUE(x == y || (std::isnan(x) && std::isnan(y))) << e.path() << " " << i;
+            }
+    }
+    EXPECT_EQ(tifs, 6u);  // sky_k.tif and five frames
+    EXPECT_EQ(demlight::inspectRaster((d / "default" / "frame_001.tif").string()).imageStructure.at("COMPRESSION"),
+              "ZSTD");
+    EXPECT_NE(runCli(run + (d / "bad").string() + "' -co NO_SUCH_OPTION=1", &err), 0);
+    EXPECT_NE(err.find("NO_SUCH_OPTION"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(d / "bad"));
+    fs::remove_all(d);
+}
+
 // Bands, names and plausible values of a summer day on the sample.
 TEST(SunhoursCli, WritesFiveBands) {
     const fs::path d = scratch("sunhours");
