@@ -226,23 +226,43 @@ private:
         d.ref = r.ref;
         if (r.flagNodata || r.bands.empty()) return std::nullopt;
         for (const auto& [key, value] : r.metadata) d.keys.push_back(key);
-        bool nanSeen = false;
+        const auto bitsAt = [](const float* v, std::size_t i) {
+            std::uint32_t bits;
+            std::memcpy(&bits, v + i, sizeof bits);
+            return bits;
+        };
+        // The NaN pattern: the first cell that is not +0 (a lit cell ends the search at once).
         for (const ProductBand& b : r.bands) {
             if (b.values.empty()) return std::nullopt;
+            const float* v = b.values.data();
+            const std::size_t n = b.values.size();
+            std::size_t i = 0;
+            while (i < n && bitsAt(v, i) == 0) ++i;
+            if (i < n) {
+                if (!std::isnan(v[i])) return std::nullopt;
+                d.nanBits = bitsAt(v, i);
+                break;
+            }
+        }
+        for (const ProductBand& b : r.bands) {
             d.bandNames.push_back(b.name + "\n" + b.unit + "\n" + std::to_string(static_cast<int>(b.resampling)));
             d.width = b.values.width();
             d.height = b.values.height();
             const std::size_t n = b.values.size();
             std::vector<std::uint64_t> nan((n + 63) / 64, 0);
             const float* v = b.values.data();
-            for (std::size_t i = 0; i < n; ++i) {
-                std::uint32_t bits;
-                std::memcpy(&bits, v + i, sizeof bits);
-                if (bits == 0) continue;
-                if (!std::isnan(v[i]) || (nanSeen && bits != d.nanBits)) return std::nullopt;
-                nanSeen = true;
-                d.nanBits = bits;
-                nan[i / 64] |= std::uint64_t{1} << (i % 64);
+            // 64 cells a word, without branches inside it.
+            for (std::size_t w = 0; w < nan.size(); ++w) {
+                const std::size_t i0 = w * 64, count = std::min<std::size_t>(64, n - i0);
+                std::uint64_t word = 0;
+                bool other = false;
+                for (std::size_t k = 0; k < count; ++k) {
+                    const std::uint32_t bits = bitsAt(v, i0 + k);
+                    other |= bits != 0 && bits != d.nanBits;
+                    word |= static_cast<std::uint64_t>(bits != 0) << k;
+                }
+                if (other) return std::nullopt;
+                nan[w] = word;
             }
             d.nanCells.push_back(std::move(nan));
         }
