@@ -201,24 +201,23 @@ private:
         previous_ = std::move(dark);
     }
     /// What decides a dark frame's file but for its metadata values: the layout, the metadata's
-    /// keys, and per band its description and a bitmap of its NaN cells (all other cells +0).
-    /// About two bits per cell, where keeping the frame itself to compare would take 64.
+    /// keys, and per band its description and DarkCells (a NaN bitmap: about two bits per cell,
+    /// where keeping the frame itself to compare would take 64).
     struct DarkFrame {
         std::string name;  ///< its file, in the output folder (not compared)
         std::vector<std::string> keys, bandNames;
-        std::vector<std::vector<std::uint64_t>> nanCells;
-        std::uint32_t nanBits = 0;  ///< the one bit pattern of its NaN cells
+        std::vector<DarkCells> cells;
         std::size_t width = 0, height = 0;
         double nodata = 0;
         GeoReference ref;
         bool operator==(const DarkFrame& o) const {
-            return keys == o.keys && bandNames == o.bandNames && nanCells == o.nanCells && nanBits == o.nanBits &&
-                   width == o.width && height == o.height && nodata == o.nodata &&
-                   ref.geoTransform == o.ref.geoTransform && ref.crsWkt == o.ref.crsWkt;
+            return keys == o.keys && bandNames == o.bandNames && cells == o.cells && width == o.width &&
+                   height == o.height && nodata == o.nodata && ref.geoTransform == o.ref.geoTransform &&
+                   ref.crsWkt == o.ref.crsWkt;
         }
     };
     /// The frame as a DarkFrame, or none when a cell holds anything but +0 or NaN (of one bit
-    /// pattern), or a band is not Float32.
+    /// pattern per band), or a band is not Float32.
     static std::optional<DarkFrame> darkFrame(const ProductResult& r, const std::string& name) {
         DarkFrame d;
         d.name = name;
@@ -226,45 +225,14 @@ private:
         d.ref = r.ref;
         if (r.flagNodata || r.bands.empty()) return std::nullopt;
         for (const auto& [key, value] : r.metadata) d.keys.push_back(key);
-        const auto bitsAt = [](const float* v, std::size_t i) {
-            std::uint32_t bits;
-            std::memcpy(&bits, v + i, sizeof bits);
-            return bits;
-        };
-        // The NaN pattern: the first cell that is not +0 (a lit cell ends the search at once).
         for (const ProductBand& b : r.bands) {
             if (b.values.empty()) return std::nullopt;
-            const float* v = b.values.data();
-            const std::size_t n = b.values.size();
-            std::size_t i = 0;
-            while (i < n && bitsAt(v, i) == 0) ++i;
-            if (i < n) {
-                if (!std::isnan(v[i])) return std::nullopt;
-                d.nanBits = bitsAt(v, i);
-                break;
-            }
-        }
-        for (const ProductBand& b : r.bands) {
+            std::optional<DarkCells> cells = darkCells(b.values.data(), b.values.size());
+            if (!cells) return std::nullopt;
+            d.cells.push_back(std::move(*cells));
             d.bandNames.push_back(b.name + "\n" + b.unit + "\n" + std::to_string(static_cast<int>(b.resampling)));
             d.width = b.values.width();
             d.height = b.values.height();
-            const std::size_t n = b.values.size();
-            std::vector<std::uint64_t> nan((n + 63) / 64, 0);
-            const float* v = b.values.data();
-            // 64 cells a word, without branches inside it.
-            for (std::size_t w = 0; w < nan.size(); ++w) {
-                const std::size_t i0 = w * 64, count = std::min<std::size_t>(64, n - i0);
-                std::uint64_t word = 0;
-                bool other = false;
-                for (std::size_t k = 0; k < count; ++k) {
-                    const std::uint32_t bits = bitsAt(v, i0 + k);
-                    other |= bits != 0 && bits != d.nanBits;
-                    word |= static_cast<std::uint64_t>(bits != 0) << k;
-                }
-                if (other) return std::nullopt;
-                nan[w] = word;
-            }
-            d.nanCells.push_back(std::move(nan));
         }
         return d;
     }

@@ -232,6 +232,13 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
     const std::string method =
         request.stackDirections > 0 ? "sweep, interpolated:" + std::to_string(request.stackDirections) : "sweep";
     SweepBuffers buffers;  // the frames' sweeps' scratch and valid-cell bitmap
+    // The last night picture drawn (below), while the frames stay dark.
+    struct NightPicture {
+        DarkCells visibility;
+        double skyScale;
+        Image8 picture;
+    };
+    std::optional<NightPicture> night;
     for (std::size_t i = 0; i < n; ++i) {
         const UtcInstant when = instants[i];
         // The whole DEM's sun, read by this window (SunField::onTile): the same bits on its cells.
@@ -256,9 +263,28 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
         out.centreAzimuthDeg = field.centreAzimuthDeg;
         out.centreElevationDeg = field.centreElevationDeg;
         if (request.previews) {
-            out.preview = renderPreview(normals, frame.light.visibility, sky.skyK, albedo, field.centreAzimuthDeg,
-                                        field.centreElevationDeg, pp, request.search.threads);
-            if (request.picture.pixels == PixelGeometry::Ground) out.preview = toGroundPixels(out.preview, t);
+            // A night picture: with every valid cell's visibility +0 the key light is 0 (each
+            // penumbra exponent is positive), and below kBounceLowDeg so is the bounce, whatever
+            // the sun's direction; what is left depends on the sky scale alone. A frame with the
+            // previous night picture's visibility cells and sky scale gets that picture.
+            const double elevation = field.centreElevationDeg;
+            const bool noKeyNoBounce = bounceScale(elevation) == 0.0 && pp.penumbraExponent.r > 0.0 &&
+                                       pp.penumbraExponent.g > 0.0 && pp.penumbraExponent.b > 0.0;
+            std::optional<DarkCells> dark;
+            if (noKeyNoBounce) dark = darkCells(frame.light.visibility.data(), frame.light.visibility.size());
+            const double skyScale = twilightSkyScale(elevation);
+            if (dark && night && night->visibility == *dark && night->skyScale == skyScale) {
+                out.preview = night->picture;
+            } else {
+                out.preview = renderPreview(normals, frame.light.visibility, sky.skyK, albedo, field.centreAzimuthDeg,
+                                            elevation, pp, request.search.threads);
+                if (request.picture.pixels == PixelGeometry::Ground) out.preview = toGroundPixels(out.preview, t);
+                if (dark) {
+                    night = NightPicture{std::move(*dark), skyScale, out.preview};
+                } else {
+                    night.reset();
+                }
+            }
             out.preview.text = {{"Creation Time", out.localTime},
                                 {"Comment", "demlight time-lapse frame " + std::to_string(i) + ", " + out.localTime +
                                                 " (UTC " + formatInstant(when, std::string()) + "), sun at the DEM centre: azimuth " +

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <optional>
 #include <vector>
 
 namespace demlight {
@@ -70,6 +73,47 @@ inline RowSpan nonNanSpan(const float* row, std::size_t n) {
     while (first < end && row[first] != row[first]) ++first;
     while (end > first && row[end - 1] != row[end - 1]) --end;
     return {first, end};
+}
+
+/// A grid whose every cell is +0 or NaN of one bit pattern (a frame with the sun down): a bitmap
+/// of its NaN cells (bit i % 64 of word i / 64) and that pattern. Two such grids of one shape hold
+/// the same bits exactly when these are equal.
+struct DarkCells {
+    std::vector<std::uint64_t> nan;
+    std::uint32_t nanBits = 0;
+    bool operator==(const DarkCells&) const = default;
+};
+
+/// The DarkCells of n values, or none when one holds anything else (a lit cell, most often among
+/// the first, ends the search for the NaN pattern at once; then 64 cells a word, without branches
+/// inside the word).
+inline std::optional<DarkCells> darkCells(const float* v, std::size_t n) {
+    const auto bitsAt = [v](std::size_t i) {
+        std::uint32_t bits;
+        std::memcpy(&bits, v + i, sizeof bits);
+        return bits;
+    };
+    DarkCells d;
+    std::size_t i = 0;
+    while (i < n && bitsAt(i) == 0) ++i;
+    if (i < n) {
+        if (v[i] == v[i]) return std::nullopt;  // not NaN
+        d.nanBits = bitsAt(i);
+    }
+    d.nan.assign((n + 63) / 64, 0);
+    for (std::size_t w = 0; w < d.nan.size(); ++w) {
+        const std::size_t i0 = w * 64, count = std::min<std::size_t>(64, n - i0);
+        std::uint64_t word = 0;
+        bool other = false;
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t bits = bitsAt(i0 + k);
+            other |= bits != 0 && bits != d.nanBits;
+            word |= static_cast<std::uint64_t>(bits != 0) << k;
+        }
+        if (other) return std::nullopt;
+        d.nan[w] = word;
+    }
+    return d;
 }
 
 /// The window's cells of a grid as a grid of their own; an empty grid stays empty.

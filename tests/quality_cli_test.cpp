@@ -112,6 +112,36 @@ TEST(QualityCli, TimelapseFramesHoldTheSunAndSkyOfTheSamePlan) {
     EXPECT_FALSE(sameGrid(skyK[0], skyK[2])) << "--tolerance 5 (curvature off) gave the default sky";
 }
 
+// A time-lapse draws a night picture once and gives it to the following frames while their
+// visibility cells and sky scale stay the same (the sun's direction then adds nothing): from
+// deep night into twilight, where the sky scale starts to change, every frame's picture must
+// still be `render`'s at its instant.
+TEST(QualityCli, TimelapseNightPicturesAreTheRendersOfTheirInstants) {
+    const fs::path d = scratch("nightpictures");
+    const std::vector<std::string> times = {"2024-06-21T01:00-06:00", "2024-06-21T02:30-06:00",
+                                            "2024-06-21T03:40-06:00", "2024-06-21T04:10-06:00",
+                                            "2024-06-21T04:40-06:00"};
+    // Every 10 minutes from 01:00 to 04:40: the sun from -26 to -8 deg at the sample (twilight
+    // from -12 deg, frame 19 on).
+    const auto r = runDemlight("-q timelapse " + kRocky + " -o " + (d / "tl").string() + " --start " + times.front() +
+                               " --end " + times.back() + " --step 10m --formats png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const std::string& time : times) {
+        SCOPED_TRACE(time);
+        const fs::path png = d / ("render_" + time.substr(11, 2) + time.substr(14, 2) + ".png");
+        const auto rr = runDemlight("-q render " + kRocky + " -o " + png.string() + " --time " + time);
+        ASSERT_EQ(rr.exitCode, 0) << rr.err;
+        const int minutes = (std::stoi(time.substr(11, 2)) - 1) * 60 + std::stoi(time.substr(14, 2));
+        char frame[32];
+        std::snprintf(frame, sizeof frame, "frame_%03d.png", minutes / 10);
+        EXPECT_EQ(withoutTextChunks(fileBytes(png)), withoutTextChunks(fileBytes(d / "tl" / frame)));
+    }
+    // The night's pictures are one picture, and twilight's are brighter ones.
+    EXPECT_EQ(withoutTextChunks(fileBytes(d / "tl" / "frame_000.png")), withoutTextChunks(fileBytes(d / "tl" / "frame_009.png")));
+    EXPECT_NE(withoutTextChunks(fileBytes(d / "tl" / "frame_000.png")), withoutTextChunks(fileBytes(d / "tl" / "frame_022.png")));
+    fs::remove_all(d);
+}
+
 TEST(QualityCli, RenderIsTheTimelapsePreviewOfTheSamePlan) {
     const fs::path d = scratch("render");
     std::vector<std::vector<char>> pictures;
