@@ -22,6 +22,37 @@ TEST(Grid, IsRowMajorWithRowZeroFirst) {
     EXPECT_EQ(g.size(), 6u);
 }
 
+// darkCells: the NaN bitmap of values that are all +0 or one NaN pattern, and none for
+// anything else, wherever the odd value sits (first, inside a word, last, after a NaN).
+TEST(Grid, DarkCellsAreTheNanBitmapOfZerosAndOneNan) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (const std::size_t n : {std::size_t{1}, std::size_t{63}, std::size_t{64}, std::size_t{65}, std::size_t{200}}) {
+        std::vector<float> v(n, 0.0f);
+        const auto none = demlight::darkCells(v.data(), n);
+        ASSERT_TRUE(none.has_value()) << n;
+        EXPECT_EQ(none->nan, std::vector<std::uint64_t>((n + 63) / 64, 0)) << n;
+        for (std::size_t i = 0; i < n; i += 3) v[i] = nan;
+        const auto dark = demlight::darkCells(v.data(), n);
+        ASSERT_TRUE(dark.has_value()) << n;
+        for (std::size_t i = 0; i < n; ++i)
+            ASSERT_EQ((dark->nan[i / 64] >> (i % 64)) & 1u, i % 3 == 0 ? 1u : 0u) << n << " " << i;
+        for (const std::size_t at : {std::size_t{0}, n / 2, n - 1}) {
+            // A value other than +0 and NaN, after NaNs or first.
+            for (const float odd : {1.0f, -0.0f, 1e-45f}) {
+                std::vector<float> w = v;
+                w[at] = odd;
+                EXPECT_FALSE(demlight::darkCells(w.data(), n).has_value()) << n << " " << at << " " << odd;
+            }
+            // A second NaN pattern after the first (v[0] is NaN).
+            if (at > 0) {
+                std::vector<float> w = v;
+                w[at] = -nan;
+                EXPECT_FALSE(demlight::darkCells(w.data(), n).has_value()) << n << " " << at;
+            }
+        }
+    }
+}
+
 TEST(ConvergenceField, InterpolatesBilinearlyBetweenNodes) {
     ConvergenceField f;
     f.stepCells = 10;
