@@ -239,9 +239,7 @@ void TiledWriter::write(std::size_t target, const CellWindow& tile, const Produc
         w.creationOptions = targets_[target].out.creationOptions;
         w.fixedPoint = targets_[target].out.fixedPoint;
         w.nodata = part.flagNodata.value_or(part.nodata);
-        w.metadata = part.metadata;
-        w.metadata["DEMLIGHT_COMMAND"] = ctx_.commandLine;
-        for (const auto& [key, value] : targets_[target].extra) w.metadata[key] = value;
+        w.metadata = resultMetadata(part, ctx_, targets_[target].extra);
         sink = std::make_unique<RasterSink>(targets_[target].out.path, run_.extent.col1 - run_.extent.col0,
                                             run_.extent.row1 - run_.extent.row0, run_.ref, w, inputPath_);
     }

@@ -216,6 +216,17 @@ void validateUserCreationOptions(GDALDriver* driver, const WriteOptions& options
                     " (gdalinfo --format " + options.format + " lists them)");
 }
 
+/// The GDAL driver of options.format (GTiff or COG), the user's creation options checked
+/// against it: what every write to a new file checks first.
+GDALDriver* checkedDriver(const WriteOptions& options) {
+    if (options.format != "GTiff" && options.format != "COG")
+        throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
+    if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
+    validateUserCreationOptions(driver, options);
+    return driver;
+}
+
 }  // namespace
 
 namespace {
@@ -511,8 +522,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const std::string& inputPath) {
     detail::ensureGdal();
     if (bands.empty()) throw Error("nothing to write to '" + path + "'");
-    if (options.format != "GTiff" && options.format != "COG")
-        throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
+    GDALDriver* driver = checkedDriver(options);
     checkOutputFile(path);
     checkRasterPath(path);
 
@@ -533,9 +543,6 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
             throw Error("internal: output bands of '" + path + "' differ in size");
     }
 
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
-    if (!driver) throw Error("GDAL has no '" + options.format + "' driver");
-    validateUserCreationOptions(driver, options);
     const std::vector<std::string> co = creationOptions(options, type);
     CPLStringList coList;
     for (const auto& kv : co) coList.AddString(kv.c_str());
@@ -655,14 +662,10 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
 void checkCreationOptions(const std::string& format, const std::vector<std::string>& userOptions) {
     detail::ensureGdal();
-    if (format != "GTiff" && format != "COG")
-        throw Error("output format '" + format + "' is not supported (-of GTiff or COG)");
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
-    if (!driver) throw Error("GDAL has no '" + format + "' driver");
     WriteOptions options;
     options.format = format;
     options.creationOptions = userOptions;
-    validateUserCreationOptions(driver, options);
+    checkedDriver(options);
     (void)creationOptions(options, GDT_Float32);  // throws on an option that is not KEY=VALUE
 }
 

@@ -166,10 +166,11 @@ struct Tap {
 };
 
 /// The taps of every output column (the same for every row), flattened; column j's taps are
-/// taps[first[j] .. first[j + 1]).
+/// taps[first[j] .. first[j + 1]), their weights summing to total[j] (added in tap order).
 struct ColumnTaps {
     std::vector<Tap> taps;
     std::vector<std::size_t> first;
+    std::vector<double> total;
 };
 
 ColumnTaps columnTaps(std::size_t inWidth, std::size_t outWidth) {
@@ -200,6 +201,9 @@ ColumnTaps columnTaps(std::size_t inWidth, std::size_t outWidth) {
         }
     }
     ct.first.push_back(ct.taps.size());
+    ct.total.assign(outWidth, 0.0);
+    for (std::size_t j = 0; j < outWidth; ++j)
+        for (std::size_t t = ct.first[j]; t < ct.first[j + 1]; ++t) ct.total[j] += ct.taps[t].weight;
     return ct;
 }
 
@@ -236,9 +240,10 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
     // (Pointers held in locals: the byte stores could alias the vectors' own fields.)
     const Tap* const taps = ct.taps.data();
     const std::size_t* const first = ct.first.data();
+    const double* const total = ct.total.data();
     const std::uint8_t* const src = image.rgba.data();
     std::uint8_t* const dst = out.rgba.data();
-    parallelFor(0, rows, 0, [&, taps, first, src, dst](std::size_t row) {
+    parallelFor(0, rows, 0, [&, taps, first, total, src, dst](std::size_t row) {
         const std::uint8_t* in = src + row * cols * 4;
         std::uint8_t* q = dst + row * outWidth * 4;
         for (std::size_t j = 0; j < outWidth; ++j, q += 4) {
@@ -246,12 +251,11 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
             // operations as a scalar per channel would (a product and a sum per tap, one
             // division), so the bytes are those of a loop over the channels.
             Double4 sum = {0, 0, 0, 0};
-            double opaqueWeight = 0, weight = 0;
+            double opaqueWeight = 0;
             const Tap* const end = taps + first[j + 1];
             for (const Tap* tap = taps + first[j]; tap != end; ++tap) {
                 const std::uint8_t* p = in + tap->col * 4;
                 const double w = tap->weight;
-                weight += w;
                 if (p[3] == 0) continue;  // nodata: no colour, no coverage
                 Byte4 bytes;
                 std::memcpy(&bytes, p, sizeof bytes);
@@ -264,7 +268,7 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
                 continue;
             }
             // Colour over the opaque taps' weight, alpha over all of it.
-            const Double4 mean = sum / Double4{opaqueWeight, opaqueWeight, opaqueWeight, weight};
+            const Double4 mean = sum / Double4{opaqueWeight, opaqueWeight, opaqueWeight, total[j]};
             // lround of each lane, clamped to a byte: the means are 0-255, and for v >= 0,
             // trunc(v + 0.49999999999999994) is lround(v) (the sum cannot round up to the next
             // integer unless v's fraction is at least 1/2).
