@@ -59,6 +59,20 @@ std::vector<unsigned char> readFile(const fs::path& p) {
     return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
+/// Whether two rasters' bands hold the same values: as many bands, of one shape, every cell
+/// equal or NaN in both.
+bool sameCells(const std::vector<demlight::Grid<float>>& a, const std::vector<demlight::Grid<float>>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        if (!a[k].sameShape(b[k])) return false;
+        for (std::size_t i = 0; i < a[k].size(); ++i) {
+            const float x = a[k].data()[i], y = b[k].data()[i];
+            if (!(x == y || (std::isnan(x) && std::isnan(y)))) return false;
+        }
+    }
+    return true;
+}
+
 std::uint32_t bigEndian32(const unsigned char* p) {
     return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
 }
@@ -363,12 +377,7 @@ TEST(TimelapseCli, NightFramesCopiedHoldTheirOwnMetadataAndTheCells) {
         EXPECT_EQ(s.imageStructure, s0.imageStructure);
         const std::vector<demlight::Grid<float>> bands = demlight::readRasterBands(frameFile(i));
         ASSERT_EQ(bands.size(), 2u);
-        bool same = true;
-        for (std::size_t b = 0; b < 2; ++b)
-            for (std::size_t k = 0; k < bands[b].size(); ++k) {
-                const float x = bands[b].data()[k], y = first[b].data()[k];
-                same = same && (x == y || (std::isnan(x) && std::isnan(y)));
-            }
+        const bool same = sameCells(bands, first);
         sameAsFirst += same;
         // A copy's TIFF directory follows its tiles (GDAL rewrote it at the end); an encoded
         // frame's comes first. Classic little-endian TIFF: the first directory's offset at byte 4.
@@ -397,13 +406,8 @@ TEST(TimelapseCli, NightFramesCopiedHoldTheirOwnMetadataAndTheCells) {
         m->erase("DEMLIGHT_FRAME");
     }
     EXPECT_EQ(copied.metadata, alone.metadata);
-    const auto aloneBands = demlight::readRasterBands((d / "one" / "frame_000.tif").string());
-    const auto copiedBands = demlight::readRasterBands(frameFile(3));
-    for (std::size_t b = 0; b < 2; ++b)
-        for (std::size_t k = 0; k < aloneBands[b].size(); ++k) {
-            const float x = aloneBands[b].data()[k], y = copiedBands[b].data()[k];
-            ASSERT_TRUE(x == y || (std::isnan(x) && std::isnan(y))) << b << " " << k;
-        }
+    EXPECT_TRUE(sameCells(demlight::readRasterBands((d / "one" / "frame_000.tif").string()),
+                          demlight::readRasterBands(frameFile(3))));
     // Only the outputs are left in the folder: no temporary file, no GDAL sidecar.
     for (const auto& e : fs::directory_iterator(d / "out")) {
         const std::string n = e.path().filename().string();
@@ -429,14 +433,9 @@ TEST(TimelapseCli, CreationOptionsReachEveryGeoTiffAndABadOneFailsFirst) {
         const demlight::RasterSummary s = demlight::inspectRaster(e.path().string());
         EXPECT_EQ(s.imageStructure.at("COMPRESSION"), "DEFLATE") << e.path();
         EXPECT_EQ(s.imageStructure.count("PREDICTOR"), 0u) << e.path();
-        const auto a = demlight::readRasterBands(e.path().string());
-        const auto b = demlight::readRasterBands((d / "default" / e.path().filename()).string());
-        ASSERT_EQ(a.size(), b.size());
-        for (std::size_t k = 0; k < a.size(); ++k)
-            for (std::size_t i = 0; i < a[k].size(); ++i) {
-                const float x = a[k].data()[i], y = b[k].data()[i];
-                ASSERT_TRUE(x == y || (std::isnan(x) && std::isnan(y))) << e.path() << " " << i;
-            }
+        EXPECT_TRUE(sameCells(demlight::readRasterBands(e.path().string()),
+                              demlight::readRasterBands((d / "default" / e.path().filename()).string())))
+            << e.path();
     }
     EXPECT_EQ(tifs, 6u);  // sky_k.tif and five frames
     EXPECT_EQ(demlight::inspectRaster((d / "default" / "frame_001.tif").string()).imageStructure.at("COMPRESSION"),
