@@ -17,10 +17,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -225,14 +223,14 @@ private:
         d.ref = r.ref;
         if (r.flagNodata || r.bands.empty()) return std::nullopt;
         for (const auto& [key, value] : r.metadata) d.keys.push_back(key);
+        d.width = r.bands.front().values.width();  // (the bands share one shape)
+        d.height = r.bands.front().values.height();
         for (const ProductBand& b : r.bands) {
             if (b.values.empty()) return std::nullopt;
             std::optional<DarkCells> cells = darkCells(b.values.data(), b.values.size());
             if (!cells) return std::nullopt;
             d.cells.push_back(std::move(*cells));
             d.bandNames.push_back(b.name + "\n" + b.unit + "\n" + std::to_string(static_cast<int>(b.resampling)));
-            d.width = b.values.width();
-            d.height = b.values.height();
         }
         return d;
     }
