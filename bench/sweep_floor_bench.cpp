@@ -1,0 +1,253 @@
+// The hull sweep's floor on this machine: what the bare upper-hull kernel costs per cell and
+// direction, beside the library's sweep on the same lines, in one run.
+//
+// Usage: demlight_sweep_floor_bench DEM [runs]   (default 5 runs, medians printed)
+//
+// The lines are the DEM's columns walked from the north edge (azimuth 0, the sweep's cheapest
+// case: every line runs through cell centres, one region, no range limit, no near field). Each
+// step does what no hull sweep can skip: read a height, drop it by the earth's curvature, pop
+// the vertices the new point hides (Dozier 1981; Timonen & Westerholm 2010), take the tangent of
+// the cell's own sample (the vertex below the new top, one division) and push the point. It
+// skips everything else the library does: serving a cell from two lines between centres, other
+// azimuths (regions, distances per line), range limits, nodata bitmaps, the near field, the
+// combine pass, the angle, allocating the map. So no sweep of the library can be faster than
+// this kernel; the 5 ns target of issue 20 is measured against it (docs/performance.md, "The
+// floor of a hull sweep on this machine").
+//
+// Two kernels, the same bits: scalar, 64 lines in lock-step with the heights prefetched a few
+// rows ahead (the library's layout), and, where AVX-512 is compiled in, eight lines per vector
+// with each line's two top vertices kept in registers (the farther ones gathered, the pushed
+// point scattered). On a geographic DEM (columns are meridians) both are checked against the
+// library's sweep at azimuth 0: the angles agree to float rounding, or the bench says how many
+// cells differ by more than 1e-3 deg.
+#include "bench/bench_timing.h"
+#include "geo/dem.h"
+#include "lighting/horizon.h"
+#include "src/error.h"
+#include "src/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
+// As in lighting/horizon_sweep.cpp: GCC 12 reports its intrinsics' deliberately undefined start
+// values as maybe uninitialized where they are inlined.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <immintrin.h>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#define FLOOR_AVX512 1
+#endif
+
+namespace {
+
+constexpr long kBlock = 64;        // lines per block (the library's kLinesPerBlock)
+constexpr long kPrefetchRows = 8;  // rows ahead
+
+struct Lines {
+    const float* heights;  // row-major, NaN = nodata
+    long width, height;
+    std::vector<double> sigma;  // distance of each row from the north edge (metres)
+    double invR;
+};
+
+void prefetchRow(const Lines& l, float* out, long row, long c0, long n) {
+    if (row >= l.height) return;
+    for (long k = 0; k < n; k += 16) {
+        __builtin_prefetch(l.heights + row * l.width + c0 + k);
+        __builtin_prefetch(out + row * l.width + c0 + k, 1);
+    }
+}
+
+/// Slopes (tangent of the horizon, curvature included) of columns [c0, c0 + n), n <= kBlock;
+/// -inf where no farther point exists, NaN at nodata. hull: kBlock * height points of scratch.
+void scalarBlock(const Lines& l, float* out, long c0, long n, std::vector<double>& hull) {
+    long top[kBlock] = {};
+    const double halfInvR = 0.5 * l.invR;
+    for (long r = 0; r < l.height; ++r) {
+        prefetchRow(l, out, r + kPrefetchRows, c0, n);
+        const double s = l.sigma[static_cast<std::size_t>(r)];
+        const double drop = s * s * halfInvR;
+        for (long b = 0; b < n; ++b) {
+            const float h = l.heights[r * l.width + c0 + b];
+            float* o = out + r * l.width + c0 + b;
+            if (std::isnan(h)) {
+                *o = h;
+                continue;
+            }
+            double* v = hull.data() + 2 * b * l.height;  // (sigma, g) pairs
+            long t = top[b];
+            const double g = static_cast<double>(h) - drop;
+            // Pop v1 unless the slope to v2 (farther) is below the slope to v1.
+            while (t >= 2 && !((v[2 * t - 3] - g) * (s - v[2 * t - 2]) < (v[2 * t - 1] - g) * (s - v[2 * t - 4]))) --t;
+            *o = t >= 1 ? static_cast<float>((v[2 * t - 1] - g) / (s - v[2 * t - 2]) - s * l.invR)
+                        : -std::numeric_limits<float>::infinity();
+            v[2 * t] = s;
+            v[2 * t + 1] = g;
+            top[b] = t + 1;
+        }
+    }
+}
+
+#ifdef FLOOR_AVX512
+/// scalarBlock for n == kBlock, eight lines per vector. Vertex v of lane l is at [v * 8 + l] of
+/// the lane group's sigma and g arrays.
+void simdBlock(const Lines& l, float* out, long c0, std::vector<double>& hull) {
+    constexpr long kGroups = kBlock / 8;
+    struct Group {
+        __m512i top;
+        __m512d s1, g1, s2, g2;  // the top vertex and the one below it
+    };
+    Group st[kGroups];
+    for (Group& q : st) q = {_mm512_setzero_si512(), _mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+    const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m512i one = _mm512_set1_epi64(1), two = _mm512_set1_epi64(2);
+    const __m512d invR = _mm512_set1_pd(l.invR);
+    const __m256 none = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+    const double halfInvR = 0.5 * l.invR;
+    for (long r = 0; r < l.height; ++r) {
+        prefetchRow(l, out, r + kPrefetchRows, c0, kBlock);
+        const double sd = l.sigma[static_cast<std::size_t>(r)];
+        const __m512d s = _mm512_set1_pd(sd);
+        const __m512d drop = _mm512_set1_pd(sd * sd * halfInvR);
+        for (long q = 0; q < kGroups; ++q) {
+            double* S = hull.data() + 2 * q * 8 * l.height;
+            double* G = S + 8 * l.height;
+            const __m256 h = _mm256_loadu_ps(l.heights + r * l.width + c0 + q * 8);
+            const __m512d hd = _mm512_cvtps_pd(h);
+            const __mmask8 valid = _mm512_cmp_pd_mask(hd, hd, _CMP_ORD_Q);
+            const __m512d g = hd - drop;
+            Group& L = st[q];
+            __m512i top = L.top;
+            __m512d s1 = L.s1, g1 = L.g1, s2 = L.s2, g2 = L.g2;
+            const __mmask8 hasTop = valid & _mm512_cmpge_epi64_mask(top, one);
+            __mmask8 active = valid & _mm512_cmpge_epi64_mask(top, two);
+            for (;;) {
+                const __mmask8 keep = _mm512_cmp_pd_mask((g2 - g) * (s - s1), (g1 - g) * (s - s2), _CMP_LT_OQ);
+                const __mmask8 pop = active & ~keep;
+                if (!pop) break;
+                top = _mm512_mask_sub_epi64(top, pop, top, one);
+                s1 = _mm512_mask_mov_pd(s1, pop, s2);
+                g1 = _mm512_mask_mov_pd(g1, pop, g2);
+                active = pop & _mm512_cmpge_epi64_mask(top, two);
+                const __m512i below = _mm512_add_epi64(_mm512_slli_epi64(_mm512_sub_epi64(top, two), 3), lane);
+                s2 = _mm512_mask_i64gather_pd(s2, active, below, S, 8);
+                g2 = _mm512_mask_i64gather_pd(g2, active, below, G, 8);
+            }
+            const __m512d slope = (g1 - g) / (s - s1) - s * invR;
+            __m256 value = _mm256_mask_blend_ps(hasTop, none, _mm512_cvtpd_ps(slope));
+            value = _mm256_mask_blend_ps(valid, h, value);  // NaN stays
+            _mm256_storeu_ps(out + r * l.width + c0 + q * 8, value);
+            const __m512i at = _mm512_add_epi64(_mm512_slli_epi64(top, 3), lane);
+            _mm512_mask_i64scatter_pd(S, valid, at, s, 8);
+            _mm512_mask_i64scatter_pd(G, valid, at, g, 8);
+            L.top = _mm512_mask_add_epi64(top, valid, top, one);
+            L.s2 = _mm512_mask_mov_pd(s2, valid, s1);
+            L.g2 = _mm512_mask_mov_pd(g2, valid, g1);
+            L.s1 = _mm512_mask_mov_pd(s1, valid, s);
+            L.g1 = _mm512_mask_mov_pd(g1, valid, g);
+        }
+    }
+}
+#endif
+
+/// Every column, blocks spread over `threads`; simd: full blocks by simdBlock, the rest scalar.
+void sweepColumns(const Lines& l, float* out, int threads, bool simd) {
+    const auto blocks = static_cast<std::size_t>((l.width + kBlock - 1) / kBlock);
+    demlight::parallelFor(0, blocks, threads, [&](std::size_t blk) {
+        thread_local std::vector<double> hull;
+        hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
+        const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);
+#ifdef FLOOR_AVX512
+        if (simd && n == kBlock) return simdBlock(l, out, c0, hull);
+#endif
+        (void)simd;
+        scalarBlock(l, out, c0, n, hull);
+    });
+}
+
+/// Cells where the kernel's angle and the library's differ by more than 1e-3 deg (either NaN
+/// alone counts; cells the kernel finds no farther point for are skipped, the library gives
+/// them its no-horizon value), and the largest difference.
+void compare(const std::vector<float>& slopes, const demlight::HorizonMap& ref, long& differing, double& maxDiff) {
+    differing = 0;
+    maxDiff = 0;
+    const float* a = ref.angleDeg.data();
+    for (std::size_t i = 0; i < slopes.size(); ++i) {
+        const float s = slopes[i];
+        if (std::isnan(s) || std::isnan(a[i])) {
+            differing += std::isnan(s) != std::isnan(a[i]);
+            continue;
+        }
+        if (std::isinf(s)) continue;
+        const double d = std::abs(std::atan(static_cast<double>(s)) * 180.0 / M_PI - a[i]);
+        maxDiff = std::max(maxDiff, d);
+        differing += d > 1e-3;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s DEM [runs]\n", argv[0]);
+        return 2;
+    }
+    try {
+        const demlight::Dem dem = demlight::loadDem(argv[1]);
+        const demlight::Terrain& t = dem.terrain;
+        const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
+        demlight::HorizonParams p;  // azimuth 0, whole DEM, no near field
+        p.azimuthDeg = 0.0;
+        Lines lines{t.heightsM.data(), static_cast<long>(t.width()), static_cast<long>(t.height()), {}, 0.0};
+        // The library's distances along a column: the sum of the row heights walked (its sigmaAt).
+        lines.sigma.assign(t.height(), 0.0);
+        for (std::size_t r = 1; r < t.height(); ++r) lines.sigma[r] = lines.sigma[r - 1] + t.cellHeightM[r - 1];
+        lines.invR = demlight::inverseEffectiveRadius(p);
+        const int all = demlight::resolveThreadCount(0);
+        const double cells = static_cast<double>(t.width() * t.height());
+        std::vector<float> slopes(t.width() * t.height());
+        demlight::HorizonMap ref;
+
+        // On a projected grid true north turns against the columns (meridian convergence): the
+        // library's lines at azimuth 0 are not the columns, and the angles are not compared.
+        const bool comparable = t.convergence.empty();
+        std::printf("%s: %zu x %zu cells, azimuth 0, whole DEM, median of %d runs\n", argv[1], t.width(), t.height(), runs);
+        if (!comparable) std::printf("(projected grid: its columns are not true north, so the kernels' angles are not compared)\n");
+        std::printf("%-44s %14s %16s %10s %12s\n", "kernel", "ns/cell 1 thr", "ns/cell all thr", "ratio", "cells off");
+        const auto row = [&](const char* name, const std::function<void(int)>& run, bool check) {
+            const double one = demlight::bench::medianSeconds(runs, [&] { run(1); });
+            const double many = demlight::bench::medianSeconds(runs, [&] { run(all); });
+            long differing = 0;
+            double maxDiff = 0;
+            char off[64] = "-";
+            if (check && comparable) {
+                compare(slopes, ref, differing, maxDiff);
+                std::snprintf(off, sizeof off, "%ld (max %.1e deg)", differing, maxDiff);
+            }
+            std::printf("%-44s %14.2f %16.2f %10.2f %12s\n", name, one / cells * 1e9, many / cells * 1e9, one / many, off);
+        };
+        row("library sweep (sweepHorizon, all passes)", [&](int threads) {
+            p.threads = threads;
+            ref = demlight::sweepHorizon(t, p);
+        }, false);
+        row("bare hull kernel, scalar", [&](int threads) { sweepColumns(lines, slopes.data(), threads, false); }, true);
+#ifdef FLOOR_AVX512
+        row("bare hull kernel, AVX-512 (8 lines a vector)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, true); }, true);
+#else
+        std::printf("(AVX-512 not compiled in: no vector kernel)\n");
+#endif
+    } catch (const demlight::Error& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
