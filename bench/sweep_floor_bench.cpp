@@ -14,10 +14,11 @@
 // this kernel; the 5 ns target of issue 20 is measured against it (docs/performance.md, "The
 // floor of a hull sweep on this machine").
 //
-// Two kernels, the same bits: scalar, 64 lines in lock-step with the heights prefetched a few
+// Kernels: two with the same bits, scalar, 64 lines in lock-step with the heights prefetched a few
 // rows ahead (the library's layout), and, where AVX-512 is compiled in, eight lines per vector
 // with each line's two top vertices kept in registers (the farther ones gathered, the pushed
-// point scattered). On a geographic DEM (columns are meridians) both are checked against the
+// point scattered); and the vector kernel in single precision, sixteen lines a vector (not the same
+// bits: the bench prints how far its angles are from the double kernels'). On a geographic DEM (columns are meridians) both are checked against the
 // library's sweep at azimuth 0: the angles agree to float rounding, or the bench says how many
 // cells differ by more than 1e-3 deg.
 #include "bench/bench_timing.h"
@@ -157,19 +158,83 @@ void simdBlock(const Lines& l, float* out, long c0, std::vector<double>& hull) {
         }
     }
 }
+
+/// simdBlock in single precision, sixteen lines per vector: not the same bits (distances of
+/// 1e5 m keep 8 mm in a float), so the bench reports how far its angles are from the double
+/// kernels'. Vertex v of lane l is at [v * 16 + l].
+void floatBlock(const Lines& l, float* out, long c0, std::vector<double>& hullD) {
+    constexpr long kGroups = kBlock / 16;
+    struct Group {
+        __m512i top;
+        __m512 s1, g1, s2, g2;
+    };
+    Group st[kGroups];
+    for (Group& q : st) q = {_mm512_setzero_si512(), _mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps()};
+    auto* hull = reinterpret_cast<float*>(hullD.data());  // 2 * kBlock * height floats of the doubles' room
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i one = _mm512_set1_epi32(1), two = _mm512_set1_epi32(2);
+    const __m512 invR = _mm512_set1_ps(static_cast<float>(l.invR));
+    const __m512 none = _mm512_set1_ps(-std::numeric_limits<float>::infinity());
+    const double halfInvR = 0.5 * l.invR;
+    for (long r = 0; r < l.height; ++r) {
+        prefetchRow(l, out, r + kPrefetchRows, c0, kBlock);
+        const double sd = l.sigma[static_cast<std::size_t>(r)];
+        const __m512 s = _mm512_set1_ps(static_cast<float>(sd));
+        const __m512 drop = _mm512_set1_ps(static_cast<float>(sd * sd * halfInvR));
+        for (long q = 0; q < kGroups; ++q) {
+            float* S = hull + 2 * q * 16 * l.height;
+            float* G = S + 16 * l.height;
+            const __m512 h = _mm512_loadu_ps(l.heights + r * l.width + c0 + q * 16);
+            const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
+            const __m512 g = h - drop;
+            Group& L = st[q];
+            __m512i top = L.top;
+            __m512 s1 = L.s1, g1 = L.g1, s2 = L.s2, g2 = L.g2;
+            const __mmask16 hasTop = valid & _mm512_cmpge_epi32_mask(top, one);
+            __mmask16 active = valid & _mm512_cmpge_epi32_mask(top, two);
+            for (;;) {
+                const __mmask16 keep = _mm512_cmp_ps_mask((g2 - g) * (s - s1), (g1 - g) * (s - s2), _CMP_LT_OQ);
+                const __mmask16 pop = active & ~keep;
+                if (!pop) break;
+                top = _mm512_mask_sub_epi32(top, pop, top, one);
+                s1 = _mm512_mask_mov_ps(s1, pop, s2);
+                g1 = _mm512_mask_mov_ps(g1, pop, g2);
+                active = pop & _mm512_cmpge_epi32_mask(top, two);
+                const __m512i below = _mm512_add_epi32(_mm512_slli_epi32(_mm512_sub_epi32(top, two), 4), lane);
+                s2 = _mm512_mask_i32gather_ps(s2, active, below, S, 4);
+                g2 = _mm512_mask_i32gather_ps(g2, active, below, G, 4);
+            }
+            __m512 value = _mm512_mask_blend_ps(hasTop, none, (g1 - g) / (s - s1) - s * invR);
+            value = _mm512_mask_blend_ps(valid, h, value);
+            _mm512_storeu_ps(out + r * l.width + c0 + q * 16, value);
+            const __m512i at = _mm512_add_epi32(_mm512_slli_epi32(top, 4), lane);
+            _mm512_mask_i32scatter_ps(S, valid, at, s, 4);
+            _mm512_mask_i32scatter_ps(G, valid, at, g, 4);
+            L.top = _mm512_mask_add_epi32(top, valid, top, one);
+            L.s2 = _mm512_mask_mov_ps(s2, valid, s1);
+            L.g2 = _mm512_mask_mov_ps(g2, valid, g1);
+            L.s1 = _mm512_mask_mov_ps(s1, valid, s);
+            L.g1 = _mm512_mask_mov_ps(g1, valid, g);
+        }
+    }
+}
 #endif
 
-/// Every column, blocks spread over `threads`; simd: full blocks by simdBlock, the rest scalar.
-void sweepColumns(const Lines& l, float* out, int threads, bool simd) {
+enum class Kernel { scalar, doubleLanes, floatLanes };
+
+/// Every column, blocks spread over `threads`; the vector kernels take the full blocks, the
+/// scalar one the rest.
+void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
     const auto blocks = static_cast<std::size_t>((l.width + kBlock - 1) / kBlock);
     demlight::parallelFor(0, blocks, threads, [&](std::size_t blk) {
         thread_local std::vector<double> hull;
         hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
         const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);
 #ifdef FLOOR_AVX512
-        if (simd && n == kBlock) return simdBlock(l, out, c0, hull);
+        if (kernel == Kernel::doubleLanes && n == kBlock) return simdBlock(l, out, c0, hull);
+        if (kernel == Kernel::floatLanes && n == kBlock) return floatBlock(l, out, c0, hull);
 #endif
-        (void)simd;
+        (void)kernel;
         scalarBlock(l, out, c0, n, hull);
     });
 }
@@ -239,9 +304,22 @@ int main(int argc, char** argv) {
             p.threads = threads;
             ref = demlight::sweepHorizon(t, p);
         }, false);
-        row("bare hull kernel, scalar", [&](int threads) { sweepColumns(lines, slopes.data(), threads, false); }, true);
+        row("bare hull kernel, scalar", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::scalar); }, true);
 #ifdef FLOOR_AVX512
-        row("bare hull kernel, AVX-512 (8 lines a vector)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, true); }, true);
+        row("bare hull kernel, AVX-512 (8 lines a vector)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::doubleLanes); }, true);
+        const std::vector<float> doubleSlopes = slopes;
+        row("bare hull kernel, AVX-512 float (16 lines)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::floatLanes); }, true);
+        double maxDeg = 0;
+        std::vector<double> diffs;
+        for (std::size_t i = 0; i < slopes.size(); ++i) {
+            if (!std::isfinite(slopes[i]) || !std::isfinite(doubleSlopes[i])) continue;
+            diffs.push_back(std::abs(std::atan(static_cast<double>(slopes[i])) - std::atan(static_cast<double>(doubleSlopes[i]))) * 180.0 / M_PI);
+            maxDeg = std::max(maxDeg, diffs.back());
+        }
+        std::sort(diffs.begin(), diffs.end());
+        if (!diffs.empty())
+            std::printf("float kernel against the double kernels: median %.1e, p99 %.1e, max %.1e deg over %zu cells\n",
+                        diffs[diffs.size() / 2], diffs[diffs.size() * 99 / 100], maxDeg, diffs.size());
 #else
         std::printf("(AVX-512 not compiled in: no vector kernel)\n");
 #endif
