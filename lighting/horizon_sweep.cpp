@@ -362,6 +362,7 @@ struct EightLines {
 /// Serves, for lines b0..b0+7 at one major index, the cell after each line (cell index
 /// idxA + lane * idxStride) into planeA and the cell before it (idxB + lane * idxStride) into
 /// planeB, every one of them inside the window; sigmaC is each lane's distance of the step.
+/// With planeB null (one scan line per cell) only planeA's cells are served.
 inline void serveEightLines(const EightLines& e, const float* H, float* planeA, float* planeB, long idxA, long idxB,
                             long idxStride, __m512d sigmaC, double halfInvR, double invR) {
     constexpr long long kStateWords = sizeof(LineState) / sizeof(long long);
@@ -386,7 +387,7 @@ inline void serveEightLines(const EightLines& e, const float* H, float* planeA, 
     const __m512d invRv = _mm512_set1_pd(invR);
     float* const planes[2] = {planeA, planeB};
     const long idx0[2] = {idxA, idxB};
-    for (int s = 0; s < 2; ++s) {
+    for (int s = 0; s < (planeB ? 2 : 1); ++s) {
         // The lanes' cells: consecutive along rows (Y-major lines), a row apart otherwise.
         const __m512i cell = _mm512_add_epi64(_mm512_set1_epi64(idx0[s]), cellStep);
         const __m256 h = idxStride == 1 ? _mm256_loadu_ps(H + idx0[s]) : _mm512_i64gather_ps(cell, H, 4);
@@ -854,8 +855,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         std::size_t b = 0;
 #ifdef DEMLIGHT_SWEEP_AVX512
         // Eight lines at once where both cells of every line are window cells; serveLine serves
-        // the rest, and every line of range-limited sweeps.
-        if (!Limited && fracC > 0.0 && !geo.nearestLine) {
+        // the rest, and every line of range-limited sweeps. With one scan line per cell each line
+        // serves the cell it is nearest to (the same side for every line of the step) into plane
+        // A, at any fraction; with two, both cells where the line runs between them.
+        if (!Limited && (fracC > 0.0 || geo.nearestLine)) {
             for (; b + kSimdLines <= nLines; b += kSimdLines) {
                 const long n0 = kBegin + static_cast<long>(b) + baseC;
                 if (n0 < minorWin0 || n0 + static_cast<long>(kSimdLines) >= minorWin1) {
@@ -874,8 +877,13 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     sigmaC = _mm512_load_pd(sigma);
                 }
                 const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
-                serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB, idxA - idxB,
-                                sigmaC, halfInvR, invR);
+                if (geo.nearestLine) {
+                    serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, nullptr,
+                                    fracC > 0.5 ? idxA : idxB, 0, idxA - idxB, sigmaC, halfInvR, invR);
+                } else {
+                    serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB,
+                                    idxA - idxB, sigmaC, halfInvR, invR);
+                }
             }
         }
 #endif

@@ -469,6 +469,43 @@ TEST(Horizon, WindowMatchesFullGrid) {
         }
 }
 
+// The delayed serving takes eight lines at once where all eight and their cells lie inside the
+// window, and one line at a time elsewhere: a window seven cells across the lines is served only
+// one line at a time, and must give the whole DEM's bits, with one scan line per cell and with
+// two, at azimuths along rows and along columns, between and on the diagonals, next to voids.
+TEST(Horizon, EightLinesAtOnceServeAsOneLineAtATime) {
+    Terrain t = makeTerrain(150, 110, 20.0, hills);
+    for (std::size_t r = 40; r < 47; ++r)
+        for (std::size_t c = 60; c < 75; ++c) t.heightsM(c, r) = std::numeric_limits<float>::quiet_NaN();
+    t.heightsM(20, 90) = std::numeric_limits<float>::quiet_NaN();
+    for (const bool nearest : {true, false}) {
+        for (const double az : {20.0, 45.0, 70.0, 135.0, 200.0, 290.0, 333.0}) {
+            HorizonParams p;
+            p.azimuthDeg = az;
+            p.nearestLine = nearest;
+            p.nearFieldSteps = 4;
+            p.window.reset();
+            const HorizonMap full = sweepHorizon(t, p);
+            // Lines run along rows where the azimuth is nearer east-west (square cells): the
+            // strips are then a few rows tall, else a few columns wide.
+            const bool alongRows = std::abs(std::sin(az * kDegToRad)) >= std::abs(std::cos(az * kDegToRad));
+            const std::size_t across = alongRows ? t.height() : t.width();
+            for (std::size_t s0 = 0; s0 < across; s0 += 7) {
+                const std::size_t s1 = std::min(across, s0 + 7);
+                p.window = alongRows ? CellWindow{0, s0, t.width(), s1} : CellWindow{s0, 0, s1, t.height()};
+                const HorizonMap strip = sweepHorizon(t, p);
+                for (std::size_t r = p.window->row0; r < p.window->row1; ++r)
+                    for (std::size_t c = p.window->col0; c < p.window->col1; ++c) {
+                        const float a = strip.angleDeg(c, r), b = full.angleDeg(c, r);
+                        ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
+                            << "azimuth " << az << (nearest ? " nearest line" : " two lines") << " cell " << c << " "
+                            << r << ": " << a << " vs " << b;
+                    }
+            }
+        }
+    }
+}
+
 TEST(Horizon, ReferenceAtCellsMatchesReferenceGrid) {
     const Terrain t = makeTerrain(60, 50, 20.0, hills);
     const HorizonParams p = flatEarth(123.4);
