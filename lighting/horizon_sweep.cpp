@@ -162,6 +162,8 @@ std::vector<SweepRegion> fullGridRegions(const Terrain& terrain, const HorizonPa
 
 }  // namespace
 
+std::atomic<bool> detail::sweepEightLinesAtOnce{true};
+
 std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const HorizonParams& params,
                                                 const CellWindow& out) {
     const FullGridRef g = fullGrid(terrain);
@@ -450,6 +452,91 @@ inline void serveEightLines(const EightLines& e, const float* H, float* planeA, 
         hint = _mm512_mask_blend_epi64(query, hint, i);
     }
     _mm512_i64scatter_epi64(const_cast<long long*>(state) + offsetof(LineState, hint) / 8, stateIdx, hint, 8);
+}
+
+/// The two nearest vertices of eight lines' hulls (buf[hi - 1] and buf[hi - 2] of each lane),
+/// kept between steps by walkEightLines so that a push's first pop test reads no memory;
+/// `valid` is false until it has walked these lanes, and after anything else pushed to them.
+struct TopVertices {
+    __m512d s1, g1, s2, g2;
+    bool valid = false;
+};
+
+/// One step of the far-to-near walk for lines b0..b0+7 where it serves nothing (the delayed
+/// serving, sweepBlock's lanesWalk), one line per AVX-512 lane: the line sample between cells n0
+/// (index idx0 + lane * idxStride) and n0 + 1, every one of them inside the terrain, the pops it
+/// causes and its push. The scalar walk's comparisons and arithmetic are written as the same
+/// expressions on vectors (so the compiler contracts them alike), and its pop loop becomes a
+/// masked loop over the lanes that still pop: the same bits, the same hulls.
+inline void walkEightLines(const EightLines& e, const float* H, long idx0, long idxStride, double frac,
+                           __m512d sigma, double halfInvR, TopVertices& top) {
+    constexpr long long kStateWords = sizeof(LineState) / sizeof(long long);
+    const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m512i stateIdx = _mm512_mullo_epi64(lane, _mm512_set1_epi64(kStateWords));
+    auto* state = reinterpret_cast<long long*>(e.lines + e.b0);
+    const __m512i lo = _mm512_i64gather_epi64(stateIdx, state + offsetof(LineState, lo) / 8, 8);
+    const __m512i hi = _mm512_i64gather_epi64(stateIdx, state + offsetof(LineState, hi) / 8, 8);
+    const __m512i one = _mm512_set1_epi64(1), two = _mm512_set1_epi64(2);
+    // Hull vertex v of lane l: doubles 2 (hullStart_l + v) (σ) and that + 1 (g).
+    const __m512i hullStart = _mm512_mullo_epi64(
+        _mm512_add_epi64(lane, _mm512_set1_epi64(static_cast<long long>(e.b0))),
+        _mm512_set1_epi64(static_cast<long long>(e.lineCapacity)));
+    auto* hullSigma = const_cast<double*>(reinterpret_cast<const double*>(e.hulls));
+    double* hullG = hullSigma + 1;
+    const auto at = [&](__m512i v) { return _mm512_slli_epi64(_mm512_add_epi64(hullStart, v), 1); };
+
+    // The line sample: linear between the two cells, or the one with a height.
+    const __m512i cell = _mm512_add_epi64(_mm512_set1_epi64(idx0), _mm512_mullo_epi64(lane, _mm512_set1_epi64(idxStride)));
+    const __m256 h0 = idxStride == 1 ? _mm256_loadu_ps(H + idx0) : _mm512_i64gather_ps(cell, H, 4);
+    __m256 sample = h0;
+    if (frac > 0.0) {
+        const __m256 h1 = idxStride == 1 ? _mm256_loadu_ps(H + idx0 + 1)
+                                         : _mm512_i64gather_ps(_mm512_add_epi64(cell, _mm512_set1_epi64(idxStride)), H, 4);
+        const __m512d h0d = _mm512_cvtps_pd(h0), h1d = _mm512_cvtps_pd(h1);
+        const __m256 mixed = _mm512_cvtpd_ps(_mm512_set1_pd(1.0 - frac) * h0d + _mm512_set1_pd(frac) * h1d);
+        const __mmask8 nan0 = _mm512_cmp_pd_mask(h0d, h0d, _CMP_UNORD_Q);
+        const __mmask8 nan1 = _mm512_cmp_pd_mask(h1d, h1d, _CMP_UNORD_Q);
+        sample = _mm256_mask_blend_ps(nan0, _mm256_mask_blend_ps(nan1, mixed, h0), h1);
+    }
+    const __m512d sampleD = _mm512_cvtps_pd(sample);
+    const __mmask8 valid = _mm512_cmp_pd_mask(sampleD, sampleD, _CMP_ORD_Q);
+    const __m512d drop = sigma * sigma * _mm512_set1_pd(halfInvR);
+    const __m512d g = sampleD - drop;
+
+    // hullTopAfterPops: pop v1 while the hull keeps two vertices and the slope to v2 (farther)
+    // is at least the slope to v1.
+    const __m512i count = _mm512_sub_epi64(hi, lo);
+    if (!top.valid) {
+        const __mmask8 has1 = _mm512_cmpge_epi64_mask(count, one), has2 = _mm512_cmpge_epi64_mask(count, two);
+        top.s1 = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), has1, at(_mm512_sub_epi64(hi, one)), hullSigma, 8);
+        top.g1 = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), has1, at(_mm512_sub_epi64(hi, one)), hullG, 8);
+        top.s2 = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), has2, at(_mm512_sub_epi64(hi, two)), hullSigma, 8);
+        top.g2 = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), has2, at(_mm512_sub_epi64(hi, two)), hullG, 8);
+        top.valid = true;
+    }
+    __m512d s1 = top.s1, g1 = top.g1, s2 = top.s2, g2 = top.g2;
+    __m512i t = hi;
+    __mmask8 active = valid & _mm512_cmpge_epi64_mask(count, two);
+    while (active) {
+        const __mmask8 keep = _mm512_cmp_pd_mask((g2 - g) * (sigma - s1), (g1 - g) * (sigma - s2), _CMP_LT_OQ);
+        const __mmask8 pop = active & ~keep;
+        if (!pop) break;
+        t = _mm512_mask_sub_epi64(t, pop, t, one);
+        s1 = _mm512_mask_mov_pd(s1, pop, s2);
+        g1 = _mm512_mask_mov_pd(g1, pop, g2);
+        active = pop & _mm512_cmpge_epi64_mask(_mm512_sub_epi64(t, lo), two);
+        const __m512i below = at(_mm512_sub_epi64(t, two));
+        s2 = _mm512_mask_i64gather_pd(s2, active, below, hullSigma, 8);
+        g2 = _mm512_mask_i64gather_pd(g2, active, below, hullG, 8);
+    }
+    // The push: buf[t] = (σ, g) and hi = t + 1 where the sample holds a height.
+    _mm512_mask_i64scatter_pd(hullSigma, valid, at(t), sigma, 8);
+    _mm512_mask_i64scatter_pd(hullG, valid, at(t), g, 8);
+    _mm512_mask_i64scatter_epi64(state + offsetof(LineState, hi) / 8, valid, stateIdx, _mm512_add_epi64(t, one), 8);
+    top.s2 = _mm512_mask_mov_pd(top.s2, valid, s1);
+    top.g2 = _mm512_mask_mov_pd(top.g2, valid, g1);
+    top.s1 = _mm512_mask_mov_pd(top.s1, valid, sigma);
+    top.g1 = _mm512_mask_mov_pd(top.g1, valid, g);
 }
 #endif
 
@@ -779,6 +866,8 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     // it, from the hulls of the samples walked so far: its scan lines' terrain at least `delay`
     // steps away, queried at the cell's own height (the near field is the combine pass's).
     const long delay = geo.delay;
+    // Eight lines at once (AVX-512 builds), unless a test asks for one at a time.
+    [[maybe_unused]] const bool eightAtOnce = detail::sweepEightLinesAtOnce.load(std::memory_order_relaxed);
     auto serveDelayed = [&](long mc) {
         if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
         const long baseC = geo.base[static_cast<std::size_t>(mc)];
@@ -858,7 +947,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // the rest, and every line of range-limited sweeps. With one scan line per cell each line
         // serves the cell it is nearest to (the same side for every line of the step) into plane
         // A, at any fraction; with two, both cells where the line runs between them.
-        if (!Limited && (fracC > 0.0 || geo.nearestLine)) {
+        if (eightAtOnce && !Limited && (fracC > 0.0 || geo.nearestLine)) {
             for (; b + kSimdLines <= nLines; b += kSimdLines) {
                 const long n0 = kBegin + static_cast<long>(b) + baseC;
                 if (n0 < minorWin0 || n0 + static_cast<long>(kSimdLines) >= minorWin1) {
@@ -889,6 +978,12 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
 #endif
         for (; b < nLines; ++b) serveLine(b);
     };
+#ifdef DEMLIGHT_SWEEP_AVX512
+    // The walk takes eight lines at once where it only pushes: no range limit (chunks, logs),
+    // cells served after the walk (delay > 0), no crossing points between steps (they push too).
+    const bool lanesWalk = eightAtOnce && !Limited && delay > 0 && !geo.crossings;
+    TopVertices topVertices[kLinesPerBlock / kSimdLines];
+#endif
     // The cells within `delay` steps of the walk's start have no sample that far beyond them
     // (the walk starts at the DEM's far edge, or beyond every cell this block serves).
     bool served = false;
@@ -997,11 +1092,11 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // Where every line is off the terrain's cells or every cell is nodata there is nothing
         // to sample or serve (distances need no walking: they are a function of position).
         if (anyInside && !allNodata) {
-            for (std::size_t b = 0; b < nLines; ++b) {
+            const auto walkLine = [&](std::size_t b) {
                 LineState& line = lines[b];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 const long n1 = n0 + 1;
-                if (n0 < -1 || n0 > N - 1) continue;
+                if (n0 < -1 || n0 > N - 1) return;
                 const double sigma = sigmaTable ? geo.sigmaAt[static_cast<std::size_t>(m)]
                                                 : lineDistance(geo, line.edgeArcM, static_cast<double>(n0) + frac, m);
 
@@ -1092,7 +1187,34 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     line.buf[line.hi++] = {sigma, gSample};
                     if (limited) line.maxG = std::max(line.maxG, gSample);
                 }
+            };
+            std::size_t b = 0;
+#ifdef DEMLIGHT_SWEEP_AVX512
+            // Eight lines at once where all eight and the cells after them lie inside the terrain;
+            // walkLine walks the rest (and drops those lanes' cached top vertices).
+            for (; lanesWalk && b + kSimdLines <= nLines; b += kSimdLines) {
+                TopVertices& cached = topVertices[b / kSimdLines];
+                const long n0 = kBegin + static_cast<long>(b) + base;
+                if (n0 < nLo || n0 + static_cast<long>(kSimdLines) >= nHi) {
+                    for (std::size_t l = 0; l < kSimdLines; ++l) walkLine(b + l);
+                    cached.valid = false;
+                    continue;
+                }
+                __m512d sigma;
+                if (sigmaTable) {
+                    sigma = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(m)]);
+                } else {
+                    alignas(64) double each[kSimdLines];
+                    for (std::size_t l = 0; l < kSimdLines; ++l)
+                        each[l] = lineDistance(geo, lines[b + l].edgeArcM, static_cast<double>(n0 + static_cast<long>(l)) + frac, m);
+                    sigma = _mm512_load_pd(each);
+                }
+                const long idx0 = static_cast<long>(index(m, n0));
+                walkEightLines({lines, scratch.data(), lineCapacity, b}, H, idx0,
+                               static_cast<long>(index(m, n0 + 1)) - idx0, frac, sigma, halfInvR, cached);
             }
+#endif
+            for (; b < nLines; ++b) walkLine(b);
         }
         if (delay == 0) {
             if (m == mServeNear) break;

@@ -506,6 +506,50 @@ TEST(Horizon, EightLinesAtOnceServeAsOneLineAtATime) {
     }
 }
 
+// The walk takes eight lines at once where it only pushes (cells served after it, no range
+// limit): the same hulls, so the same bits as one line at a time, on square cells (one distance
+// per step) and on cells that narrow row by row as on a geographic grid (a distance per line),
+// next to voids and at the edges, with one scan line per cell and with two. Terraced heights
+// (8 m steps) on a flat earth put many points exactly in line.
+TEST(Horizon, EightLinesAtOnceWalkAsOneLineAtATime) {
+    Terrain square = makeTerrain(150, 110, 20.0, [](double x, double y) { return std::round(hills(x, y) / 8.0); });
+    Terrain narrowing = square;
+    for (std::size_t r = 0; r < narrowing.height(); ++r) narrowing.cellWidthM[r] = 20.0 * (1.0 - 0.004 * static_cast<double>(r));
+    for (Terrain* t : {&square, &narrowing}) {
+        for (std::size_t r = 40; r < 47; ++r)
+            for (std::size_t c = 60; c < 75; ++c) t->heightsM(c, r) = kNaN;
+        t->heightsM(20, 90) = kNaN;
+        t->heightsM(149, 5) = kNaN;
+    }
+    struct Restore {
+        ~Restore() { detail::sweepEightLinesAtOnce = true; }
+    } restore;
+    for (const Terrain* t : {&square, &narrowing}) {
+        for (const bool nearest : {true, false}) {
+            for (const double az : {20.0, 45.0, 70.0, 135.0, 200.0, 290.0, 333.0}) {
+                HorizonParams p;
+                p.azimuthDeg = az;
+                p.curvature = t == &narrowing;
+                p.nearestLine = nearest;
+                p.nearFieldSteps = 4;
+                p.farFieldCrossings = false;  // crossing points push too: one line at a time
+                detail::sweepEightLinesAtOnce = true;
+                const HorizonMap eight = sweepHorizon(*t, p);
+                detail::sweepEightLinesAtOnce = false;
+                const HorizonMap one = sweepHorizon(*t, p);
+                for (std::size_t r = 0; r < t->height(); ++r)
+                    for (std::size_t c = 0; c < t->width(); ++c) {
+                        const float a = eight.angleDeg(c, r), b = one.angleDeg(c, r);
+                        ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
+                            << (t == &square ? "square" : "narrowing") << " azimuth " << az
+                            << (nearest ? " nearest line" : " two lines") << " cell " << c << " " << r << ": " << a
+                            << " vs " << b;
+                    }
+            }
+        }
+    }
+}
+
 TEST(Horizon, ReferenceAtCellsMatchesReferenceGrid) {
     const Terrain t = makeTerrain(60, 50, 20.0, hills);
     const HorizonParams p = flatEarth(123.4);
