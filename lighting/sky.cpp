@@ -410,6 +410,7 @@ SkyAccumulator::SkyAccumulator(const Grid<float>& normalEast, const Grid<float>&
       patches_(std::move(patches)),
       threads_(threads),
       added_(directions, false),
+      nanOutside_(normalEast.height(), RowSpan{0, normalEast.width()}),
       sumK_(normalEast.width(), normalEast.height(), 0.0f),
       sumSin_(normalEast.width(), normalEast.height(), 0.0f),
       sumSin2_(normalEast.width(), normalEast.height(), 0.0f) {
@@ -455,10 +456,13 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         // runs of them at the row's ends (a coastal DEM's sea) are set so without computing, and
         // both passes take only the cells between them.
         const auto [c0, c1] = nonNanSpan(h, width);
-        for (const auto& [from, to] : {std::pair{std::size_t{0}, c0}, std::pair{c1, width}}) {
-            std::fill(k + from, k + to, kNaNf);
-            std::fill(s1 + from, s1 + to, kNaNf);
-            std::fill(s2 + from, s2 + to, kNaNf);
+        if (RowSpan& set = nanOutside_[row]; set.first != c0 || set.end != c1) {
+            for (const auto& [from, to] : {std::pair{std::size_t{0}, c0}, std::pair{c1, width}}) {
+                std::fill(k + from, k + to, kNaNf);
+                std::fill(s1 + from, s1 + to, kNaNf);
+                std::fill(s2 + from, s2 + to, kNaNf);
+            }
+            set = {c0, c1};
         }
         // Pass 1, vectorised: the SVF sums of every cell, and K where the plane stays below.
         accumulateRowFast(h + c0, e + c0, n + c0, u + c0, k + c0, s1 + c0, s2 + c0, rises + c0, c1 - c0, fast);

@@ -187,6 +187,10 @@ private:
     SkyPatches patches_;
     int threads_;
     std::vector<bool> added_;
+    /// Per row, the span whose outside addDirection last set to NaN in every sum (all of the
+    /// row: nothing set yet). NaN plus anything stays NaN, so a direction whose row has the same
+    /// span need not set it again.
+    std::vector<RowSpan> nanOutside_;
     // Float sums: a few dozen terms each, so rounding stays near 1e-6, far below the method's
     // error, and half the memory traffic of doubles (the accumulation is bandwidth-bound on
     // large DEMs).

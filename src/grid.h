@@ -69,8 +69,18 @@ struct RowSpan {
     std::size_t first = 0, end = 0;
 };
 inline RowSpan nonNanSpan(const float* row, std::size_t n) {
+    // Sixteen values a step while all of them are NaN (a fixed-length test the compiler turns
+    // into vector compares: a coastal row's sea is thousands of cells), then one at a time.
+    constexpr std::size_t kChunk = 16;
+    const auto allNan = [row](std::size_t at) {
+        bool all = true;
+        for (std::size_t k = 0; k < kChunk; ++k) all &= row[at + k] != row[at + k];
+        return all;
+    };
     std::size_t first = 0, end = n;
+    while (end - first >= kChunk && allNan(first)) first += kChunk;
     while (first < end && row[first] != row[first]) ++first;
+    while (end - first >= kChunk && allNan(end - kChunk)) end -= kChunk;
     while (end > first && row[end - 1] != row[end - 1]) --end;
     return {first, end};
 }

@@ -94,6 +94,28 @@ TEST(HeightRange, SkipsNodataAtEveryPositionAndLength) {
     EXPECT_EQ(hi, -std::numeric_limits<float>::infinity());
 }
 
+TEST(Grid, NonNanSpanIsBetweenTheEndRunsOfNan) {
+    // Against its definition, one value at a time: runs of NaN at either end of every length
+    // across the sixteen-value steps (0 to 40, all of the row), with NaN and values inside.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (std::size_t n : {0u, 1u, 15u, 16u, 17u, 33u, 64u, 70u}) {
+        for (std::size_t lead = 0; lead <= std::min<std::size_t>(n, 40); ++lead) {
+            for (std::size_t trail = 0; lead + trail <= n && trail <= 40; trail += 3) {
+                std::vector<float> row(n, 1.0f);
+                for (std::size_t i = 0; i < lead; ++i) row[i] = nan;
+                for (std::size_t i = n - trail; i < n; ++i) row[i] = -nan;
+                if (lead + trail + 3 <= n) row[lead + 1] = nan;  // NaN inside the span
+                std::size_t first = 0, end = n;
+                while (first < end && std::isnan(row[first])) ++first;
+                while (end > first && std::isnan(row[end - 1])) --end;
+                const RowSpan span = nonNanSpan(row.data(), n);
+                ASSERT_EQ(span.first, first) << n << " " << lead << " " << trail;
+                ASSERT_EQ(span.end, end) << n << " " << lead << " " << trail;
+            }
+        }
+    }
+}
+
 TEST(ParallelFor, VisitsEveryIndexOnce) {
     std::vector<std::atomic<int>> hits(1000);
     parallelFor(0, hits.size(), 2, [&](std::size_t i) { hits[i]++; });

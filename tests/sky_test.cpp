@@ -462,7 +462,8 @@ TEST(SkyGrid, NodataRunsAtRowEndsAreNaNAndLeaveTheOtherCells) {
     // and sets their sums to NaN. Cells are accumulated independently, so every other cell must
     // keep the bits it has without those NaNs, and every cell with a NaN horizon must end NaN
     // in every map, its normal being valid. Runs of 1, 3 and 17 cells (the vectorised pass then
-    // starts off its alignment), a whole row, and a run in one direction only.
+    // starts off its alignment), a whole row, a run in one direction only, and a run that grows
+    // from one direction to a later one (the sums a direction set to NaN are not set again).
     const int d = 16;
     const std::size_t w = 40, h = 6;
     const TestScene clean = randomScene(w, h, d, 31);
@@ -479,6 +480,8 @@ TEST(SkyGrid, NodataRunsAtRowEndsAreNaNAndLeaveTheOtherCells) {
     blank(2, 0, 40);
     blank(3, 23, 40);
     blank(4, 0, 3, 5);  // direction 5 only
+    blank(5, 0, 2, 2);  // a run that a later direction widens
+    blank(5, 0, 6, 9);
     const SkyPatches patches = parseSkyPatches("sectors:4");
     const SkyMaps a = computeSky(pointers(coast.horizons), coast.east, coast.north, coast.up, 0.3, patches, 2);
     const SkyMaps b = computeSky(pointers(clean.horizons), clean.east, clean.north, clean.up, 0.3, patches, 2);
@@ -498,7 +501,7 @@ TEST(SkyGrid, NodataRunsAtRowEndsAreNaNAndLeaveTheOtherCells) {
             }
             nanCells += anyNan;
         }
-    EXPECT_EQ(nanCells, 1u + 3u + 17u + 40u + 17u + 3u);
+    EXPECT_EQ(nanCells, 1u + 3u + 17u + 40u + 17u + 3u + 6u);
 }
 
 TEST(SkyGrid, StreamingInAnyOrderAndAlbedoRaster) {
