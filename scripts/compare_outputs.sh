@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every command of two demlight binaries on the samples and three shared DEMs and compares
-# their outputs: band checksums, descriptions, units, nodata and DEMLIGHT_* metadata of every
-# raster (DEMLIGHT_COMMAND and DEMLIGHT_INPUT excepted, band order ignored), the other files
-# byte for byte. For refactors that must keep outputs identical.
+# their outputs: band checksums and values (the md5 of each band's raw bytes), descriptions,
+# units, nodata and DEMLIGHT_* metadata of every raster (DEMLIGHT_COMMAND and DEMLIGHT_INPUT
+# excepted, band order ignored), the other files byte for byte. For refactors that must keep
+# outputs identical.
 #   scripts/compare_outputs.sh OLD_BIN NEW_BIN [WORK_DIR]
 # IGNORE_KEYS="DEMLIGHT_PLAN ..." leaves out metadata items a change means to alter. Copy a
 # binary elsewhere first if you rebuild while this runs.
@@ -63,6 +64,15 @@ for line in sys.stdin:
     if cur is not None and line.startswith("  ") and not s.startswith("Block="): cur.append(s); continue
     if s.startswith(("DEMLIGHT_", "Size is", "Origin", "Pixel Size")): meta.append(s)
 print("\n".join(sorted(meta) + sorted(" | ".join(b) for b in bands)))'
+  # gdalinfo's checksum sums each Float32 value's integer part (0.5 and 0.9 give the same): the
+  # values themselves, band by band (sorted like the bands), as the md5 of their raw bytes.
+  local n i raw
+  n=$(gdalinfo "$1" | grep -c '^Band ')
+  raw=$(mktemp -d)
+  for i in $(seq 1 "$n"); do
+    gdal_translate -q -b "$i" -of ENVI "$1" "$raw/b.bin" && echo "values md5 $(md5sum < "$raw/b.bin" | cut -c1-32)"
+  done | sort
+  rm -rf "$raw"
 }
 same=0; differ=0
 for f in $(cd "$work/old" && find . -type f ! -name stderr.txt | sort); do
