@@ -12,15 +12,15 @@
 // azimuths (regions, distances per line), range limits, nodata bitmaps, the near field, the
 // combine pass, the angle, allocating the map. So no sweep of the library can be faster than
 // this kernel; the 5 ns target of issue 20 is measured against it (docs/performance.md, "The
-// floor of a hull sweep on this machine").
+// floor of a hull sweep").
 //
-// Kernels: two with the same bits, scalar, 64 lines in lock-step with the heights prefetched a few
-// rows ahead (the library's layout), and, where AVX-512 is compiled in, eight lines per vector
-// with each line's two top vertices kept in registers (the farther ones gathered, the pushed
-// point scattered); and the vector kernel in single precision, sixteen lines a vector (not the same
-// bits: the bench prints how far its angles are from the double kernels'). On a geographic DEM (columns are meridians) both are checked against the
-// library's sweep at azimuth 0: the angles agree to float rounding, or the bench says how many
-// cells differ by more than 1e-3 deg.
+// Kernels: scalar, 64 lines in lock-step with the heights prefetched a few rows ahead (the
+// library's layout); where AVX-512 is compiled in, eight lines a vector with each line's two top
+// vertices kept in registers (the farther ones gathered, the pushed point scattered), the same
+// bits as scalar; and that kernel in single precision, sixteen lines a vector (not the same bits:
+// the bench prints how far its angles are from the double kernels'). On a geographic DEM
+// (columns are meridians) the kernels are checked against the library's sweep at azimuth 0: the
+// angles agree to float rounding, or the bench says how many cells differ by more than 1e-3 deg.
 #include "bench/bench_timing.h"
 #include "geo/dem.h"
 #include "lighting/horizon.h"
@@ -108,7 +108,8 @@ void simdBlock(const Lines& l, float* out, long c0, std::vector<double>& hull) {
         __m512d s1, g1, s2, g2;  // the top vertex and the one below it
     };
     Group st[kGroups];
-    for (Group& q : st) q = {_mm512_setzero_si512(), _mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+    const __m512d zero = _mm512_setzero_pd();
+    for (Group& q : st) q = {_mm512_setzero_si512(), zero, zero, zero, zero};
     const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
     const __m512i one = _mm512_set1_epi64(1), two = _mm512_set1_epi64(2);
     const __m512d invR = _mm512_set1_pd(l.invR);
@@ -169,7 +170,8 @@ void floatBlock(const Lines& l, float* out, long c0, std::vector<double>& hullD)
         __m512 s1, g1, s2, g2;
     };
     Group st[kGroups];
-    for (Group& q : st) q = {_mm512_setzero_si512(), _mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps(), _mm512_setzero_ps()};
+    const __m512 zero = _mm512_setzero_ps();
+    for (Group& q : st) q = {_mm512_setzero_si512(), zero, zero, zero, zero};
     auto* hull = reinterpret_cast<float*>(hullD.data());  // 2 * kBlock * height floats of the doubles' room
     const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     const __m512i one = _mm512_set1_epi32(1), two = _mm512_set1_epi32(2);
@@ -285,8 +287,10 @@ int main(int argc, char** argv) {
         // On a projected grid true north turns against the columns (meridian convergence): the
         // library's lines at azimuth 0 are not the columns, and the angles are not compared.
         const bool comparable = t.convergence.empty();
-        std::printf("%s: %zu x %zu cells, azimuth 0, whole DEM, median of %d runs\n", argv[1], t.width(), t.height(), runs);
-        if (!comparable) std::printf("(projected grid: its columns are not true north, so the kernels' angles are not compared)\n");
+        std::printf("%s: %zu x %zu cells, azimuth 0, whole DEM, median of %d runs\n", argv[1], t.width(),
+                    t.height(), runs);
+        if (!comparable)
+            std::printf("(projected grid: its columns are not true north, so the kernels' angles are not compared)\n");
         std::printf("%-44s %14s %16s %10s %12s\n", "kernel", "ns/cell 1 thr", "ns/cell all thr", "ratio", "cells off");
         const auto row = [&](const char* name, const std::function<void(int)>& run, bool check) {
             const double one = demlight::bench::medianSeconds(runs, [&] { run(1); });
@@ -298,22 +302,28 @@ int main(int argc, char** argv) {
                 compare(slopes, ref, differing, maxDiff);
                 std::snprintf(off, sizeof off, "%ld (max %.1e deg)", differing, maxDiff);
             }
-            std::printf("%-44s %14.2f %16.2f %10.2f %12s\n", name, one / cells * 1e9, many / cells * 1e9, one / many, off);
+            std::printf("%-44s %14.2f %16.2f %10.2f %12s\n", name, one / cells * 1e9, many / cells * 1e9, one / many,
+                        off);
         };
         row("library sweep (sweepHorizon, all passes)", [&](int threads) {
             p.threads = threads;
             ref = demlight::sweepHorizon(t, p);
         }, false);
-        row("bare hull kernel, scalar", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::scalar); }, true);
+        const auto kernel = [&](Kernel k) {
+            return [&, k](int threads) { sweepColumns(lines, slopes.data(), threads, k); };
+        };
+        row("bare hull kernel, scalar", kernel(Kernel::scalar), true);
 #ifdef FLOOR_AVX512
-        row("bare hull kernel, AVX-512 (8 lines a vector)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::doubleLanes); }, true);
+        row("bare hull kernel, AVX-512 (8 lines a vector)", kernel(Kernel::doubleLanes), true);
         const std::vector<float> doubleSlopes = slopes;
-        row("bare hull kernel, AVX-512 float (16 lines)", [&](int threads) { sweepColumns(lines, slopes.data(), threads, Kernel::floatLanes); }, true);
+        row("bare hull kernel, AVX-512 float (16 lines)", kernel(Kernel::floatLanes), true);
         double maxDeg = 0;
         std::vector<double> diffs;
         for (std::size_t i = 0; i < slopes.size(); ++i) {
             if (!std::isfinite(slopes[i]) || !std::isfinite(doubleSlopes[i])) continue;
-            diffs.push_back(std::abs(std::atan(static_cast<double>(slopes[i])) - std::atan(static_cast<double>(doubleSlopes[i]))) * 180.0 / M_PI);
+            const double a = std::atan(static_cast<double>(slopes[i]));
+            const double b = std::atan(static_cast<double>(doubleSlopes[i]));
+            diffs.push_back(std::abs(a - b) * 180.0 / M_PI);
             maxDeg = std::max(maxDeg, diffs.back());
         }
         std::sort(diffs.begin(), diffs.end());

@@ -21,10 +21,11 @@
 
 #if defined(__AVX512F__)
 // GCC 12 reports its own intrinsics' deliberately undefined start values (_mm512_undefined_*)
-// as maybe uninitialized where they are inlined; clang has no such warning.
+// as (maybe) uninitialized where they are inlined; clang has no such warning.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
 #include <immintrin.h>
 #if defined(__GNUC__) && !defined(__clang__)
@@ -356,7 +357,7 @@ inline __mmask8 steeperLanes(__m512d ga, __m512d sa, __m512d gb, __m512d sb, __m
 /// What serveEightLines needs of a block: its line states and hull buffers, and its first lane's line.
 struct EightLines {
     LineState* lines;  // the block's lines[b0, b0 + 8)
-    const HullPoint* hulls;  // the block's scratch: line b's hull starts at b * lineCapacity
+    HullPoint* hulls;  // the block's scratch: line b's hull starts at b * lineCapacity
     std::size_t lineCapacity;
     std::size_t b0;
 };
@@ -481,17 +482,18 @@ inline void walkEightLines(const EightLines& e, const float* H, long idx0, long 
     const __m512i hullStart = _mm512_mullo_epi64(
         _mm512_add_epi64(lane, _mm512_set1_epi64(static_cast<long long>(e.b0))),
         _mm512_set1_epi64(static_cast<long long>(e.lineCapacity)));
-    auto* hullSigma = const_cast<double*>(reinterpret_cast<const double*>(e.hulls));
+    auto* hullSigma = reinterpret_cast<double*>(e.hulls);
     double* hullG = hullSigma + 1;
     const auto at = [&](__m512i v) { return _mm512_slli_epi64(_mm512_add_epi64(hullStart, v), 1); };
 
     // The line sample: linear between the two cells, or the one with a height.
-    const __m512i cell = _mm512_add_epi64(_mm512_set1_epi64(idx0), _mm512_mullo_epi64(lane, _mm512_set1_epi64(idxStride)));
+    const __m512i step = _mm512_set1_epi64(idxStride);
+    const __m512i cell = _mm512_add_epi64(_mm512_set1_epi64(idx0), _mm512_mullo_epi64(lane, step));
     const __m256 h0 = idxStride == 1 ? _mm256_loadu_ps(H + idx0) : _mm512_i64gather_ps(cell, H, 4);
     __m256 sample = h0;
     if (frac > 0.0) {
         const __m256 h1 = idxStride == 1 ? _mm256_loadu_ps(H + idx0 + 1)
-                                         : _mm512_i64gather_ps(_mm512_add_epi64(cell, _mm512_set1_epi64(idxStride)), H, 4);
+                                         : _mm512_i64gather_ps(_mm512_add_epi64(cell, step), H, 4);
         const __m512d h0d = _mm512_cvtps_pd(h0), h1d = _mm512_cvtps_pd(h1);
         const __m256 mixed = _mm512_cvtpd_ps(_mm512_set1_pd(1.0 - frac) * h0d + _mm512_set1_pd(frac) * h1d);
         const __mmask8 nan0 = _mm512_cmp_pd_mask(h0d, h0d, _CMP_UNORD_Q);
@@ -796,9 +798,18 @@ private:
     const std::uint64_t* words_ = nullptr;
 };
 
+#ifdef DEMLIGHT_SWEEP_AVX512
+constexpr bool kLanesWalk = true;
+#else
+constexpr bool kLanesWalk = false;
+#endif
+
 /// Limited: maxDistanceM is finite (chunks, logs and the second pass); an instantiation each so
 /// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
-template <bool XMajor, bool Limited>
+/// Lanes: the walk takes eight lines at once (walkEightLines; AVX-512 builds, the whole DEM,
+/// cells served after the walk, no crossing points), in instantiations of its own so that the
+/// others compile as they did without it.
+template <bool XMajor, bool Limited, bool Lanes>
 void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
                 long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
                 RangeLog* logs, const ValidCells& valid) {
@@ -979,10 +990,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         for (; b < nLines; ++b) serveLine(b);
     };
 #ifdef DEMLIGHT_SWEEP_AVX512
-    // The walk takes eight lines at once where it only pushes: no range limit (chunks, logs),
-    // cells served after the walk (delay > 0), no crossing points between steps (they push too).
-    const bool lanesWalk = eightAtOnce && !Limited && delay > 0 && !geo.crossings;
-    TopVertices topVertices[kLinesPerBlock / kSimdLines];
+    [[maybe_unused]] TopVertices topVertices[Lanes ? kLinesPerBlock / kSimdLines : 1];
 #endif
     // The cells within `delay` steps of the walk's start have no sample that far beyond them
     // (the walk starts at the DEM's far edge, or beyond every cell this block serves).
@@ -1192,7 +1200,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
 #ifdef DEMLIGHT_SWEEP_AVX512
             // Eight lines at once where all eight and the cells after them lie inside the terrain;
             // walkLine walks the rest (and drops those lanes' cached top vertices).
-            for (; lanesWalk && b + kSimdLines <= nLines; b += kSimdLines) {
+            for (; Lanes && b + kSimdLines <= nLines; b += kSimdLines) {
                 TopVertices& cached = topVertices[b / kSimdLines];
                 const long n0 = kBegin + static_cast<long>(b) + base;
                 if (n0 < nLo || n0 + static_cast<long>(kSimdLines) >= nHi) {
@@ -1205,8 +1213,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     sigma = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(m)]);
                 } else {
                     alignas(64) double each[kSimdLines];
-                    for (std::size_t l = 0; l < kSimdLines; ++l)
-                        each[l] = lineDistance(geo, lines[b + l].edgeArcM, static_cast<double>(n0 + static_cast<long>(l)) + frac, m);
+                    for (std::size_t l = 0; l < kSimdLines; ++l) {
+                        const double y = static_cast<double>(n0 + static_cast<long>(l)) + frac;
+                        each[l] = lineDistance(geo, lines[b + l].edgeArcM, y, m);
+                    }
                     sigma = _mm512_load_pd(each);
                 }
                 const long idx0 = static_cast<long>(index(m, n0));
@@ -1938,6 +1948,11 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
                                                              static_cast<long>(kLinesPerBlock));
         const CellWindow& w = region.window;
         const ValidCells valid(terrain, geo.xMajor, threads, buffers.validBits[geo.xMajor ? 0 : 1]);
+        // The walk eight lines at once where it only pushes: cells served after it (delay > 0), no
+        // crossing points between steps (they push too); a range limit's chunks and logs keep
+        // it line by line (tried: slower, docs/performance.md).
+        const bool lanes = kLanesWalk && detail::sweepEightLinesAtOnce.load(std::memory_order_relaxed) &&
+                           geo.delay > 0 && !geo.crossings;
         // Every served cell of plane A is written; plane B only where frac > 0, read only there.
         parallelFor(0, nBlocks, threads, [&](std::size_t blockIndex) {
             if (progress && progress->cancelled()) return;
@@ -1945,16 +1960,19 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
             thread_local RangeLog logs[kLinesPerBlock];
             const long kBegin = geo.kFirst + static_cast<long>(blockIndex * kLinesPerBlock);
             const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
-            const auto run = [&]<bool XMajor, bool Limited>() {
-                sweepBlock<XMajor, Limited>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
-                                            out.angleDeg.data(), planeB.data(), scratch, logs, valid);
+            const auto run = [&]<bool XMajor, bool Limited, bool Lanes>() {
+                sweepBlock<XMajor, Limited, Lanes>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
+                                                   out.angleDeg.data(), planeB.data(), scratch, logs, valid);
             };
             // A range limit longer than every line (the whole DEM searched) changes nothing.
             const bool limited = std::isfinite(params.maxDistanceM) && params.maxDistanceM <= geo.spanBoundM;
-            if (geo.xMajor) {
-                limited ? run.template operator()<true, true>() : run.template operator()<true, false>();
+            if (limited) {
+                geo.xMajor ? run.template operator()<true, true, false>() : run.template operator()<false, true, false>();
+            } else if (lanes) {
+                geo.xMajor ? run.template operator()<true, false, true>() : run.template operator()<false, false, true>();
             } else {
-                limited ? run.template operator()<false, true>() : run.template operator()<false, false>();
+                geo.xMajor ? run.template operator()<true, false, false>()
+                           : run.template operator()<false, false, false>();
             }
         });
         if (progress) progress->throwIfCancelled();

@@ -514,7 +514,8 @@ TEST(Horizon, EightLinesAtOnceServeAsOneLineAtATime) {
 TEST(Horizon, EightLinesAtOnceWalkAsOneLineAtATime) {
     Terrain square = makeTerrain(150, 110, 20.0, [](double x, double y) { return std::round(hills(x, y) / 8.0); });
     Terrain narrowing = square;
-    for (std::size_t r = 0; r < narrowing.height(); ++r) narrowing.cellWidthM[r] = 20.0 * (1.0 - 0.004 * static_cast<double>(r));
+    for (std::size_t r = 0; r < narrowing.height(); ++r)
+        narrowing.cellWidthM[r] = 20.0 * (1.0 - 0.004 * static_cast<double>(r));
     for (Terrain* t : {&square, &narrowing}) {
         for (std::size_t r = 40; r < 47; ++r)
             for (std::size_t c = 60; c < 75; ++c) t->heightsM(c, r) = kNaN;
