@@ -799,6 +799,32 @@ private:
 };
 
 #ifdef DEMLIGHT_SWEEP_AVX512
+/// lineDistance() of eight lines at once: minor coordinates y (one per lane, each inside the
+/// full grid's rows, so arcAt's clamps never apply) at major index m, the lines' arcs at the far
+/// edge edgeArc; the same expressions on vectors. Lines across rows only (invAbsSlope > 0).
+inline __m512d lineDistances(const LineGeometry& geo, __m512d edgeArc, __m512d y) {
+    const __m512i r = _mm512_cvttpd_epi64(y + _mm512_set1_pd(0.5));
+    const __m512d rowArc = _mm512_i64gather_pd(r, geo.rowArc.data(), 8);
+    const __m512d step = _mm512_i64gather_pd(r, geo.stepLengthM.data(), 8);
+    const __m512d arc = rowArc + (y - (_mm512_cvtepi64_pd(r) - _mm512_set1_pd(0.5))) * step;
+    return _mm512_abs_pd(arc - edgeArc) * _mm512_set1_pd(geo.invAbsSlope);
+}
+
+/// The far-edge arcs (LineState::edgeArcM) of lines b0..b0+7.
+inline __m512d edgeArcs(const LineState* lines, std::size_t b0) {
+    alignas(64) double arcs[kSimdLines];
+    for (std::size_t l = 0; l < kSimdLines; ++l) arcs[l] = lines[b0 + l].edgeArcM;
+    return _mm512_load_pd(arcs);
+}
+
+/// n0 + lane + frac for the eight lanes.
+inline __m512d laneCoordinates(long n0, double frac) {
+    const __m512d lane = _mm512_setr_pd(0, 1, 2, 3, 4, 5, 6, 7);
+    return _mm512_set1_pd(static_cast<double>(n0)) + lane + _mm512_set1_pd(frac);
+}
+#endif
+
+#ifdef DEMLIGHT_SWEEP_AVX512
 constexpr bool kLanesWalk = true;
 #else
 constexpr bool kLanesWalk = false;
@@ -972,9 +998,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 if (sigmaTable) {
                     sigmaC = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(mc)]);
                 } else {
-                    alignas(64) double sigma[kSimdLines];
-                    for (std::size_t l = 0; l < kSimdLines; ++l) sigma[l] = sigmaOfLine(b + l, n0 + static_cast<long>(l));
-                    sigmaC = _mm512_load_pd(sigma);
+                    sigmaC = lineDistances(geo, edgeArcs(lines, b), laneCoordinates(n0, fracC));
                 }
                 const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
                 if (geo.nearestLine) {
@@ -1212,12 +1236,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 if (sigmaTable) {
                     sigma = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(m)]);
                 } else {
-                    alignas(64) double each[kSimdLines];
-                    for (std::size_t l = 0; l < kSimdLines; ++l) {
-                        const double y = static_cast<double>(n0 + static_cast<long>(l)) + frac;
-                        each[l] = lineDistance(geo, lines[b + l].edgeArcM, y, m);
-                    }
-                    sigma = _mm512_load_pd(each);
+                    sigma = lineDistances(geo, edgeArcs(lines, b), laneCoordinates(n0, frac));
                 }
                 const long idx0 = static_cast<long>(index(m, n0));
                 walkEightLines({lines, scratch.data(), lineCapacity, b}, H, idx0,
