@@ -464,7 +464,7 @@ struct TopVertices {
 };
 
 /// One step of the far-to-near walk for lines b0..b0+7 where it serves nothing (the delayed
-/// serving, sweepBlock's lanesWalk), one line per AVX-512 lane: the line sample between cells n0
+/// serving: sweepBlock's Lanes), one line per AVX-512 lane: the line sample between cells n0
 /// (index idx0 + lane * idxStride) and n0 + 1, every one of them inside the terrain, the pops it
 /// causes and its push. The scalar walk's comparisons and arithmetic are written as the same
 /// expressions on vectors (so the compiler contracts them alike), and its pop loop becomes a
@@ -799,28 +799,26 @@ private:
 };
 
 #ifdef DEMLIGHT_SWEEP_AVX512
-/// lineDistance() of eight lines at once: minor coordinates y (one per lane, each inside the
-/// full grid's rows, so arcAt's clamps never apply) at major index m, the lines' arcs at the far
-/// edge edgeArc; the same expressions on vectors. Lines across rows only (invAbsSlope > 0).
-inline __m512d lineDistances(const LineGeometry& geo, __m512d edgeArc, __m512d y) {
+/// The distances from the far edge (metres) of lines b0..b0+7 at major index m, the first at
+/// minor coordinate n0 + frac and each next one a cell further, every one inside the full grid's
+/// rows: with a distance table the step's, a broadcast (eight stores and a vector load of them
+/// cost 2-3 % of the sweep at 37 deg on Mount St. Helens and both surface models: the load waits
+/// for the stores); otherwise lineDistance()'s expressions on vectors, arcAt's clamps never
+/// applying (lines across rows, invAbsSlope > 0).
+inline __m512d laneDistances(const LineGeometry& geo, const LineState* lines, std::size_t b0, long m, long n0,
+                             double frac) {
+    if (!geo.sigmaAt.empty()) return _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(m)]);
+    alignas(64) double arcs[kSimdLines];
+    for (std::size_t l = 0; l < kSimdLines; ++l) arcs[l] = lines[b0 + l].edgeArcM;
+    const __m512d edgeArc = _mm512_load_pd(arcs);
+    // n0 + lane + frac, as static_cast<double>(n0 + lane) + frac.
+    const __m512d y = _mm512_set1_pd(static_cast<double>(n0)) + _mm512_setr_pd(0, 1, 2, 3, 4, 5, 6, 7) +
+                      _mm512_set1_pd(frac);
     const __m512i r = _mm512_cvttpd_epi64(y + _mm512_set1_pd(0.5));
     const __m512d rowArc = _mm512_i64gather_pd(r, geo.rowArc.data(), 8);
     const __m512d step = _mm512_i64gather_pd(r, geo.stepLengthM.data(), 8);
     const __m512d arc = rowArc + (y - (_mm512_cvtepi64_pd(r) - _mm512_set1_pd(0.5))) * step;
     return _mm512_abs_pd(arc - edgeArc) * _mm512_set1_pd(geo.invAbsSlope);
-}
-
-/// The far-edge arcs (LineState::edgeArcM) of lines b0..b0+7.
-inline __m512d edgeArcs(const LineState* lines, std::size_t b0) {
-    alignas(64) double arcs[kSimdLines];
-    for (std::size_t l = 0; l < kSimdLines; ++l) arcs[l] = lines[b0 + l].edgeArcM;
-    return _mm512_load_pd(arcs);
-}
-
-/// n0 + lane + frac for the eight lanes.
-inline __m512d laneCoordinates(long n0, double frac) {
-    const __m512d lane = _mm512_setr_pd(0, 1, 2, 3, 4, 5, 6, 7);
-    return _mm512_set1_pd(static_cast<double>(n0)) + lane + _mm512_set1_pd(frac);
 }
 #endif
 
@@ -834,11 +832,11 @@ constexpr bool kLanesWalk = false;
 /// the whole-DEM walk, which sky integrals run once per direction, carries none of that code.
 /// Lanes: the walk takes eight lines at once (walkEightLines; AVX-512 builds, the whole DEM,
 /// cells served after the walk, no crossing points), in instantiations of its own so that the
-/// others compile as they did without it.
+/// others compile as they did without it. eightAtOnce false (tests only) serves one line at a time.
 template <bool XMajor, bool Limited, bool Lanes>
 void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM,
                 long kBegin, long kEnd, float* planeA, float* planeB, std::vector<HullPoint>& scratch,
-                RangeLog* logs, const ValidCells& valid) {
+                RangeLog* logs, const ValidCells& valid, [[maybe_unused]] bool eightAtOnce) {
     const std::size_t W = t.width();
     const float* H = t.heightsM.data();
     // With a near field a line also takes a point where it crosses a grid line between steps.
@@ -903,8 +901,6 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
     // it, from the hulls of the samples walked so far: its scan lines' terrain at least `delay`
     // steps away, queried at the cell's own height (the near field is the combine pass's).
     const long delay = geo.delay;
-    // Eight lines at once (AVX-512 builds), unless a test asks for one at a time.
-    [[maybe_unused]] const bool eightAtOnce = detail::sweepEightLinesAtOnce.load(std::memory_order_relaxed);
     auto serveDelayed = [&](long mc) {
         if (mc < static_cast<long>(geo.majorWin0) || mc >= static_cast<long>(geo.majorWin1)) return;
         const long baseC = geo.base[static_cast<std::size_t>(mc)];
@@ -991,15 +987,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     for (std::size_t l = 0; l < kSimdLines; ++l) serveLine(b + l);
                     continue;
                 }
-                // With a distance table every lane's distance is the step's: a broadcast. (Eight
-                // stores and a vector load of them instead cost 2-3 % of the sweep at 37 deg on
-                // Mount St. Helens and both surface models: the load waits for the stores.)
-                __m512d sigmaC;
-                if (sigmaTable) {
-                    sigmaC = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(mc)]);
-                } else {
-                    sigmaC = lineDistances(geo, edgeArcs(lines, b), laneCoordinates(n0, fracC));
-                }
+                const __m512d sigmaC = laneDistances(geo, lines, b, mc, n0, fracC);
                 const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
                 if (geo.nearestLine) {
                     serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, nullptr,
@@ -1232,15 +1220,10 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     cached.valid = false;
                     continue;
                 }
-                __m512d sigma;
-                if (sigmaTable) {
-                    sigma = _mm512_set1_pd(geo.sigmaAt[static_cast<std::size_t>(m)]);
-                } else {
-                    sigma = lineDistances(geo, edgeArcs(lines, b), laneCoordinates(n0, frac));
-                }
                 const long idx0 = static_cast<long>(index(m, n0));
                 walkEightLines({lines, scratch.data(), lineCapacity, b}, H, idx0,
-                               static_cast<long>(index(m, n0 + 1)) - idx0, frac, sigma, halfInvR, cached);
+                               static_cast<long>(index(m, n0 + 1)) - idx0, frac,
+                               laneDistances(geo, lines, b, m, n0, frac), halfInvR, cached);
             }
 #endif
             for (; b < nLines; ++b) walkLine(b);
@@ -1937,6 +1920,8 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
     const CellWindow cells = cellsOnFullGrid(terrain);
     const double invR = inverseEffectiveRadius(params);
     const int threads = resolveThreadCount(params.threads);
+    // Eight lines at once where AVX-512 is built in, unless a test asks for one at a time.
+    const bool eightAtOnce = detail::sweepEightLinesAtOnce.load(std::memory_order_relaxed);
 
     // Reused grids are refilled in place, by rows in parallel (no fresh pages to fault in).
     const auto reset = [&](auto& grid, auto fill) {
@@ -1970,8 +1955,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         // The walk eight lines at once where it only pushes: cells served after it (delay > 0), no
         // crossing points between steps (they push too); a range limit's chunks and logs keep
         // it line by line (tried: slower, docs/performance.md).
-        const bool lanes = kLanesWalk && detail::sweepEightLinesAtOnce.load(std::memory_order_relaxed) &&
-                           geo.delay > 0 && !geo.crossings;
+        const bool lanes = kLanesWalk && eightAtOnce && geo.delay > 0 && !geo.crossings;
         // Every served cell of plane A is written; plane B only where frac > 0, read only there.
         parallelFor(0, nBlocks, threads, [&](std::size_t blockIndex) {
             if (progress && progress->cancelled()) return;
@@ -1981,7 +1965,8 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
             const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
             const auto run = [&]<bool XMajor, bool Limited, bool Lanes>() {
                 sweepBlock<XMajor, Limited, Lanes>(terrain, geo, invR, params.maxDistanceM, kBegin, kEnd,
-                                                   out.angleDeg.data(), planeB.data(), scratch, logs, valid);
+                                                   out.angleDeg.data(), planeB.data(), scratch, logs, valid,
+                                                   eightAtOnce);
             };
             // A range limit longer than every line (the whole DEM searched) changes nothing.
             const bool limited = std::isfinite(params.maxDistanceM) && params.maxDistanceM <= geo.spanBoundM;
