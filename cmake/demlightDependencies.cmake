@@ -14,6 +14,10 @@ demlight_find_package(GeographicLib)
 demlight_find_package(glm CONFIG)
 demlight_find_package(date CONFIG)
 demlight_find_package(TBB CONFIG)
+# libtiff and zstd (libtiff-dev, libzstd-dev): Float32 GeoTIFF tiles encoded by demlight
+# (geo/tiff_tiles.cpp), in the file GDAL creates with the same libtiff.
+demlight_find_package(TIFF)
+demlight_find_package(zstd CONFIG)
 # libdeflate (libdeflate-dev): PNG previews (geo/png_writer.cpp); Debian 12 ships no CMake config.
 demlight_find_package(PkgConfig)
 pkg_check_modules(libdeflate REQUIRED IMPORTED_TARGET libdeflate)

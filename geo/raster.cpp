@@ -2,6 +2,7 @@
 
 #include "geo/gdal_session.h"
 #include "geo/output_file.h"
+#include "geo/tiff_tiles.h"
 #include "src/error.h"
 
 #include <cpl_string.h>
@@ -546,6 +547,12 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     const std::vector<std::string> co = creationOptions(options, type);
     CPLStringList coList;
     for (const auto& kv : co) coList.AddString(kv.c_str());
+    // Float32 GTiff at the default layout: GDAL writes the directory of a file without tiles,
+    // detail::FloatTileWriter encodes and appends the tiles (geo/tiff_tiles.h).
+    std::optional<detail::FloatTileEncoding> ownTiles;
+    if (options.format == "GTiff" && type == GDT_Float32 && detail::encodeFloatTiles)
+        ownTiles = detail::floatTileEncoding(co);
+    if (ownTiles) coList.AddString("SPARSE_OK=TRUE");
 
     // Write under a temporary name in the same folder and rename on success, so a failed or
     // interrupted run never leaves a partial file at `path`.
@@ -562,11 +569,20 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     detail::takeGdalError();
 
     DatasetPtr ds;
+    std::optional<detail::FloatTileWriter> tiles;
+    // A failure of the tile writer, as `fail` for GDAL's: the file removed, the cause named.
+    const auto tileFailure = [&](const std::string& what, const Error& e) {
+        tiles.reset();
+        const std::string message = writeFailureMessage(what + "'" + path + "'", tmp.path(), e.what());
+        tmp.discard();
+        return Error(message);
+    };
     // Ends the write: the datasets closed, every temporary file removed; Cancelled when the
     // caller asked to stop, else an Error naming the cause (thrown by std::rethrow_exception, so
     // that a Cancelled keeps its type).
     const auto fail = [&](const std::string& what) {
         ds.reset();
+        tiles.reset();
         const std::string reason = detail::takeGdalError();
         if (progress.stopped()) {
             tmp.discard();
@@ -590,12 +606,25 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                              static_cast<int>(bands.size()), type, nullptr));
     }
     describeDataset(*ds, ref, options, bands, type);
+    std::size_t stripRows = kWriteStripRows;
+    if (ownTiles) {
+        // Closed before any cell: GDAL writes the directory with every tile offset zero.
+        ds.reset();
+        if (const std::string closeError = detail::takeGdalError(); !closeError.empty())
+            std::rethrow_exception(fail({}));
+        try {
+            tiles.emplace(tmp.path(), width, height, bands.size(), *ownTiles);
+        } catch (const Error& e) {
+            throw tileFailure({}, e);
+        }
+        stripRows = tiles->tileHeight() * std::max<std::size_t>(1, kWriteStripRows / tiles->tileHeight());
+    }
 
     // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
     // quick, its overviews and the compressed copy are most.
     const double fillShare = direct ? 1.0 : 0.1;
     const double overviewShare = direct ? 0.0 : 0.3;
-    const std::size_t strips = (height + kWriteStripRows - 1) / kWriteStripRows;
+    const std::size_t strips = (height + stripRows - 1) / stripRows;
     const auto fillProgress = [&](std::size_t band, std::size_t strip) {
         return fillShare * static_cast<double>(band * strips + strip) / static_cast<double>(bands.size() * strips);
     };
@@ -606,7 +635,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     std::vector<std::int16_t> fixedBuffer;
     for (std::size_t i = 0; i < bands.size(); ++i) {
         const OutputBand& b = bands[i];
-        GDALRasterBand* out = ds->GetRasterBand(static_cast<int>(i) + 1);
+        GDALRasterBand* out = ds ? ds->GetRasterBand(static_cast<int>(i) + 1) : nullptr;
         // In strips of whole tile rows, each flushed to the file before the next (the GTiff
         // compresses and writes those tiles then, not all at the close): a full disk shows at
         // the strip that meets it, and a request to stop is seen within a strip. A band that
@@ -614,8 +643,17 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         // buffer that stays in cache, not a copy of the whole band.
         for (std::size_t s = 0; s < strips; ++s) {
             if (!progress.report(fillProgress(i, s))) std::rethrow_exception(fail({}));
-            const std::size_t r0 = s * kWriteStripRows;
-            const std::size_t rows = std::min(kWriteStripRows, height - r0);
+            const std::size_t r0 = s * stripRows;
+            const std::size_t rows = std::min(stripRows, height - r0);
+            if (tiles) {
+                const float* data = floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
+                try {
+                    tiles->writeRows(i, r0, rows, data);
+                } catch (const Error& e) {
+                    throw tileFailure("band " + std::to_string(i + 1) + " of ", e);
+                }
+                continue;
+            }
             CPLErr err;
             if (type == GDT_Byte) {
                 err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
@@ -649,12 +687,20 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         if (!cog) std::rethrow_exception(fail({}));
         ds = std::move(cog);
     }
-    GDALClose(GDALDataset::ToHandle(ds.release()));
-    const std::string closeError = detail::takeGdalError();
-    if (!closeError.empty()) {
-        const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), closeError);
-        tmp.discard();
-        throw Error(message);
+    if (tiles) {
+        try {
+            tiles->close();
+        } catch (const Error& e) {
+            throw tileFailure({}, e);
+        }
+    } else {
+        GDALClose(GDALDataset::ToHandle(ds.release()));
+        const std::string closeError = detail::takeGdalError();
+        if (!closeError.empty()) {
+            const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), closeError);
+            tmp.discard();
+            throw Error(message);
+        }
     }
     // A request to stop that comes now finds the file complete: it is kept.
     tmp.commit();

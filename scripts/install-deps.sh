@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgdal-dev gdal-bin libgeographiclib-dev libopenimageio-dev openimageio-tools libglm-dev
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
-  nlohmann-json3-dev libdeflate-dev tzdata gnuplot-nox python3 help2man
+  nlohmann-json3-dev libdeflate-dev libtiff-dev libzstd-dev tzdata gnuplot-nox python3 help2man
   pybind11-dev python3-dev python3-numpy python3-dask python3-distributed python3-rioxarray python3-pytest
   clang libclang-rt-dev
   qgis python3-qgis

@@ -2,11 +2,14 @@
 // round trip that keeps CRS, geotransform, nodata, descriptions, units and metadata.
 #include "geo/dem.h"
 #include "geo/raster.h"
+#include "geo/tiff_tiles.h"
 #include "src/error.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <filesystem>
 #include <fstream>
 
@@ -220,6 +223,138 @@ TEST(LoadDem, RefusesAllNodata) {
     ref.crsWkt = kUtmWkt;
     writeRaster((dir / "nan.tif").string(), {{&a, nullptr, "h", "m"}}, ref, {});
     EXPECT_THROW(loadDem((dir / "nan.tif").string()), Error);
+}
+
+// ---- Float32 tiles encoded by demlight (geo/tiff_tiles.h) ----------------------------------------
+
+// TIFF Technical Note 3 by hand: 1.0f = 3F800000, -2.0f = C0000000. The bytes regrouped most
+// significant first are 3F C0 80 00 00 00 00 00; each minus the one before it (mod 256).
+TEST(FloatTiles, PredictorRegroupsBytesAndTakesDifferences) {
+    const float row[2] = {1.0f, -2.0f};
+    std::uint8_t out[8];
+    detail::predictFloatRow(row, 2, out);
+    const std::uint8_t expected[8] = {0x3F, 0x81, 0xC0, 0x80, 0x00, 0x00, 0x00, 0x00};
+    EXPECT_EQ(0, std::memcmp(out, expected, 8));
+}
+
+TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
+    const std::vector<std::string> defaults = {"TILED=YES",       "COMPRESS=ZSTD",        "ZSTD_LEVEL=1",
+                                               "PREDICTOR=3",     "INTERLEAVE=BAND",      "NUM_THREADS=ALL_CPUS",
+                                               "BIGTIFF=IF_SAFER"};
+    const auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> co = defaults;
+        co.insert(co.end(), extra.begin(), extra.end());
+        return detail::floatTileEncoding(co);
+    };
+    ASSERT_TRUE(with({}).has_value());
+    EXPECT_EQ(with({})->zstdLevel, 1);
+    EXPECT_EQ(with({})->threads, 0);
+    EXPECT_EQ(with({"ZSTD_LEVEL=7"})->zstdLevel, 7);
+    EXPECT_EQ(with({"NUM_THREADS=1"})->threads, 1);
+    EXPECT_TRUE(with({"BLOCKXSIZE=128", "BLOCKYSIZE=64"}).has_value());
+    for (const std::string other : {"COMPRESS=DEFLATE", "PREDICTOR=1", "INTERLEAVE=PIXEL", "TILED=NO", "ZSTD_LEVEL=0",
+                                    "NUM_THREADS=two", "DISCARD_LSB=4", "SPARSE_OK=FALSE"}) {
+        SCOPED_TRACE(other);
+        EXPECT_FALSE(with({other}).has_value());
+    }
+}
+
+/// Float32 rasters of awkward sizes and values, written with demlight's tile encoder and with
+/// GDAL's (libtiff's predictor and ZSTD), read back through GDAL: the same bits in every band,
+/// the same descriptions, units and nodata.
+TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
+    const fs::path dir = scratchDir("floattiles");
+    std::mt19937 rng(7);
+    const auto bandOf = [&](std::size_t w, std::size_t h, int kind) {
+        Grid<float> g(w, h);
+        std::uniform_real_distribution<float> u(-500.0f, 4000.0f);
+        for (std::size_t k = 0; k < g.size(); ++k) {
+            float v = kind == 0 ? u(rng) : static_cast<float>(std::sin(0.01 * static_cast<double>(k)));
+            switch (k % 97) {
+                case 3: v = std::numeric_limits<float>::quiet_NaN(); break;
+                case 5: v = std::numeric_limits<float>::infinity(); break;
+                case 7: v = -std::numeric_limits<float>::infinity(); break;
+                case 11: v = -0.0f; break;
+                case 13: v = std::numeric_limits<float>::denorm_min(); break;
+                case 17: v = std::numeric_limits<float>::max(); break;
+                case 19: {
+                    const std::uint32_t bits = static_cast<std::uint32_t>(rng());
+                    std::memcpy(&v, &bits, 4);  // any bits, other NaN payloads included
+                    break;
+                }
+                default: break;
+            }
+            g.data()[k] = v;
+        }
+        return g;
+    };
+    GeoReference ref;
+    ref.geoTransform = {350000, 30, 0, 3800000, 0, -30};
+    ref.crsWkt = kUtmWkt;
+    struct Case {
+        std::size_t w, h;
+        std::vector<std::string> co;
+        double nodata;
+        bool ownTiles;  // demlight's encoder takes these options
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<Case> cases = {
+        {300, 517, {}, nan, true},                                  // partial tiles on both edges
+        {256, 512, {}, -9999.0, true},                              // whole tiles, NaN written as nodata
+        {1, 1, {}, nan, true},                                      // one cell
+        {700, 300, {"BLOCKXSIZE=128", "BLOCKYSIZE=64"}, nan, true},  // other tiles
+        {513, 257, {"ZSTD_LEVEL=9", "NUM_THREADS=1"}, nan, true},
+        {300, 200, {"PREDICTOR=1"}, nan, false},  // GDAL's, both times
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.w) + "x" + std::to_string(c.h) + " " +
+                     (c.co.empty() ? std::string("defaults") : c.co.front()));
+        const Grid<float> a = bandOf(c.w, c.h, 0), b = bandOf(c.w, c.h, 1);
+        Grid<std::uint8_t> mask(c.w, c.h, 0);
+        for (std::size_t k = 0; k < mask.size(); k += 3) mask.data()[k] = 1;
+        const std::vector<OutputBand> bands = {
+            {&a, nullptr, "first", "m"}, {&b, nullptr, "second", "deg"}, {nullptr, &mask, "flag", ""}};
+        WriteOptions opt;
+        opt.creationOptions = c.co;
+        opt.nodata = c.nodata;
+        const std::string own = (dir / "own.tif").string(), gdal = (dir / "gdal.tif").string();
+        const std::size_t before = detail::floatTilesWritten;
+        writeRaster(own, bands, ref, opt);
+        EXPECT_EQ(detail::floatTilesWritten > before, c.ownTiles);
+        detail::encodeFloatTiles = false;
+        writeRaster(gdal, bands, ref, opt);
+        detail::encodeFloatTiles = true;
+
+        RasterSummary sOwn, sGdal;
+        const std::vector<Grid<float>> vOwn = readRasterBands(own, &sOwn), vGdal = readRasterBands(gdal, &sGdal);
+        ASSERT_EQ(vOwn.size(), 3u);
+        ASSERT_EQ(vGdal.size(), 3u);
+        for (std::size_t i = 0; i < 3; ++i) {
+            ASSERT_EQ(vOwn[i].size(), vGdal[i].size());
+            EXPECT_EQ(0, std::memcmp(vOwn[i].data(), vGdal[i].data(), vOwn[i].size() * sizeof(float))) << "band " << i;
+        }
+        // And the values given (readRasterBands turns nodata into NaN).
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            const float given = a.data()[k], back = vOwn[0].data()[k];
+            if (std::isnan(given)) {
+                ASSERT_TRUE(std::isnan(back)) << k;
+            } else {
+                ASSERT_EQ(0, std::memcmp(&given, &back, 4)) << k;
+            }
+        }
+        EXPECT_EQ(sOwn.descriptions, sGdal.descriptions);
+        EXPECT_EQ(sOwn.units, sGdal.units);
+        EXPECT_EQ(sOwn.dataTypes, sGdal.dataTypes);
+        EXPECT_EQ(sOwn.nodata.has_value(), sGdal.nodata.has_value());
+        if (sOwn.nodata && sGdal.nodata && !std::isnan(*sGdal.nodata)) {
+            EXPECT_EQ(*sOwn.nodata, *sGdal.nodata);
+        }
+        EXPECT_EQ(sOwn.imageStructure, sGdal.imageStructure);
+        EXPECT_EQ(sOwn.ref.geoTransform, sGdal.ref.geoTransform);
+        EXPECT_EQ(sOwn.ref.crsWkt, sGdal.ref.crsWkt);
+        // Nothing but the two outputs in the folder (no temporary file).
+        EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+    }
 }
 
 }  // namespace
