@@ -185,8 +185,8 @@ private:
     }
     /// A frame's GeoTIFF. When its cells equal the previous frame's, bit for bit, and both are
     /// dark (every cell +0 or NaN: the sun down at both instants), the previous file is copied
-    /// with this frame's metadata instead: encoding the cells again (libtiff's floating-point
-    /// predictor over every byte) is most of a night frame's time.
+    /// with this frame's metadata instead: encoding the cells again (predicting and compressing
+    /// every tile) would be most of a night frame's time.
     void writeFrame(ProductResult&& lightmap, const std::string& name) {
         std::optional<DarkFrame> dark = darkFrame(lightmap, name);
         if (previous_ && dark && *previous_ == *dark) {
@@ -432,7 +432,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     cmd->add_option("--co", o->creationOptions,
                     "GDAL creation option KEY=VALUE of its GeoTIFFs (frames, sky_k.tif, sequence_fit.tif; also -co; "
                     "repeatable), over the defaults (tiled, ZSTD level 1, PREDICTOR=3): e.g. -co COMPRESS=DEFLATE "
-                    "for readers without ZSTD, -co PREDICTOR=1 for faster frames in larger files");
+                    "for readers without ZSTD, -co PREDICTOR=1 for slightly faster frames in larger files");
     cmd->add_option("--fps", o->fps, "GIF frames per second")->check(finiteRange(1, 100))->capture_default_str();
     cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
         ->check(finiteRange(16, 100000))
