@@ -550,7 +550,8 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     // Float32 GTiff at the default layout: GDAL writes the directory of a file without tiles,
     // detail::FloatTileWriter encodes and appends the tiles (geo/tiff_tiles.h).
     std::optional<detail::FloatTileEncoding> ownTiles;
-    if (options.format == "GTiff" && type == GDT_Float32 && detail::encodeFloatTiles)
+    // (libtiff opens local files only, not GDAL's virtual ones.)
+    if (options.format == "GTiff" && type == GDT_Float32 && detail::encodeFloatTiles && !isGdalVirtualPath(path))
         ownTiles = detail::floatTileEncoding(co);
     if (ownTiles) coList.AddString("SPARSE_OK=TRUE");
 

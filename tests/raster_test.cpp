@@ -304,6 +304,7 @@ TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
         {1, 1, {}, nan, true},                                      // one cell
         {700, 300, {"BLOCKXSIZE=128", "BLOCKYSIZE=64"}, nan, true},  // other tiles
         {513, 257, {"ZSTD_LEVEL=9", "NUM_THREADS=1"}, nan, true},
+        {300, 517, {"BIGTIFF=YES"}, nan, true},  // 64-bit tile offsets
         {300, 200, {"PREDICTOR=1"}, nan, false},  // GDAL's, both times
     };
     for (const Case& c : cases) {
