@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -187,8 +188,80 @@ TEST(PreviewRig, DisplayBytesIsUpperBoundOverTheThresholdsForEveryValue) {
         }
         for (int i = -4000; i <= 400; ++i) values.push_back(std::pow(10.0, i / 100.0));
         for (const double v : values) ASSERT_EQ(static_cast<long>(bytes(v)), expected(v)) << v << " " << exposure << " " << gamma;
+        // Eight at a time (renderPreview's path): the same bytes, in every position of the eight.
+        values.insert(values.end(), {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::quiet_NaN()});
+        for (std::size_t shift8 = 0; shift8 < 8; ++shift8) {
+            for (std::size_t k = shift8; k + 8 <= values.size(); k += 8) {
+                std::uint8_t got[8];
+                bytes.eight(values.data() + k, got);
+                for (std::size_t j = 0; j < 8; ++j)
+                    ASSERT_EQ(got[j], bytes(values[k + j])) << values[k + j] << " " << exposure << " " << gamma;
+            }
+        }
         EXPECT_EQ(bytes(std::numeric_limits<double>::quiet_NaN()), 255);
         EXPECT_EQ(bytes(-std::numeric_limits<double>::quiet_NaN()), 255);
+    }
+}
+
+// renderPreview's pixels (eight at a time, then the rest of the row one by one) are the rig's
+// per-pixel radiance and display bytes: random normals, visibilities inside and outside [0, 1]
+// and in the penumbra, sky light, albedo rasters, nodata of every kind, suns by day and in
+// twilight, and display settings with and without the bucket table.
+TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
+    const std::size_t w = 37, h = 11;  // 4 eights and 5 pixels a row
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    demlight::Normals n{demlight::Grid<float>(w, h), demlight::Grid<float>(w, h), demlight::Grid<float>(w, h)};
+    demlight::Grid<float> vis(w, h), sky(w, h);
+    std::vector<demlight::Grid<float>> albedo(3, demlight::Grid<float>(w, h));
+    for (std::size_t k = 0; k < w * h; ++k) {
+        double e = u(rng), no = u(rng), up = 0.2 + unit(rng);
+        const double len = std::sqrt(e * e + no * no + up * up);
+        n.east.data()[k] = static_cast<float>(e / len);
+        n.north.data()[k] = static_cast<float>(no / len);
+        n.up.data()[k] = k % 29 == 3 ? nan : static_cast<float>(up / len);
+        const float visChoices[] = {0.0f, 1.0f, static_cast<float>(unit(rng)), -0.25f, 1.5f, -0.0f};
+        vis.data()[k] = k % 31 == 5 ? nan : visChoices[k % 6];
+        sky.data()[k] = k % 37 == 7 ? nan : static_cast<float>(1.2 * unit(rng) - 0.1);
+        for (auto& a : albedo) a.data()[k] = k % 23 == 2 ? nan : static_cast<float>(unit(rng));
+    }
+    const std::pair<double, double> suns[] = {{135.0, 40.0}, {250.0, 2.0}, {80.0, -5.0}, {10.0, -30.0}};
+    const std::pair<double, double> displays[] = {{1.0, 2.2}, {1.0, 0.15}, {1.0, 0.05}, {2.5, 2.2}};
+    for (const auto& [azimuth, elevation] : suns) {
+        for (const auto& [exposure, gamma] : displays) {
+            for (const bool raster : {false, true}) {
+                SCOPED_TRACE(std::to_string(azimuth) + " " + std::to_string(elevation) + " " + std::to_string(gamma) +
+                             (raster ? " raster" : ""));
+                demlight::PreviewParams p;
+                p.exposure = exposure;
+                p.gamma = gamma;
+                const std::vector<demlight::Grid<float>> a = raster ? albedo : std::vector<demlight::Grid<float>>{};
+                const demlight::Image8 img = demlight::renderPreview(n, vis, sky, a, azimuth, elevation, p, 1);
+                const demlight::DisplayBytes bytes(p);
+                for (std::size_t row = 0; row < h; ++row) {
+                    for (std::size_t col = 0; col < w; ++col) {
+                        const std::uint8_t* px = img.rgba.data() + (row * w + col) * 4;
+                        const demlight::Enu nc = n.at(col, row);
+                        if (std::isnan(nc.up) || std::isnan(vis(col, row)) || std::isnan(sky(col, row))) {
+                            EXPECT_EQ(px[3], 0);
+                            EXPECT_EQ(px[0], demlight::kNodataGrey);
+                            continue;
+                        }
+                        demlight::Rgb al{p.albedo, p.albedo, p.albedo};
+                        if (raster && !std::isnan(albedo[0](col, row)) && !std::isnan(albedo[1](col, row)) &&
+                            !std::isnan(albedo[2](col, row)))
+                            al = {albedo[0](col, row), albedo[1](col, row), albedo[2](col, row)};
+                        const demlight::Rgb lin =
+                            demlight::previewRadiance(nc, al, vis(col, row), azimuth, elevation, sky(col, row), p);
+                        ASSERT_EQ(px[0], bytes(lin.r)) << col << " " << row;
+                        ASSERT_EQ(px[1], bytes(lin.g)) << col << " " << row;
+                        ASSERT_EQ(px[2], bytes(lin.b)) << col << " " << row;
+                        ASSERT_EQ(px[3], 255);
+                    }
+                }
+            }
+        }
     }
 }
 
