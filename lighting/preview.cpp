@@ -13,21 +13,6 @@
 #include <cstring>
 #include <limits>
 
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-// As in lighting/horizon_sweep.cpp: GCC 12 reports its intrinsics' deliberately undefined start
-// values as maybe uninitialized where they are inlined.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
-#include <immintrin.h>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-#define DEMLIGHT_PREVIEW_AVX512 1
-#endif
-
 namespace demlight {
 namespace {
 
@@ -72,51 +57,6 @@ Rgb radiance(const Enu& n, const Rgb& albedo, double sunVisibility, const SunRig
             channel(p.sunColor.b, p.penumbraExponent.b, p.skyColor.b, p.bounceColor.b, albedo.b)};
 }
 
-/// Eight pixels as GCC vectors: radiance's expressions, written the same way so that the compiler
-/// contracts them into the same fused multiply-adds (renderPreview's pixels equal
-/// previewRadiance's; PreviewRig.RenderedPixelsAreThePerPixelRig tests it).
-using V8d = double __attribute__((vector_size(64)));
-using V8m = std::int64_t __attribute__((vector_size(64)));  // lane masks of V8d compares
-
-V8d splat(double x) { return V8d{x, x, x, x, x, x, x, x}; }
-
-/// std::max(0.0, x) and std::clamp(x, 0.0, 1.0) lane by lane, NaN and -0 included.
-V8d max0(V8d x) { return splat(0.0) < x ? x : splat(0.0); }
-V8d clamp01(V8d x) { return x < splat(0.0) ? splat(0.0) : (splat(1.0) < x ? splat(1.0) : x); }
-
-/// radiance() of eight pixels; albedo per lane.
-void radianceEight(const V8d& ne, const V8d& nn, const V8d& nu, const V8d& ar, const V8d& ag, const V8d& ab,
-                   const V8d& sunVisibility, const SunRig& rig, const V8d& skyLight, const PreviewParams& p,
-                   V8d& outR, V8d& outG, V8d& outB) {
-    const V8d sun = max0(ne * rig.sun.east + nn * rig.sun.north + nu * rig.sun.up);
-    const V8d vis = clamp01(sunVisibility);
-    const V8d ind = max0(ne * rig.bounce.east + nn * rig.bounce.north);
-    const V8d occ = clamp01(skyLight);
-    const V8d sky = occ * rig.skyScale;
-    const V8d bounce = ind * occ * rig.bounceScale;
-    // penumbra() per lane: pow only inside the penumbra (few pixels).
-    const V8m lit = vis == splat(1.0), dark = vis == splat(0.0);
-    auto pen = [&](double exponent) {
-        V8d e = lit ? splat(1.0) : splat(0.0);
-        for (int k = 0; k < 8; ++k)
-            if (!lit[k] && !(dark[k] && exponent > 0.0)) e[k] = std::pow(vis[k], exponent);
-        return e;
-    };
-    auto channel = [&](double sunC, double exponent, double skyC, double bounceC, const V8d& a) {
-        const V8d key = sun * sunC * pen(exponent);
-        return a * (key + sky * skyC + bounce * bounceC);
-    };
-    outR = channel(p.sunColor.r, p.penumbraExponent.r, p.skyColor.r, p.bounceColor.r, ar);
-    outG = channel(p.sunColor.g, p.penumbraExponent.g, p.skyColor.g, p.bounceColor.g, ag);
-    outB = channel(p.sunColor.b, p.penumbraExponent.b, p.skyColor.b, p.bounceColor.b, ab);
-}
-
-V8d loadEight(const float* x) {
-    V8d v;
-    for (int k = 0; k < 8; ++k) v[k] = x[k];
-    return v;
-}
-
 }  // namespace
 
 double twilightSkyScale(double sunElevationDeg) {
@@ -153,43 +93,9 @@ DisplayBytes::DisplayBytes(const PreviewParams& p) {
         twoPerBucket = twoPerBucket || end - first == 2;
         below[key - keyLo] = static_cast<std::uint8_t>(first - t);
     }
-    buckets_ = below.size();
-    below.resize(below.size() + 3, 0);
     below_ = std::move(below);
     twoPerBucket_ = twoPerBucket;
     keyLo_ = keyLo;
-}
-
-void DisplayBytes::eight(const double* linear, std::uint8_t* out) const {
-#ifdef DEMLIGHT_PREVIEW_AVX512
-    const __m512d v = _mm512_loadu_pd(linear);
-    const __m512i bits = _mm512_castpd_si512(v);
-    // Negative values (and -NaN) take the binary search, as in operator().
-    if (!below_.empty() && _mm512_cmplt_epi64_mask(bits, _mm512_setzero_si512()) == 0) {
-        const __m512i key = _mm512_srli_epi64(bits, kShift);
-        const __m512i keyLo = _mm512_set1_epi64(static_cast<long long>(keyLo_));
-        const __m512i bucket = _mm512_sub_epi64(key, keyLo);
-        const __mmask8 inTable = _mm512_cmplt_epu64_mask(bucket, _mm512_set1_epi64(static_cast<long long>(buckets_)));
-        // The count below each bucket: four bytes read at its byte (below_ ends in three spare
-        // zeros), the first kept.
-        __m256i i = _mm512_mask_i64gather_epi32(_mm256_setzero_si256(), inTable, bucket, below_.data(), 1);
-        i = _mm256_and_si256(i, _mm256_set1_epi32(0xFF));
-        const __m256i one = _mm256_set1_epi32(1);
-        __m512d t = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), inTable, i, thresholds_.data(), 8);
-        i = _mm256_mask_add_epi32(i, _mm512_mask_cmp_pd_mask(inTable, v, t, _CMP_GE_OQ), i, one);
-        if (twoPerBucket_) {
-            t = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), inTable, i, thresholds_.data(), 8);
-            i = _mm256_mask_add_epi32(i, _mm512_mask_cmp_pd_mask(inTable, v, t, _CMP_GE_OQ), i, one);
-        }
-        // Outside the table: 0 under its first bucket, 255 over its last (and NaN).
-        const __mmask8 under = static_cast<__mmask8>(~inTable) & _mm512_cmplt_epu64_mask(key, keyLo);
-        i = _mm256_mask_blend_epi32(static_cast<__mmask8>(~inTable), i, _mm256_set1_epi32(255));
-        i = _mm256_mask_blend_epi32(under, i, _mm256_setzero_si256());
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm256_cvtepi32_epi8(i));
-        return;
-    }
-#endif
-    for (int k = 0; k < 8; ++k) out[k] = (*this)(linear[k]);
 }
 
 std::uint8_t DisplayBytes::search(double linear) const {
@@ -223,46 +129,7 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
     const SunRig rig = sunRig(sunAzimuthDeg, sunElevationDeg);
     const DisplayBytes toDisplayByte(params);
     parallelFor(0, h, threads, [&](std::size_t row) {
-        std::size_t col = 0;
-        // Eight pixels at a time (radianceEight, DisplayBytes::eight), the rest one by one.
-        const V8d flat = splat(params.albedo);
-        for (; col + 8 <= w; col += 8) {
-            const std::size_t at = row * w + col;
-            const V8d ne = loadEight(normals.east.data() + at), nn = loadEight(normals.north.data() + at),
-                      nu = loadEight(normals.up.data() + at);
-            const V8d vis = loadEight(sunVisibility.data() + at), sky = loadEight(skyLight.data() + at);
-            const V8m nodata = (nu != nu) | (vis != vis) | (sky != sky);
-            V8d ar = flat, ag = flat, ab = flat;
-            if (!albedoRgb.empty()) {
-                const V8d r = loadEight(albedoRgb[0].data() + at), g = loadEight(albedoRgb[1].data() + at),
-                          b = loadEight(albedoRgb[2].data() + at);
-                const V8m given = (r == r) & (g == g) & (b == b);
-                ar = given ? r : flat;
-                ag = given ? g : flat;
-                ab = given ? b : flat;
-            }
-            V8d lr, lg, lb;
-            radianceEight(ne, nn, nu, ar, ag, ab, vis, rig, sky, params, lr, lg, lb);
-            alignas(64) double lin[3][8];
-            std::memcpy(lin[0], &lr, sizeof lr);
-            std::memcpy(lin[1], &lg, sizeof lg);
-            std::memcpy(lin[2], &lb, sizeof lb);
-            std::uint8_t bytes[3][8];
-            for (int c = 0; c < 3; ++c) toDisplayByte.eight(lin[c], bytes[c]);
-            std::uint8_t* px = img.rgba.data() + at * 4;
-            for (int k = 0; k < 8; ++k, px += 4) {
-                if (nodata[k]) {
-                    px[0] = px[1] = px[2] = kNodataGrey;
-                    px[3] = 0;
-                } else {
-                    px[0] = bytes[0][k];
-                    px[1] = bytes[1][k];
-                    px[2] = bytes[2][k];
-                    px[3] = 255;
-                }
-            }
-        }
-        for (; col < w; ++col) {
+        for (std::size_t col = 0; col < w; ++col) {
             std::uint8_t* px = img.rgba.data() + (row * w + col) * 4;
             const Enu n = normals.at(col, row);
             const float vis = sunVisibility(col, row);

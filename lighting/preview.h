@@ -71,9 +71,6 @@ class DisplayBytes {
 public:
     explicit DisplayBytes(const PreviewParams& params);
     std::uint8_t operator()(double linear) const;  // (inline below: renderPreview calls it per pixel)
-    /// operator() of eight values: out[k] = (*this)(linear[k]), the table read in vector lanes
-    /// where AVX-512 is compiled in (renderPreview's eight pixels at a time).
-    void eight(const double* linear, std::uint8_t* out) const;
 
     static constexpr int kTableMantissaBits = 9;
     static constexpr std::size_t kMaxTableSize = std::size_t{1} << 16;
@@ -84,10 +81,8 @@ private:
     static constexpr int kShift = 52 - kTableMantissaBits;
     /// The 255 thresholds, then NaN: a compare past the last one never counts.
     std::array<double, 256> thresholds_{};
-    /// Per bucket (key - keyLo_), the thresholds below its first double, then three zeros (eight()
-    /// reads four bytes at a bucket); empty: no table.
+    /// Per bucket (key - keyLo_), the thresholds below its first double; empty: no table.
     std::vector<std::uint8_t> below_;
-    std::uint64_t buckets_ = 0;  ///< below_'s buckets
     std::uint64_t keyLo_ = 0;
     bool twoPerBucket_ = false;  ///< some bucket holds two thresholds: a second compare
 };
@@ -97,7 +92,7 @@ inline std::uint8_t DisplayBytes::operator()(double linear) const {
     if (below_.empty() || (bits >> 63) != 0) return search(linear);
     // (Below the first bucket the key wraps around: both ends are outside the table.)
     const std::uint64_t bucket = (bits >> kShift) - keyLo_;
-    if (bucket >= buckets_) return (bits >> kShift) < keyLo_ ? 0 : 255;  // under t[0]; over t[254] or NaN
+    if (bucket >= below_.size()) return (bits >> kShift) < keyLo_ ? 0 : 255;  // under t[0]; over t[254] or NaN
     std::size_t i = below_[bucket];
     i += linear >= thresholds_[i] ? 1 : 0;
     if (twoPerBucket_) i += linear >= thresholds_[i] ? 1 : 0;

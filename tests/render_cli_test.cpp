@@ -188,27 +188,16 @@ TEST(PreviewRig, DisplayBytesIsUpperBoundOverTheThresholdsForEveryValue) {
         }
         for (int i = -4000; i <= 400; ++i) values.push_back(std::pow(10.0, i / 100.0));
         for (const double v : values) ASSERT_EQ(static_cast<long>(bytes(v)), expected(v)) << v << " " << exposure << " " << gamma;
-        // Eight at a time (renderPreview's path): the same bytes, in every position of the eight.
-        values.insert(values.end(), {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::quiet_NaN()});
-        for (std::size_t shift8 = 0; shift8 < 8; ++shift8) {
-            for (std::size_t k = shift8; k + 8 <= values.size(); k += 8) {
-                std::uint8_t got[8];
-                bytes.eight(values.data() + k, got);
-                for (std::size_t j = 0; j < 8; ++j)
-                    ASSERT_EQ(got[j], bytes(values[k + j])) << values[k + j] << " " << exposure << " " << gamma;
-            }
-        }
         EXPECT_EQ(bytes(std::numeric_limits<double>::quiet_NaN()), 255);
         EXPECT_EQ(bytes(-std::numeric_limits<double>::quiet_NaN()), 255);
     }
 }
 
-// renderPreview's pixels (eight at a time, then the rest of the row one by one) are the rig's
-// per-pixel radiance and display bytes: random normals, visibilities inside and outside [0, 1]
+// renderPreview's pixels are the rig's per-pixel radiance and display bytes: random normals, visibilities inside and outside [0, 1]
 // and in the penumbra, sky light, albedo rasters, nodata of every kind, suns by day and in
 // twilight, and display settings with and without the bucket table.
 TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
-    const std::size_t w = 37, h = 11;  // 4 eights and 5 pixels a row
+    const std::size_t w = 37, h = 11;
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
     const float nan = std::numeric_limits<float>::quiet_NaN();
