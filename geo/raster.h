@@ -120,8 +120,9 @@ struct WriteOptions {
     /// GDAL driver: "GTiff" (default) or "COG".
     std::string format = "GTiff";
     /// Extra GDAL creation options, KEY=VALUE; they override the defaults
-    /// (GTiff: TILED=YES, COMPRESS=ZSTD, ZSTD_LEVEL=1, PREDICTOR=3/2, INTERLEAVE=BAND,
-    /// NUM_THREADS=ALL_CPUS, BIGTIFF=IF_SAFER; COG: COMPRESS=DEFLATE, PREDICTOR=YES/NO, ...).
+    /// (GTiff: TILED=YES, COMPRESS=ZSTD, ZSTD_LEVEL=1, PREDICTOR=3 for Float32, 2 for Int16 or 1
+    /// for Byte, INTERLEAVE=BAND, NUM_THREADS=ALL_CPUS, BIGTIFF=IF_SAFER; COG: COMPRESS=DEFLATE,
+    /// PREDICTOR=YES/NO, ...).
     std::vector<std::string> creationOptions;
     /// Dataset metadata items (DEMLIGHT_* keys: command line, version, parameters).
     std::map<std::string, std::string> metadata;
