@@ -550,12 +550,14 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     const std::vector<std::string> co = creationOptions(options, type);
     CPLStringList coList;
     for (const auto& kv : co) coList.AddString(kv.c_str());
-    // Float32 GTiff at the default layout: GDAL writes the directory of a file without tiles,
-    // detail::FloatTileWriter encodes and appends the tiles (geo/tiff_tiles.h).
-    std::optional<detail::FloatTileEncoding> ownTiles;
-    // (libtiff opens local files only, not GDAL's virtual ones.)
-    if (options.format == "GTiff" && type == GDT_Float32 && detail::encodeFloatTiles && !isGdalVirtualPath(path))
-        ownTiles = detail::floatTileEncoding(co);
+    // Float32 or Int16 GTiff at the default layout: GDAL writes the directory of a file without
+    // tiles, detail::TileWriter encodes and appends the tiles (geo/tiff_tiles.h). (libtiff opens
+    // local files only, not GDAL's virtual ones.)
+    std::optional<detail::TileEncoding> ownTiles;
+    if (options.format == "GTiff" && (type == GDT_Float32 || type == GDT_Int16) && detail::encodeTiles &&
+        !isGdalVirtualPath(path))
+        ownTiles = detail::tileEncoding(co, type == GDT_Float32 ? detail::TileSamples::Float32
+                                                                : detail::TileSamples::Int16);
     if (ownTiles) coList.AddString("SPARSE_OK=TRUE");
 
     // Write under a temporary name in the same folder and rename on success, so a failed or
@@ -573,7 +575,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     detail::takeGdalError();
 
     DatasetPtr ds;
-    std::optional<detail::FloatTileWriter> tiles;
+    std::optional<detail::TileWriter> tiles;
     // A failure of the tile writer, as `fail` for GDAL's: the file removed, the cause named.
     const auto tileFailure = [&](const std::string& what, const Error& e) {
         tiles.reset();
@@ -650,7 +652,10 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
             const std::size_t r0 = s * stripRows;
             const std::size_t rows = std::min(stripRows, height - r0);
             if (tiles) {
-                const float* data = floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
+                const void* data = type == GDT_Int16
+                                       ? static_cast<const void*>(fixedCells(b, r0 * width, rows * width,
+                                                                             *options.fixedPoint, fixedBuffer))
+                                       : floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
                 try {
                     tiles->writeRows(i, r0, rows, data);
                 } catch (const Error& e) {

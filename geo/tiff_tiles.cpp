@@ -15,8 +15,8 @@
 
 namespace demlight::detail {
 
-std::atomic<bool> encodeFloatTiles{true};
-std::atomic<std::size_t> floatTilesWritten{0};
+std::atomic<bool> encodeTiles{true};
+std::atomic<std::size_t> tilesWritten{0};
 
 namespace {
 
@@ -33,9 +33,10 @@ std::optional<int> parseInt(const std::string& s) {
 
 }  // namespace
 
-std::optional<FloatTileEncoding> floatTileEncoding(const std::vector<std::string>& creationOptions) {
-    FloatTileEncoding e;
-    bool tiled = false, zstd = false, floatPredictor = false, bandInterleave = false;
+std::optional<TileEncoding> tileEncoding(const std::vector<std::string>& creationOptions, TileSamples samples) {
+    TileEncoding e;
+    e.samples = samples;
+    bool tiled = false, zstd = false, samplesPredictor = false, bandInterleave = false;
     // libtiff's ZSTD level when none is given (tif_zstd.c), which GDAL passes on.
     e.zstdLevel = 9;
     for (const std::string& kv : creationOptions) {
@@ -48,7 +49,7 @@ std::optional<FloatTileEncoding> floatTileEncoding(const std::vector<std::string
         } else if (equalsIgnoringCase(key, "COMPRESS")) {
             zstd = equalsIgnoringCase(value, "ZSTD");
         } else if (equalsIgnoringCase(key, "PREDICTOR")) {
-            floatPredictor = value == "3";
+            samplesPredictor = value == (samples == TileSamples::Float32 ? "3" : "2");
         } else if (equalsIgnoringCase(key, "INTERLEAVE")) {
             bandInterleave = equalsIgnoringCase(value, "BAND");
         } else if (equalsIgnoringCase(key, "ZSTD_LEVEL")) {
@@ -71,7 +72,7 @@ std::optional<FloatTileEncoding> floatTileEncoding(const std::vector<std::string
             return std::nullopt;
         }
     }
-    if (!(tiled && zstd && floatPredictor && bandInterleave)) return std::nullopt;
+    if (!(tiled && zstd && samplesPredictor && bandInterleave)) return std::nullopt;
     return e;
 }
 
@@ -94,12 +95,23 @@ void predictFloatRow(const float* row, std::size_t n, std::uint8_t* out) {
     for (std::size_t k = 1; k < 4 * n; ++k) out[k] = static_cast<std::uint8_t>(p[k] - p[k - 1]);
 }
 
-struct FloatTileWriter::State {
+void predictInt16Row(const std::int16_t* row, std::size_t n, std::uint8_t* out) {
+    std::uint16_t previous = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto v = static_cast<std::uint16_t>(row[i]);
+        const auto d = static_cast<std::uint16_t>(i == 0 ? v : v - previous);
+        out[2 * i] = static_cast<std::uint8_t>(d);
+        out[2 * i + 1] = static_cast<std::uint8_t>(d >> 8);
+        previous = v;
+    }
+}
+
+struct TileWriter::State {
     TIFF* tif = nullptr;
     std::string path;
     std::size_t width = 0, height = 0, bands = 0;
     std::uint32_t tileW = 0, tileH = 0;
-    FloatTileEncoding encoding;
+    TileEncoding encoding;
     std::string libtiffError;               // the first error libtiff reported
     std::vector<std::vector<std::uint8_t>> compressed;  // a strip's tiles
 
@@ -129,8 +141,8 @@ struct ZstdContextFree {
 
 }  // namespace
 
-FloatTileWriter::FloatTileWriter(const std::string& path, std::size_t width, std::size_t height, std::size_t bands,
-                                 FloatTileEncoding encoding)
+TileWriter::TileWriter(const std::string& path, std::size_t width, std::size_t height, std::size_t bands,
+                                 TileEncoding encoding)
     : state_(std::make_unique<State>()) {
     State& st = *state_;
     st.path = path;
@@ -157,8 +169,11 @@ FloatTileWriter::FloatTileWriter(const std::string& path, std::size_t width, std
                     TIFFGetField(st.tif, TIFFTAG_COMPRESSION, &compression) &&
                     TIFFGetField(st.tif, TIFFTAG_PLANARCONFIG, &planar) &&
                     TIFFGetField(st.tif, TIFFTAG_SAMPLESPERPIXEL, &samples);
-    if (!ok || w != width || h != height || bits != 32 || format != SAMPLEFORMAT_IEEEFP ||
-        predictor != PREDICTOR_FLOATINGPOINT || compression != COMPRESSION_ZSTD ||
+    const bool asEncoded = encoding.samples == TileSamples::Float32
+                               ? bits == 32 && format == SAMPLEFORMAT_IEEEFP && predictor == PREDICTOR_FLOATINGPOINT
+                               : bits == 16 && format == SAMPLEFORMAT_INT && predictor == PREDICTOR_HORIZONTAL &&
+                                     !TIFFIsByteSwapped(st.tif);  // predictInt16Row writes little-endian
+    if (!ok || !asEncoded || w != width || h != height || compression != COMPRESSION_ZSTD ||
         (samples > 1 && planar != PLANARCONFIG_SEPARATE) || samples != bands || st.tileW == 0 || st.tileH == 0) {
         TIFFClose(st.tif);
         st.tif = nullptr;
@@ -166,13 +181,13 @@ FloatTileWriter::FloatTileWriter(const std::string& path, std::size_t width, std
     }
 }
 
-FloatTileWriter::~FloatTileWriter() {
+TileWriter::~TileWriter() {
     if (state_ && state_->tif) TIFFClose(state_->tif);  // after an error: the caller removes the file
 }
 
-std::size_t FloatTileWriter::tileHeight() const { return state_->tileH; }
+std::size_t TileWriter::tileHeight() const { return state_->tileH; }
 
-void FloatTileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t rows, const float* values) {
+void TileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t rows, const void* values) {
     State& st = *state_;
     if (!st.tif || band >= st.bands || row0 % st.tileH != 0 || row0 + rows > st.height ||
         (rows % st.tileH != 0 && row0 + rows != st.height))
@@ -185,23 +200,38 @@ void FloatTileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t 
     const int level = st.encoding.zstdLevel;
     std::atomic<bool> failed{false};
     // Tiles are independent: each thread predicts and compresses whole tiles into its own buffer.
+    const bool floats = st.encoding.samples == TileSamples::Float32;
+    const std::size_t sampleBytes = floats ? 4 : 2;
     parallelFor(0, tiles, st.encoding.threads, [&](std::size_t t) {
         thread_local std::unique_ptr<ZSTD_CCtx, ZstdContextFree> cctx;
         thread_local std::vector<float> row;
+        thread_local std::vector<std::int16_t> row16;
         thread_local std::vector<std::uint8_t> raw;
         if (!cctx) cctx.reset(ZSTD_createCCtx());
         const std::size_t ty = t / across, tx = t % across;
         const std::size_t x0 = tx * tileW, cols = std::min(tileW, st.width - x0);
-        row.assign(tileW, 0.0f);  // cells past the raster's edge: zeros (no reader sees them)
-        raw.resize(4 * tileW * tileH);
+        raw.resize(sampleBytes * tileW * tileH);
+        // Cells past the raster's edge: zeros (no reader sees them).
+        row.assign(tileW, 0.0f);
+        row16.assign(tileW, 0);
         for (std::size_t r = 0; r < tileH; ++r) {
             const std::size_t y = ty * tileH + r;  // within the rows given
-            if (y < rows) {
-                std::copy_n(values + y * st.width + x0, cols, row.begin());
+            std::uint8_t* out = raw.data() + sampleBytes * tileW * r;
+            if (floats) {
+                if (y < rows) {
+                    std::copy_n(static_cast<const float*>(values) + y * st.width + x0, cols, row.begin());
+                } else {
+                    std::fill(row.begin(), row.end(), 0.0f);
+                }
+                predictFloatRow(row.data(), tileW, out);
             } else {
-                std::fill(row.begin(), row.end(), 0.0f);
+                if (y < rows) {
+                    std::copy_n(static_cast<const std::int16_t*>(values) + y * st.width + x0, cols, row16.begin());
+                } else {
+                    std::fill(row16.begin(), row16.end(), std::int16_t{0});
+                }
+                predictInt16Row(row16.data(), tileW, out);
             }
-            predictFloatRow(row.data(), tileW, raw.data() + 4 * tileW * r);
         }
         std::vector<std::uint8_t>& out = st.compressed[t];
         out.resize(ZSTD_compressBound(raw.size()));
@@ -226,10 +256,10 @@ void FloatTileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t 
             static_cast<tmsize_t>(data.size()))
             throw st.failure("libtiff could not append a tile");
     }
-    floatTilesWritten += tiles;
+    tilesWritten += tiles;
 }
 
-void FloatTileWriter::close() {
+void TileWriter::close() {
     State& st = *state_;
     if (!st.tif) return;
     // TIFFFlush rewrites only the tile offsets and byte counts (in place) when nothing else of the

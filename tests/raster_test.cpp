@@ -237,6 +237,16 @@ TEST(FloatTiles, PredictorRegroupsBytesAndTakesDifferences) {
     EXPECT_EQ(0, std::memcmp(out, expected, 8));
 }
 
+// libtiff's horDiff16: 1, -1 (FFFF), 32767 (7FFF), -32768 (8000) give 0001, FFFE, 8000, 0001,
+// stored little-endian.
+TEST(FloatTiles, Int16PredictorTakesDifferencesModulo65536) {
+    const std::int16_t row[4] = {1, -1, 32767, -32768};
+    std::uint8_t out[8];
+    detail::predictInt16Row(row, 4, out);
+    const std::uint8_t expected[8] = {0x01, 0x00, 0xFE, 0xFF, 0x00, 0x80, 0x01, 0x00};
+    EXPECT_EQ(0, std::memcmp(out, expected, 8));
+}
+
 TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
     const std::vector<std::string> defaults = {"TILED=YES",       "COMPRESS=ZSTD",        "ZSTD_LEVEL=1",
                                                "PREDICTOR=3",     "INTERLEAVE=BAND",      "NUM_THREADS=ALL_CPUS",
@@ -244,7 +254,7 @@ TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
     const auto with = [&](std::vector<std::string> extra) {
         std::vector<std::string> co = defaults;
         co.insert(co.end(), extra.begin(), extra.end());
-        return detail::floatTileEncoding(co);
+        return detail::tileEncoding(co);
     };
     ASSERT_TRUE(with({}).has_value());
     EXPECT_EQ(with({})->zstdLevel, 1);
@@ -257,6 +267,13 @@ TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
         SCOPED_TRACE(other);
         EXPECT_FALSE(with({other}).has_value());
     }
+    // Int16 (fixed point) with its own predictor, 2, and not with the floats' 3.
+    std::vector<std::string> int16 = defaults;
+    int16[3] = "PREDICTOR=2";
+    ASSERT_TRUE(detail::tileEncoding(int16, detail::TileSamples::Int16).has_value());
+    EXPECT_EQ(detail::tileEncoding(int16, detail::TileSamples::Int16)->samples, detail::TileSamples::Int16);
+    EXPECT_FALSE(detail::tileEncoding(int16, detail::TileSamples::Float32).has_value());
+    EXPECT_FALSE(detail::tileEncoding(defaults, detail::TileSamples::Int16).has_value());
 }
 
 /// Float32 rasters of awkward sizes and values, written with demlight's tile encoder and with
@@ -295,7 +312,8 @@ TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
         std::size_t w, h;
         std::vector<std::string> co;
         double nodata;
-        bool ownTiles;  // demlight's encoder takes these options
+        bool ownTiles;       // demlight's encoder takes these options
+        bool fixed = false;  // Int16 fixed point (two bands, no mask)
     };
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const std::vector<Case> cases = {
@@ -306,6 +324,9 @@ TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
         {513, 257, {"ZSTD_LEVEL=9", "NUM_THREADS=1"}, nan, true},
         {300, 517, {"BIGTIFF=YES"}, nan, true},  // 64-bit tile offsets
         {300, 200, {"PREDICTOR=1"}, nan, false},  // GDAL's, both times
+        {300, 517, {}, nan, true, true},            // Int16 with the horizontal predictor
+        {513, 257, {"BLOCKXSIZE=128", "BLOCKYSIZE=64", "NUM_THREADS=1"}, nan, true, true},
+        {300, 200, {"PREDICTOR=1"}, nan, false, true},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.w) + "x" + std::to_string(c.h) + " " +
@@ -313,29 +334,41 @@ TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
         const Grid<float> a = bandOf(c.w, c.h, 0), b = bandOf(c.w, c.h, 1);
         Grid<std::uint8_t> mask(c.w, c.h, 0);
         for (std::size_t k = 0; k < mask.size(); k += 3) mask.data()[k] = 1;
-        const std::vector<OutputBand> bands = {
-            {&a, nullptr, "first", "m"}, {&b, nullptr, "second", "deg"}, {nullptr, &mask, "flag", ""}};
+        std::vector<OutputBand> bands = {{&a, nullptr, "first", "m"}, {&b, nullptr, "second", "deg"}};
+        if (!c.fixed) bands.push_back({nullptr, &mask, "flag", ""});
         WriteOptions opt;
         opt.creationOptions = c.co;
         opt.nodata = c.nodata;
+        if (c.fixed) opt.fixedPoint = FixedPoint16{4500.0 / 32767.0, 0.0};
         const std::string own = (dir / "own.tif").string(), gdal = (dir / "gdal.tif").string();
-        const std::size_t before = detail::floatTilesWritten;
+        const std::size_t before = detail::tilesWritten;
         writeRaster(own, bands, ref, opt);
-        EXPECT_EQ(detail::floatTilesWritten > before, c.ownTiles);
-        detail::encodeFloatTiles = false;
+        EXPECT_EQ(detail::tilesWritten > before, c.ownTiles);
+        detail::encodeTiles = false;
         writeRaster(gdal, bands, ref, opt);
-        detail::encodeFloatTiles = true;
+        detail::encodeTiles = true;
 
         RasterSummary sOwn, sGdal;
         const std::vector<Grid<float>> vOwn = readRasterBands(own, &sOwn), vGdal = readRasterBands(gdal, &sGdal);
-        ASSERT_EQ(vOwn.size(), 3u);
-        ASSERT_EQ(vGdal.size(), 3u);
-        for (std::size_t i = 0; i < 3; ++i) {
+        ASSERT_EQ(vOwn.size(), bands.size());
+        ASSERT_EQ(vGdal.size(), bands.size());
+        for (std::size_t i = 0; i < bands.size(); ++i) {
             ASSERT_EQ(vOwn[i].size(), vGdal[i].size());
             EXPECT_EQ(0, std::memcmp(vOwn[i].data(), vGdal[i].data(), vOwn[i].size() * sizeof(float))) << "band " << i;
         }
-        // And the values given (readRasterBands turns nodata into NaN).
+        // And the values given (readRasterBands turns nodata into NaN; fixed point comes back as
+        // the stored integers, within half a step of the value over the scale).
         for (std::size_t k = 0; k < a.size(); ++k) {
+            if (c.fixed) {
+                const double scale = opt.fixedPoint->scale;
+                const float given = a.data()[k], back = vOwn[0].data()[k];
+                if (std::isnan(given)) {
+                    ASSERT_TRUE(std::isnan(back)) << k;
+                } else if (std::abs(given) < 4000.0f) {
+                    ASSERT_NEAR(back * scale, given, 0.5 * scale + 1e-3) << k;
+                }
+                continue;
+            }
             const float given = a.data()[k], back = vOwn[0].data()[k];
             if (std::isnan(given)) {
                 ASSERT_TRUE(std::isnan(back)) << k;
