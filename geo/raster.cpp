@@ -623,7 +623,10 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         } catch (const Error& e) {
             throw tileFailure({}, e);
         }
-        stripRows = tiles->tileHeight() * std::max<std::size_t>(1, kWriteStripRows / tiles->tileHeight());
+        // Four rows of tiles per batch when they take at most 16 MB: a 1201-wide band has five
+        // tiles a row, which two threads share unevenly one row at a time.
+        const std::size_t tileRow = tiles->tileHeight() * std::max<std::size_t>(1, kWriteStripRows / tiles->tileHeight());
+        stripRows = tileRow * (tileRow * width * sizeof(float) * 4 <= (std::size_t{16} << 20) ? 4 : 1);
     }
 
     // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
