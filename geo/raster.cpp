@@ -576,20 +576,13 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
     DatasetPtr ds;
     std::optional<detail::TileWriter> tiles;
-    // A failure of the tile writer, as `fail` for GDAL's: the file removed, the cause named.
-    const auto tileFailure = [&](const std::string& what, const Error& e) {
-        tiles.reset();
-        const std::string message = writeFailureMessage(what + "'" + path + "'", tmp.path(), e.what());
-        tmp.discard();
-        return Error(message);
-    };
-    // Ends the write: the datasets closed, every temporary file removed; Cancelled when the
-    // caller asked to stop, else an Error naming the cause (thrown by std::rethrow_exception, so
-    // that a Cancelled keeps its type).
-    const auto fail = [&](const std::string& what) {
+    // Ends the write: the datasets (or the tile writer) closed, every temporary file removed;
+    // Cancelled when the caller asked to stop, else an Error naming the cause, the tile writer's
+    // `reason` or GDAL's (thrown by std::rethrow_exception, so that a Cancelled keeps its type).
+    const auto fail = [&](const std::string& what, std::string reason = {}) {
         ds.reset();
         tiles.reset();
-        const std::string reason = detail::takeGdalError();
+        if (const std::string gdal = detail::takeGdalError(); reason.empty()) reason = gdal;
         if (progress.stopped()) {
             tmp.discard();
             return std::make_exception_ptr(Cancelled());
@@ -621,12 +614,14 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         try {
             tiles.emplace(tmp.path(), width, height, bands.size(), *ownTiles);
         } catch (const Error& e) {
-            throw tileFailure({}, e);
+            std::rethrow_exception(fail({}, e.what()));
         }
-        // Four rows of tiles per batch when they take at most 16 MB: a 1201-wide band has five
-        // tiles a row, which two threads share unevenly one row at a time.
-        const std::size_t tileRow = tiles->tileHeight() * std::max<std::size_t>(1, kWriteStripRows / tiles->tileHeight());
-        stripRows = tileRow * (tileRow * width * sizeof(float) * 4 <= (std::size_t{16} << 20) ? 4 : 1);
+        // Four strips of whole tile rows per batch when they take at most 16 MB: a 1201-wide band
+        // has five tiles a row, which two threads share unevenly one row at a time.
+        const std::size_t tileH = tiles->tileHeight();
+        const std::size_t strip = tileH * std::max<std::size_t>(1, kWriteStripRows / tileH);
+        constexpr std::size_t kBatchStrips = 4, kBatchBytes = std::size_t{16} << 20;
+        stripRows = kBatchStrips * strip * width * sizeof(float) <= kBatchBytes ? kBatchStrips * strip : strip;
     }
 
     // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
@@ -662,7 +657,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                 try {
                     tiles->writeRows(i, r0, rows, data);
                 } catch (const Error& e) {
-                    throw tileFailure("band " + std::to_string(i + 1) + " of ", e);
+                    std::rethrow_exception(fail("band " + std::to_string(i + 1), e.what()));
                 }
                 continue;
             }
@@ -703,7 +698,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
         try {
             tiles->close();
         } catch (const Error& e) {
-            throw tileFailure({}, e);
+            std::rethrow_exception(fail({}, e.what()));
         }
     } else {
         GDALClose(GDALDataset::ToHandle(ds.release()));

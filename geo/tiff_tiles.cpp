@@ -37,8 +37,6 @@ std::optional<TileEncoding> tileEncoding(const std::vector<std::string>& creatio
     TileEncoding e;
     e.samples = samples;
     bool tiled = false, zstd = false, samplesPredictor = false, bandInterleave = false;
-    // libtiff's ZSTD level when none is given (tif_zstd.c), which GDAL passes on.
-    e.zstdLevel = 9;
     for (const std::string& kv : creationOptions) {
         const std::size_t eq = kv.find('=');
         if (eq == std::string::npos) return std::nullopt;
@@ -105,6 +103,33 @@ void predictInt16Row(const std::int16_t* row, std::size_t n, std::uint8_t* out) 
         previous = v;
     }
 }
+
+namespace {
+
+/// One tile's rows predicted into `raw` (sizeof(T) * tileW bytes a row): `rows` rows of `cols`
+/// cells from `first` (`stride` cells apart), zeros past the raster's edges (no reader sees
+/// them). Whole rows are predicted from the raster itself, the others from a padded copy.
+template <class T>
+void predictTile(const T* first, std::size_t stride, std::size_t cols, std::size_t rows, std::size_t tileW,
+                 std::size_t tileH, std::uint8_t* raw, void (*predictRow)(const T*, std::size_t, std::uint8_t*)) {
+    thread_local std::vector<T> padded;
+    padded.assign(tileW, T{});  // copies below fill [0, cols) only: the rest stays zero
+    for (std::size_t r = 0; r < tileH; ++r) {
+        std::uint8_t* out = raw + sizeof(T) * tileW * r;
+        if (r < rows && cols == tileW) {
+            predictRow(first + r * stride, tileW, out);
+            continue;
+        }
+        if (r < rows) {
+            std::copy_n(first + r * stride, cols, padded.begin());
+        } else {
+            std::fill(padded.begin(), padded.end(), T{});
+        }
+        predictRow(padded.data(), tileW, out);
+    }
+}
+
+}  // namespace
 
 struct TileWriter::State {
     TIFF* tif = nullptr;
@@ -199,39 +224,23 @@ void TileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t rows,
     st.compressed.resize(std::max(st.compressed.size(), tiles));
     const int level = st.encoding.zstdLevel;
     std::atomic<bool> failed{false};
-    // Tiles are independent: each thread predicts and compresses whole tiles into its own buffer.
     const bool floats = st.encoding.samples == TileSamples::Float32;
     const std::size_t sampleBytes = floats ? 4 : 2;
+    // Tiles are independent: each thread predicts and compresses whole tiles into its own buffer.
     parallelFor(0, tiles, st.encoding.threads, [&](std::size_t t) {
         thread_local std::unique_ptr<ZSTD_CCtx, ZstdContextFree> cctx;
-        thread_local std::vector<float> row;
-        thread_local std::vector<std::int16_t> row16;
         thread_local std::vector<std::uint8_t> raw;
         if (!cctx) cctx.reset(ZSTD_createCCtx());
         const std::size_t ty = t / across, tx = t % across;
         const std::size_t x0 = tx * tileW, cols = std::min(tileW, st.width - x0);
+        const std::size_t inTile = std::min(tileH, rows - ty * tileH), first = ty * tileH * st.width + x0;
         raw.resize(sampleBytes * tileW * tileH);
-        // Cells past the raster's edge: zeros (no reader sees them).
-        row.assign(tileW, 0.0f);
-        row16.assign(tileW, 0);
-        for (std::size_t r = 0; r < tileH; ++r) {
-            const std::size_t y = ty * tileH + r;  // within the rows given
-            std::uint8_t* out = raw.data() + sampleBytes * tileW * r;
-            if (floats) {
-                if (y < rows) {
-                    std::copy_n(static_cast<const float*>(values) + y * st.width + x0, cols, row.begin());
-                } else {
-                    std::fill(row.begin(), row.end(), 0.0f);
-                }
-                predictFloatRow(row.data(), tileW, out);
-            } else {
-                if (y < rows) {
-                    std::copy_n(static_cast<const std::int16_t*>(values) + y * st.width + x0, cols, row16.begin());
-                } else {
-                    std::fill(row16.begin(), row16.end(), std::int16_t{0});
-                }
-                predictInt16Row(row16.data(), tileW, out);
-            }
+        if (floats) {
+            predictTile(static_cast<const float*>(values) + first, st.width, cols, inTile, tileW, tileH, raw.data(),
+                        predictFloatRow);
+        } else {
+            predictTile(static_cast<const std::int16_t*>(values) + first, st.width, cols, inTile, tileW, tileH,
+                        raw.data(), predictInt16Row);
         }
         std::vector<std::uint8_t>& out = st.compressed[t];
         out.resize(ZSTD_compressBound(raw.size()));

@@ -24,7 +24,7 @@ enum class TileSamples { Float32, Int16 };
 /// ZSTD, the samples' predictor, band-interleaved), which TileWriter encodes itself.
 struct TileEncoding {
     TileSamples samples = TileSamples::Float32;
-    int zstdLevel = 1;
+    int zstdLevel = 9;  // libtiff's level when ZSTD_LEVEL is not given (tif_zstd.c)
     int threads = 0;  // NUM_THREADS: 0 = all cores
 };
 
