@@ -193,9 +193,13 @@ TEST(PreviewRig, DisplayBytesIsUpperBoundOverTheThresholdsForEveryValue) {
     }
 }
 
-// renderPreview's pixels are the rig's per-pixel radiance and display bytes: random normals, visibilities inside and outside [0, 1]
-// and in the penumbra, sky light, albedo rasters, nodata of every kind, suns by day and in
-// twilight, and display settings with and without the bucket table.
+// renderPreview's assembly of a picture: per pixel the rig's radiance (previewRadiance, checked
+// against Quilez's numbers above) of that cell's normal, visibility, sky light and albedo (the
+// raster's, or the flat one where the raster has NaN), its display byte by the definition
+// (upper_bound over the thresholds ((k + 1/2) / 255)^gamma / exposure, not DisplayBytes), RGBA
+// in that order with alpha 255, and kNodataGrey with alpha 0 where the normal, visibility or sky
+// light is nodata. Random normals, visibilities inside and outside [0, 1] and in the penumbra,
+// suns by day and in twilight, display settings with and without DisplayBytes' table.
 TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
     const std::size_t w = 37, h = 11;
     std::mt19937 rng(11);
@@ -213,7 +217,8 @@ TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
         const float visChoices[] = {0.0f, 1.0f, static_cast<float>(unit(rng)), -0.25f, 1.5f, -0.0f};
         vis.data()[k] = k % 31 == 5 ? nan : visChoices[k % 6];
         sky.data()[k] = k % 37 == 7 ? nan : static_cast<float>(1.2 * unit(rng) - 0.1);
-        for (auto& a : albedo) a.data()[k] = k % 23 == 2 ? nan : static_cast<float>(unit(rng));
+        // NaN in one channel at a time (any one makes the pixel take the flat albedo).
+        for (std::size_t c = 0; c < 3; ++c) albedo[c].data()[k] = k % 23 == 2 + 5 * c ? nan : static_cast<float>(unit(rng));
     }
     const std::pair<double, double> suns[] = {{135.0, 40.0}, {250.0, 2.0}, {80.0, -5.0}, {10.0, -30.0}};
     const std::pair<double, double> displays[] = {{1.0, 2.2}, {1.0, 0.15}, {1.0, 0.05}, {2.5, 2.2}};
@@ -227,7 +232,13 @@ TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
                 p.gamma = gamma;
                 const std::vector<demlight::Grid<float>> a = raster ? albedo : std::vector<demlight::Grid<float>>{};
                 const demlight::Image8 img = demlight::renderPreview(n, vis, sky, a, azimuth, elevation, p, 1);
-                const demlight::DisplayBytes bytes(p);
+                std::vector<double> thresholds(255);
+                for (int k = 0; k < 255; ++k)
+                    thresholds[static_cast<std::size_t>(k)] = std::pow((k + 0.5) / 255.0, gamma) / exposure;
+                const auto bytes = [&](double v) {
+                    return static_cast<long>(std::upper_bound(thresholds.begin(), thresholds.end(), v) -
+                                             thresholds.begin());
+                };
                 for (std::size_t row = 0; row < h; ++row) {
                     for (std::size_t col = 0; col < w; ++col) {
                         const std::uint8_t* px = img.rgba.data() + (row * w + col) * 4;
