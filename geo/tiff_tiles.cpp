@@ -76,6 +76,7 @@ std::optional<TileEncoding> tileEncoding(const std::vector<std::string>& creatio
 
 void predictFloatRow(const float* row, std::size_t n, std::uint8_t* out) {
     // Kept per thread: a row of a 256-wide tile is 1 KiB.
+    if (n == 0) return;
     thread_local std::vector<std::uint8_t> planes;
     planes.resize(4 * n);
     std::uint8_t* p = planes.data();
@@ -88,7 +89,6 @@ void predictFloatRow(const float* row, std::size_t n, std::uint8_t* out) {
         p[3 * n + i] = static_cast<std::uint8_t>(v);
     }
     // Differences of bytes in a row across the planes (TN3: the row is one sequence of bytes).
-    if (n == 0) return;
     out[0] = p[0];
     for (std::size_t k = 1; k < 4 * n; ++k) out[k] = static_cast<std::uint8_t>(p[k] - p[k - 1]);
 }

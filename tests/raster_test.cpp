@@ -229,7 +229,7 @@ TEST(LoadDem, RefusesAllNodata) {
 
 // TIFF Technical Note 3 by hand: 1.0f = 3F800000, -2.0f = C0000000. The bytes regrouped most
 // significant first are 3F C0 80 00 00 00 00 00; each minus the one before it (mod 256).
-TEST(FloatTiles, PredictorRegroupsBytesAndTakesDifferences) {
+TEST(TileEncoder, PredictorRegroupsBytesAndTakesDifferences) {
     const float row[2] = {1.0f, -2.0f};
     std::uint8_t out[8];
     detail::predictFloatRow(row, 2, out);
@@ -239,7 +239,7 @@ TEST(FloatTiles, PredictorRegroupsBytesAndTakesDifferences) {
 
 // libtiff's horDiff16: 1, -1 (FFFF), 32767 (7FFF), -32768 (8000) give 0001, FFFE, 8000, 0001,
 // stored little-endian.
-TEST(FloatTiles, Int16PredictorTakesDifferencesModulo65536) {
+TEST(TileEncoder, Int16PredictorTakesDifferencesModulo65536) {
     const std::int16_t row[4] = {1, -1, 32767, -32768};
     std::uint8_t out[8];
     detail::predictInt16Row(row, 4, out);
@@ -247,7 +247,7 @@ TEST(FloatTiles, Int16PredictorTakesDifferencesModulo65536) {
     EXPECT_EQ(0, std::memcmp(out, expected, 8));
 }
 
-TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
+TEST(TileEncoder, OnlyTheDefaultLayoutIsEncodedByDemlight) {
     const std::vector<std::string> defaults = {"TILED=YES",       "COMPRESS=ZSTD",        "ZSTD_LEVEL=1",
                                                "PREDICTOR=3",     "INTERLEAVE=BAND",      "NUM_THREADS=ALL_CPUS",
                                                "BIGTIFF=IF_SAFER"};
@@ -279,7 +279,7 @@ TEST(FloatTiles, OnlyTheDefaultLayoutIsEncodedByDemlight) {
 /// Float32 rasters of awkward sizes and values, written with demlight's tile encoder and with
 /// GDAL's (libtiff's predictor and ZSTD), read back through GDAL: the same bits in every band,
 /// the same descriptions, units and nodata.
-TEST(FloatTiles, FilesDecodeToTheBitsGdalWrites) {
+TEST(TileEncoder, FilesDecodeToTheBitsGdalWrites) {
     const fs::path dir = scratchDir("floattiles");
     std::mt19937 rng(7);
     const auto bandOf = [&](std::size_t w, std::size_t h, int kind) {
