@@ -162,9 +162,15 @@ public:
         wait();
         writing_ = std::async(std::launch::async, [this, f = std::move(f)]() mutable {
             if (formats_.count("tif")) writeFrame(std::move(f.lightmap), frameName(f.index, n_, "tif"));
-            if (formats_.count("png") || formats_.count("mp4"))
-                writeImage((fs::path(o_.outDir) / frameName(f.index, n_, "png")).string(), f.preview);
-            if (gif_) gif_->add(downsample(f.preview, o_.gifSize));
+            // A picture that repeats the previous frame's is compressed and shrunk once.
+            if (formats_.count("png") || formats_.count("mp4")) {
+                if (!f.previewRepeats || !png_) png_ = encodePng(f.preview);
+                writeImage((fs::path(o_.outDir) / frameName(f.index, n_, "png")).string(), *png_, f.preview.text);
+            }
+            if (gif_) {
+                if (!f.previewRepeats || !gifFrame_) gifFrame_ = downsample(f.preview, o_.gifSize);
+                gif_->add(*gifFrame_);
+            }
         });
     }
     void finish() {
@@ -243,6 +249,9 @@ private:
     std::future<void> writing_;
     /// The last frame GeoTIFF encoded, when dark (the writing thread's); copies leave it.
     std::optional<DarkFrame> previous_;
+    /// The last frame's picture as PNG pixel data and as a GIF frame (the writing thread's).
+    std::optional<PngPixels> png_;
+    std::optional<Image8> gifFrame_;
 };
 
 TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std::string>& formats, const Dem& dem) {

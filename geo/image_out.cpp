@@ -88,6 +88,22 @@ std::string checkGif(const std::string& path, std::size_t frames) {
     throw Error(message);
 }
 
+/// Writes `path` under a temporary name through write(temporaryPath), renaming it into place
+/// when that returns; its Error becomes a failure naming `path`.
+template <class Write>
+void writeThroughTemporary(const std::string& path, Write&& write) {
+    TemporaryFile tmp(path, TemporaryNaming::Hidden);
+    try {
+        write(tmp.path());
+    } catch (const Error& e) {
+        // Its message starts with the temporary name; the final one is what the user gave.
+        std::string why = e.what();
+        if (why.starts_with(tmp.path() + ": ")) why.erase(0, tmp.path().size() + 2);
+        fail(why, tmp, path);
+    }
+    tmp.commit();
+}
+
 }  // namespace
 
 void checkImagePath(const std::string& path) { checkFormat(path, extensionOf(path)); }
@@ -96,24 +112,28 @@ void writeImage(const std::string& path, const Image8& image) {
     checkOutputFile(path);
     const std::string ext = extensionOf(path);
     if (ext.empty()) checkFormat(path, ext);  // throws, naming the missing extension
-    TemporaryFile tmp(path, TemporaryNaming::Hidden);
     if (ext == "png") {
         // PNG through libdeflate (geo/png_writer.h): ~3x faster than libpng for time-lapse frames.
-        try {
-            writePngRgba(tmp.path(), image.rgba, image.width, image.height, image.text);
-        } catch (const Error& e) {
-            // Its message starts with the temporary name; the final one is what the user gave.
-            std::string why = e.what();
-            if (why.starts_with(tmp.path() + ": ")) why.erase(0, tmp.path().size() + 2);
-            fail(why, tmp, path);
-        }
-    } else {
-        char err[512];
-        if (oiioPlugin().write(tmp.path().c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
-                               sizeof err) != 0)
-            fail(err, tmp, path);
+        writeThroughTemporary(path, [&](const std::string& tmp) {
+            writePngRgba(tmp, image.rgba, image.width, image.height, image.text);
+        });
+        return;
     }
-    tmp.commit();
+    writeThroughTemporary(path, [&](const std::string& tmp) {
+        char err[512];
+        if (oiioPlugin().write(tmp.c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
+                               sizeof err) != 0)
+            throw Error(tmp + ": " + err);
+    });
+}
+
+PngPixels encodePng(const Image8& image) { return compressPngRgba("PNG", image.rgba, image.width, image.height); }
+
+void writeImage(const std::string& path, const PngPixels& pixels,
+                const std::vector<std::pair<std::string, std::string>>& text) {
+    checkOutputFile(path);
+    if (extensionOf(path) != "png") throw Error(path + ": PNG pixel data goes to a .png file");
+    writeThroughTemporary(path, [&](const std::string& tmp) { writePng(tmp, pixels, text); });
 }
 
 struct GifWriter::Impl {

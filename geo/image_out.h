@@ -3,6 +3,7 @@
 // and animated GIFs. Files are written under a temporary name and renamed on success.
 #pragma once
 
+#include "geo/png_writer.h"
 #include "src/image.h"
 
 #include <memory>
@@ -17,6 +18,15 @@ void checkImagePath(const std::string& path);
 /// Writes an 8-bit RGBA image; formats without alpha (JPEG) get RGB (nodata shows as the
 /// neutral grey the renderer put there). Throws Error naming the path on failure.
 void writeImage(const std::string& path, const Image8& image);
+
+/// The PNG pixel data of `image`, for the writeImage below: a picture written under several
+/// names (a time-lapse's repeated night picture) is compressed once.
+PngPixels encodePng(const Image8& image);
+
+/// writeImage of a PNG (`path` ends in .png) whose pixels encodePng compressed, with `text` as
+/// its tEXt chunks.
+void writeImage(const std::string& path, const PngPixels& pixels,
+                const std::vector<std::pair<std::string, std::string>>& text);
 
 /// Streams an animated GIF frame by frame (so long sequences of big frames never sit in
 /// memory together). Written under a temporary name; finish() renames it into place, and

@@ -6,6 +6,7 @@
 
 #include <libdeflate.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdio>
@@ -69,13 +70,8 @@ private:
 
 }  // namespace
 
-void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
-                  std::size_t height, const std::vector<std::pair<std::string, std::string>>& text) {
-    constexpr std::size_t kMaxKeyword = 79;  // PNG 1.2, 11.3.4.1
-    for (const auto& [key, value] : text)
-        if (key.empty() || key.size() > kMaxKeyword || key.find('\0') != std::string::npos ||
-            value.find('\0') != std::string::npos)
-            throw Error(path + ": invalid PNG text keyword '" + key + "'");
+PngPixels compressPngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
+                          std::size_t height) {
     constexpr std::size_t kMaxSide = std::numeric_limits<std::int32_t>::max();
     if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide || rgba.size() != width * height * 4)
         throw Error(path + ": invalid PNG image size " + std::to_string(width) + " x " + std::to_string(height));
@@ -90,19 +86,29 @@ void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, s
     const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
         libdeflate_alloc_compressor(kCompressionLevel), &libdeflate_free_compressor);
     if (!compressor) throw Error(path + ": out of memory for the PNG compressor");
-    std::vector<std::uint8_t> zdata(libdeflate_zlib_compress_bound(compressor.get(), scanlines.size()));
+    PngPixels out{width, height, std::vector<std::uint8_t>(libdeflate_zlib_compress_bound(compressor.get(), scanlines.size()))};
     const std::size_t zsize = libdeflate_zlib_compress(compressor.get(), scanlines.data(), scanlines.size(),
-                                                       zdata.data(), zdata.size());
+                                                       out.zlib.data(), out.zlib.size());
     if (zsize == 0) throw Error(path + ": PNG compression failed");
+    out.zlib.resize(zsize);
+    return out;
+}
 
+void writePng(const std::string& path, const PngPixels& pixels,
+              const std::vector<std::pair<std::string, std::string>>& text) {
+    constexpr std::size_t kMaxKeyword = 79;  // PNG 1.2, 11.3.4.1
+    for (const auto& [key, value] : text)
+        if (key.empty() || key.size() > kMaxKeyword || key.find('\0') != std::string::npos ||
+            value.find('\0') != std::string::npos)
+            throw Error(path + ": invalid PNG text keyword '" + key + "'");
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
     if (!file) throw Error(failure(path, "cannot open for writing"));
     ChunkWriter out(file.get(), path);
     static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     out.raw(kSignature, sizeof kSignature);
     std::uint8_t ihdr[13];
-    putU32(ihdr, static_cast<std::uint32_t>(width));
-    putU32(ihdr + 4, static_cast<std::uint32_t>(height));
+    putU32(ihdr, static_cast<std::uint32_t>(pixels.width));
+    putU32(ihdr + 4, static_cast<std::uint32_t>(pixels.height));
     ihdr[8] = 8;   // bit depth
     ihdr[9] = 6;   // colour type: RGBA
     ihdr[10] = 0;  // compression: deflate
@@ -115,13 +121,19 @@ void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, s
         t.insert(t.end(), value.begin(), value.end());
         out.chunk("tEXt", t.data(), t.size());
     }
+    const std::size_t zsize = pixels.zlib.size();
     for (std::size_t at = 0; at < zsize; at += kIdatChunkBytes)
-        out.chunk("IDAT", zdata.data() + at, std::min(kIdatChunkBytes, zsize - at));
+        out.chunk("IDAT", pixels.zlib.data() + at, std::min(kIdatChunkBytes, zsize - at));
     out.chunk("IEND", nullptr, 0);
     if (std::fflush(file.get()) != 0) throw Error(failure(path, "cannot write PNG"));
     // fclose can still fail (a deferred write error on some file systems): a PNG is only
     // written when it succeeds.
     if (std::fclose(file.release()) != 0) throw Error(failure(path, "cannot write PNG"));
+}
+
+void writePngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
+                  std::size_t height, const std::vector<std::pair<std::string, std::string>>& text) {
+    writePng(path, compressPngRgba(path, rgba, width, height), text);
 }
 
 }  // namespace demlight

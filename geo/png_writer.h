@@ -14,6 +14,25 @@
 
 namespace demlight {
 
+/// A picture's PNG pixel data: its rows, filtered (type 0) and compressed into one zlib stream.
+/// Written under several names with their own text, a picture that repeats is compressed once
+/// (time-lapse night frames).
+struct PngPixels {
+    std::size_t width = 0, height = 0;
+    std::vector<std::uint8_t> zlib;
+};
+
+/// The PNG pixel data of `rgba` (width * height * 4 bytes, rows top to bottom, straight alpha).
+/// Throws Error, its message starting with `path`, when the size is invalid.
+PngPixels compressPngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
+                          std::size_t height);
+
+/// Writes `pixels` to `path` as an 8-bit RGBA PNG, with `text` as tEXt chunks (keyword 1-79
+/// printable Latin-1 characters, text without NUL). Throws Error when the file cannot be written
+/// or a keyword is invalid.
+void writePng(const std::string& path, const PngPixels& pixels,
+              const std::vector<std::pair<std::string, std::string>>& text = {});
+
 /// Writes `rgba` (width * height * 4 bytes, rows top to bottom, straight alpha) to `path` as an
 /// 8-bit RGBA PNG, with `text` as tEXt chunks (keyword 1-79 printable Latin-1 characters, text
 /// without NUL). Throws Error when the file cannot be written, the size or a keyword is invalid.

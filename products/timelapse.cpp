@@ -275,6 +275,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
             const double skyScale = twilightSkyScale(elevation);
             if (dark && night && night->visibility == *dark && night->skyScale == skyScale) {
                 out.preview = night->picture;
+                out.previewRepeats = true;
             } else {
                 out.preview = renderPreview(normals, frame.light.visibility, sky.skyK, albedo, field.centreAzimuthDeg,
                                             elevation, pp, request.search.threads);

@@ -62,6 +62,9 @@ struct TimelapseFrame {
     bool sunUp = false;
     ProductResult lightmap;     ///< bands sun_visibility, sun_irradiance (when lightmaps), on the window
     Image8 preview;             ///< when previews
+    /// The preview's pixels are the previous frame's, bit for bit (a night picture drawn once
+    /// while the frames stay dark): a writer may reuse what it made of them (its text differs).
+    bool previewRepeats = false;
 };
 
 /// The sequence fit's RMS residuals over the valid cells of a run, merged across its windows.

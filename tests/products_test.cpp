@@ -226,6 +226,35 @@ TEST(Products, TimelapseFramesComeThroughTheSinkVisibilityFirst) {
     EXPECT_GT(within, valid * 9 / 10);
 }
 
+// A frame that says its preview repeats the previous frame's has that frame's pixels, bit for
+// bit (a writer reuses what it made of them); night frames after the first do, and the frames
+// after the sun has risen do not.
+TEST(Products, TimelapsePreviewRepeatsOnlyThePreviousPixels) {
+    const DemSource& dem = rocky();
+    TimelapseRequest r;
+    // Rocky Mountain (UTC-6 in June): deep night at 07:00-08:00 UTC, the sun up at 13:00 UTC.
+    r.frames = instantsBetween(parseZonedInstant("2024-06-21T07:00:00Z", ""), parseZonedInstant("2024-06-21T08:00:00Z", ""),
+                               std::chrono::minutes(30), 100);
+    r.frames.instants.push_back(parseZonedInstant("2024-06-21T13:00:00Z", "").utc);
+    r.frames.instants.push_back(parseZonedInstant("2024-06-21T13:30:00Z", "").utc);
+    r.search.threads = 2;
+    r.lightmaps = false;
+    std::vector<bool> repeats;
+    Image8 previous;
+    TimelapseSink sink;
+    sink.frame = [&](TimelapseFrame&& f) {
+        repeats.push_back(f.previewRepeats);
+        if (f.previewRepeats) {
+            EXPECT_EQ(f.preview.rgba, previous.rgba) << "frame " << f.index;
+        } else if (f.index > 0) {
+            EXPECT_NE(f.preview.rgba, previous.rgba) << "frame " << f.index << " repeats without saying so";
+        }
+        previous = std::move(f.preview);
+    };
+    timelapseProduct(dem, dem.whole(), r, sink);
+    EXPECT_EQ(repeats, (std::vector<bool>{false, true, true, false, false}));
+}
+
 TEST(Products, TimelapsePreviewsAreOfTheWholeDemOnly) {
     const DemSource& dem = rocky();
     TimelapseRequest r;
