@@ -897,6 +897,23 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     0, 0, 0, 0, -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
         if (limited) logs[b].reset(lineCapacity);
     }
+    // Range limit, a cell whose chunk is its line's (value: from the current chunk's hull): the
+    // previous chunk's points within range may raise it; the rest are the exact pass's.
+    [[maybe_unused]] const auto raiseFromPrevChunk = [&](LineState& line, double sigmaC, double gCell, long chunkC,
+                                                         float* cell, float value) {
+        if (line.prevLo >= line.prevHi || prevChunkCannotRaise(line, sigmaC, gCell, invR, value)) return;
+        const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint, sigmaC, gCell);
+        line.prevHint = v;
+        const HullPoint& pv = line.buf[v];
+        const float bound = rangeSlope(pv.g, pv.sigmaM, gCell, sigmaC, invR);
+        if (bound > value) {
+            if (pv.sigmaM >= sigmaC - maxDistanceM) {
+                *cell = bound;
+            } else {
+                line.log->queries[line.log->nQueries++] = {sigmaC, gCell, chunkC, line.log->nPoints, cell, false};
+            }
+        }
+    };
     // With a near field (geo.delay steps), a cell is served `delay` steps after the walk passed
     // it, from the hulls of the samples walked so far: its scan lines' terrain at least `delay`
     // steps away, queried at the cell's own height (the near field is the combine pass's).
@@ -956,22 +973,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                 }
                 *cell = value;
                 // The previous chunk, as for the undelayed walk below.
-                if (Limited && hullInRange && line.prevLo < line.prevHi &&
-                    !prevChunkCannotRaise(line, sigmaC, gCell, invR, value)) {
-                    const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint, sigmaC,
-                                                        gCell);
-                    line.prevHint = v;
-                    const HullPoint& pv = line.buf[v];
-                    const float bound = rangeSlope(pv.g, pv.sigmaM, gCell, sigmaC, invR);
-                    if (bound > value) {
-                        if (pv.sigmaM >= sigmaC - maxDistanceM) {
-                            *cell = bound;
-                        } else {
-                            line.log->queries[line.log->nQueries++] = {sigmaC, gCell, chunkC, line.log->nPoints,
-                                                                       cell, false};
-                        }
-                    }
-                }
+                if (Limited && hullInRange) raiseFromPrevChunk(line, sigmaC, gCell, chunkC, cell, value);
             }
         };
         std::size_t b = 0;
@@ -980,7 +982,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // the rest, and every line of range-limited sweeps. With one scan line per cell each line
         // serves the cell it is nearest to (the same side for every line of the step) into plane
         // A, at any fraction; with two, both cells where the line runs between them.
-        if (eightAtOnce && !Limited && (fracC > 0.0 || geo.nearestLine)) {
+        if (eightAtOnce && (fracC > 0.0 || geo.nearestLine)) {
             for (; b + kSimdLines <= nLines; b += kSimdLines) {
                 const long n0 = kBegin + static_cast<long>(b) + baseC;
                 if (n0 < minorWin0 || n0 + static_cast<long>(kSimdLines) >= minorWin1) {
@@ -988,13 +990,43 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                     continue;
                 }
                 const __m512d sigmaC = laneDistances(geo, lines, b, mc, n0, fracC);
+                [[maybe_unused]] alignas(64) double sigmas[kSimdLines];
+                [[maybe_unused]] long chunks[kSimdLines];
+                if constexpr (Limited) {
+                    // Range limit: at once where every lane's cells lie in its line's chunk (the
+                    // hull in range); otherwise line by line.
+                    _mm512_store_pd(sigmas, sigmaC);
+                    bool inChunk = true;
+                    for (std::size_t l = 0; l < kSimdLines; ++l) {
+                        chunks[l] = static_cast<long>(std::floor(sigmas[l] / maxDistanceM));
+                        inChunk = inChunk && chunks[l] == lines[b + l].chunk;
+                    }
+                    if (!inChunk) {
+                        for (std::size_t l = 0; l < kSimdLines; ++l) serveLine(b + l);
+                        continue;
+                    }
+                }
                 const long idxA = static_cast<long>(index(mc, n0 + 1)), idxB = static_cast<long>(index(mc, n0));
-                if (geo.nearestLine) {
-                    serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, nullptr,
-                                    fracC > 0.5 ? idxA : idxB, 0, idxA - idxB, sigmaC, halfInvR, invR);
-                } else {
-                    serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, planeB, idxA, idxB,
-                                    idxA - idxB, sigmaC, halfInvR, invR);
+                const long served[2] = {geo.nearestLine ? (fracC > 0.5 ? idxA : idxB) : idxA, idxB};
+                float* const servedPlane[2] = {planeA, planeB};
+                const int nServed = geo.nearestLine ? 1 : 2;
+                serveEightLines({lines, scratch.data(), lineCapacity, b}, H, planeA, nServed == 2 ? planeB : nullptr,
+                                served[0], nServed == 2 ? served[1] : 0, idxA - idxB, sigmaC, halfInvR, invR);
+                if constexpr (Limited) {
+                    // Then each cell's previous chunk, as serveLine does: a line's cells in
+                    // serveLine's order (each tangent search starts where the line's last ended).
+                    for (std::size_t l = 0; l < kSimdLines; ++l) {
+                        LineState& line = lines[b + l];
+                        if (line.prevLo >= line.prevHi) continue;
+                        const double dropC = sigmas[l] * sigmas[l] * halfInvR;
+                        for (int s = 0; s < nServed; ++s) {
+                            const auto idx = static_cast<std::size_t>(served[s] + static_cast<long>(l) * (idxA - idxB));
+                            const float hc = H[idx];
+                            if (std::isnan(hc)) continue;
+                            float* cell = servedPlane[s] + idx;
+                            raiseFromPrevChunk(line, sigmas[l], static_cast<double>(hc) - dropC, chunks[l], cell, *cell);
+                        }
+                    }
                 }
             }
         }
@@ -1182,22 +1214,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
                         // the cell is left to the exact pass. (A walk that starts inside that chunk
                         // has a hull of fewer points; every point within range is in both, so both
                         // find the same answer, the exact pass by the same rangeSlope.)
-                        if (Limited && line.prevLo < line.prevHi &&
-                            !prevChunkCannotRaise(line, sigma, gCell, invR, value)) {
-                            const std::size_t v = tangentVertex(line.buf, line.prevLo, line.prevHi, line.prevHint,
-                                                                sigma, gCell);
-                            line.prevHint = v;
-                            const HullPoint& pv = line.buf[v];
-                            const float bound = rangeSlope(pv.g, pv.sigmaM, gCell, sigma, invR);
-                            if (bound > value) {
-                                if (pv.sigmaM >= sigma - maxDistanceM) {
-                                    *cell = bound;
-                                } else {
-                                    line.log->queries[line.log->nQueries++] = {sigma, gCell, line.chunk,
-                                                                               line.log->nPoints, cell, false};
-                                }
-                            }
-                        }
+                        if (Limited) raiseFromPrevChunk(line, sigma, gCell, line.chunk, cell, value);
                     }
                 }
 

@@ -525,27 +525,32 @@ TEST(Horizon, EightLinesAtOnceWalkAsOneLineAtATime) {
     struct Restore {
         ~Restore() { detail::sweepEightLinesAtOnce = true; }
     } restore;
+    // Range limits of several chunks serve eight lines at once too (the walk stays line by line).
+    const double inf = std::numeric_limits<double>::infinity();
     for (const Terrain* t : {&square, &narrowing}) {
         for (const bool nearest : {true, false}) {
-            for (const double az : {20.0, 45.0, 70.0, 135.0, 200.0, 290.0, 333.0}) {
-                HorizonParams p;
-                p.azimuthDeg = az;
-                p.curvature = t == &narrowing;
-                p.nearestLine = nearest;
-                p.nearFieldSteps = 4;
-                p.farFieldCrossings = false;  // crossing points push too: one line at a time
-                detail::sweepEightLinesAtOnce = true;
-                const HorizonMap eight = sweepHorizon(*t, p);
-                detail::sweepEightLinesAtOnce = false;
-                const HorizonMap one = sweepHorizon(*t, p);
-                for (std::size_t r = 0; r < t->height(); ++r)
-                    for (std::size_t c = 0; c < t->width(); ++c) {
-                        const float a = eight.angleDeg(c, r), b = one.angleDeg(c, r);
-                        ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
-                            << (t == &square ? "square" : "narrowing") << " azimuth " << az
-                            << (nearest ? " nearest line" : " two lines") << " cell " << c << " " << r << ": " << a
-                            << " vs " << b;
-                    }
+            for (const double maxDistanceM : {inf, 390.0, 1010.0}) {
+                for (const double az : {20.0, 45.0, 70.0, 135.0, 200.0, 290.0, 333.0}) {
+                    HorizonParams p;
+                    p.azimuthDeg = az;
+                    p.curvature = t == &narrowing;
+                    p.nearestLine = nearest;
+                    p.nearFieldSteps = 4;
+                    p.farFieldCrossings = false;  // crossing points push too: one line at a time
+                    p.maxDistanceM = maxDistanceM;
+                    detail::sweepEightLinesAtOnce = true;
+                    const HorizonMap eight = sweepHorizon(*t, p);
+                    detail::sweepEightLinesAtOnce = false;
+                    const HorizonMap one = sweepHorizon(*t, p);
+                    for (std::size_t r = 0; r < t->height(); ++r)
+                        for (std::size_t c = 0; c < t->width(); ++c) {
+                            const float a = eight.angleDeg(c, r), b = one.angleDeg(c, r);
+                            ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
+                                << (t == &square ? "square" : "narrowing") << " azimuth " << az
+                                << (nearest ? " nearest line" : " two lines") << " range " << maxDistanceM << " m cell "
+                                << c << " " << r << ": " << a << " vs " << b;
+                        }
+                }
             }
         }
     }
