@@ -1,6 +1,7 @@
 #include "lighting/sky.h"
 
 #include "lighting/sky_wedge.h"
+#include "lighting/sky_wedge_lanes.h"
 #include "src/angles.h"
 #include "src/error.h"
 #include "src/fast_math.h"
@@ -468,6 +469,21 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
         accumulateRowFast(h + c0, e + c0, n + c0, u + c0, k + c0, s1 + c0, s2 + c0, rises + c0, c1 - c0, fast);
         // Pass 2: the cells whose tangent plane rises above the horizon somewhere in the sector
         // (about a fifth of the tilted ones on real terrain), exactly in double.
+        const auto addExact = [&](std::size_t col) {
+            const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
+            const double hRad = clampElevationRad(h[col]);
+            const auto [sinH, cosH] = fastSinCosElevation(hRad);
+            const double sectorK =
+                fast.narrow ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
+                                                            sinH, cosH) / kPi
+                              : wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
+            k[col] += static_cast<float>(sectorK);
+        };
+#ifdef DEMLIGHT_SKY_LANES
+        // Eight such cells at once under a sector narrower than pi (the same bits per cell).
+        thread_local std::vector<std::size_t> exactCols;
+        exactCols.clear();
+#endif
         for (std::size_t col = c0; col < c1; ++col) {
             // Eight flags at a time: most are clear.
             if (std::uint64_t eight; col + 8 <= c1 && (col & 7) == 0 &&
@@ -480,15 +496,31 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
                 k[col] = kNaNf;
                 continue;
             }
-            const EnuVector normal = detail::unitNormal({e[col], n[col], u[col]});
-            const double hRad = clampElevationRad(h[col]);
-            const auto [sinH, cosH] = fastSinCosElevation(hRad);
-            const double sectorK =
-                fast.narrow ? detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, sector, hRad,
-                                                            sinH, cosH) / kPi
-                              : wedgeKFast(normal, sector, hRad, sinH, cosH, kHalfPi);
-            k[col] += static_cast<float>(sectorK);
+#ifdef DEMLIGHT_SKY_LANES
+            if (fast.narrow) {
+                exactCols.push_back(col);
+                continue;
+            }
+#endif
+            addExact(col);
         }
+#ifdef DEMLIGHT_SKY_LANES
+        std::size_t i = 0;
+        for (; i + detail::kSkyLanes <= exactCols.size(); i += detail::kSkyLanes) {
+            alignas(64) double le[detail::kSkyLanes], ln[detail::kSkyLanes], lu[detail::kSkyLanes],
+                lh[detail::kSkyLanes], lk[detail::kSkyLanes];
+            for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
+                const std::size_t col = exactCols[i + l];
+                le[l] = e[col];
+                ln[l] = n[col];
+                lu[l] = u[col];
+                lh[l] = h[col];
+            }
+            detail::risingSectorK8(le, ln, lu, lh, sector, lk);
+            for (std::size_t l = 0; l < detail::kSkyLanes; ++l) k[exactCols[i + l]] += static_cast<float>(lk[l]);
+        }
+        for (; i < exactCols.size(); ++i) addExact(exactCols[i]);
+#endif
         // Patches: per cell, with the general wedge.
         if (pieces.empty()) return;
         for (std::size_t col = 0; col < width; ++col) {

@@ -2,12 +2,14 @@
 // f_sky limits, monotonicity, the dense reference, and the streaming grid driver.
 #include "lighting/sky.h"
 #include "lighting/sky_wedge.h"
+#include "lighting/sky_wedge_lanes.h"
 
 #include "src/error.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -49,6 +51,61 @@ std::function<double(double)> vValley(double betaDeg, double axisDeg) {
         return std::atan(std::tan(betaDeg * kDeg) * std::abs(std::sin((az - axisDeg) * kDeg))) / kDeg;
     };
 }
+
+#ifdef DEMLIGHT_SKY_LANES
+// The exact pass eight cells at once gives each cell the scalar chain's K (sky.cpp's pass 2:
+// unitNormal, the clamped elevation, its sine and cosine, sectorPiKAboveLower / pi), on normals
+// of every slope and aspect, horizons from below the plane to the zenith, and the sectors of 4 to
+// 64 directions.
+TEST(Sky, RisingSectorKEightAtOnceIsTheScalarChain) {
+    std::mt19937_64 rng(20261205);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), slope(0.0, 80.0), horizon(-95.0, 95.0);
+    std::size_t cells = 0, crossing = 0, differing = 0, differingFloats = 0;
+    for (const std::size_t directions : {4u, 7u, 16u, 32u, 64u}) {
+        for (std::size_t index = 0; index < directions; ++index) {
+            const auto [phi1, phi2] = detail::sectorBoundsRad(index, directions);
+            const detail::AzimuthRange r = detail::makeAzimuthRange(phi1, phi2);
+            for (int group = 0; group < 200; ++group) {
+                alignas(64) double e[8], n[8], u[8], h[8], k[8];
+                for (int l = 0; l < 8; ++l) {
+                    // Grid-like normals (floats), some of them nearly level or nearly vertical (a
+                    // level one has no plane to rise: pass 1 takes it).
+                    const double s = l == 0 ? 1e-6 : std::tan(slope(rng) * std::numbers::pi / 180.0);
+                    const double a = unit(rng) * std::numbers::pi;
+                    e[l] = static_cast<float>(s * std::sin(a));
+                    n[l] = static_cast<float>(s * std::cos(a));
+                    u[l] = l == 1 ? 1e-9 : 1.0;
+                    h[l] = static_cast<float>(l == 2 ? 90.0 : horizon(rng));
+                }
+                detail::risingSectorK8(e, n, u, h, r, k);
+                for (int l = 0; l < 8; ++l) {
+                    const EnuVector normal = detail::unitNormal({e[l], n[l], u[l]});
+                    const double hRad = std::clamp(h[l], -90.0, 90.0) * kDegToRad;
+                    const SinCos sc = fastSinCosElevation(hRad);
+                    const double scalar =
+                        detail::sectorPiKAboveLower(normal.east, normal.north, normal.up, r, hRad, sc.sin, sc.cos) /
+                        std::numbers::pi;
+                    // The same expressions, but the compiler may fuse a multiply and an add in one
+                    // and not the other (it depends on the code around them): K (at most 1) within
+                    // a few units in the last place of a double.
+                    ASSERT_LE(std::abs(k[l] - scalar), 1e-14)
+                        << directions << " directions, sector " << index << ", lane " << l << ": " << k[l]
+                        << " vs " << scalar << " (normal " << e[l] << " " << n[l] << " " << u[l] << ", horizon "
+                        << h[l] << ")";
+                    differing += k[l] != scalar;
+                    differingFloats += static_cast<float>(k[l]) != static_cast<float>(scalar);
+                    ++cells;
+                    const double t = normal.up * sc.sin, q = std::hypot(normal.east, normal.north) * sc.cos;
+                    crossing += std::abs(t) < q;
+                }
+            }
+        }
+    }
+    EXPECT_GT(crossing, cells / 4) << "too few cells whose plane crosses the horizon to test the cuts";
+    std::cout << "risingSectorK8: " << differing << " of " << cells << " cells differ from the scalar chain in the double, "
+              << differingFloats << " as floats\n";
+}
+#endif
 
 TEST(Sky, FlatGroundGivesExactlyOne) {
     for (int d : {1, 4, 6, 7, 8, 16, 36, 64, 360}) {
