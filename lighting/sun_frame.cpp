@@ -147,10 +147,15 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
                              : sunSearchDistanceM(t, lowestSun, params.sunDiameterDeg);
 
     if (highestSun <= -params.sunDiameterDeg / 2) {
-        // The whole disk is below the horizon everywhere: night.
-        for (std::size_t i = 0; i < t.heightsM.size(); ++i)
-            if (!std::isnan(t.heightsM.data()[i]))
-                frame.light.visibility.data()[i] = frame.light.irradiance.data()[i] = 0.0f;
+        // The whole disk is below the horizon everywhere: night (rows on every thread).
+        const std::size_t w = t.width();
+        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+            const float* h = t.heightsM.rowPtr(row);
+            float* vis = frame.light.visibility.rowPtr(row);
+            float* irr = frame.light.irradiance.rowPtr(row);
+            for (std::size_t c = 0; c < w; ++c)
+                if (!std::isnan(h[c])) vis[c] = irr[c] = 0.0f;
+        }, 16);
         if (progress) progress->advance(t.heightsM.size());
         return frame;
     }
