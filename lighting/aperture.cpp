@@ -1,6 +1,7 @@
 #include "lighting/aperture.h"
 
 #include "lighting/sky_wedge.h"
+#include "lighting/sky_wedge_lanes.h"
 #include "src/angles.h"
 #include "src/error.h"
 #include "src/fast_math.h"
@@ -354,6 +355,8 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
     const detail::AzimuthRange sector = detail::makeAzimuthRange(phi1, phi2);
     const std::size_t width = east_.width();
     const FastApertureSector fast = makeFastApertureSector(sector);
+    [[maybe_unused]] const bool eightAtOnce =
+        fast.narrow && detail::exactPassEightCellsAtOnce.load(std::memory_order_relaxed);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<double> keptBuffer;
         keptBuffer.resize(width);
@@ -372,13 +375,9 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
         } else {
             accumulateApertureRowFast<false>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
         }
-        // Pass 2: where the tangent plane rises above the horizon inside the sector.
-        for (std::size_t col = 0; col < width; ++col) {
-            if (kept[col] != 0.0) continue;
-            if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
-                omega[col] = kNaN;
-                continue;
-            }
+        // Pass 2: where the tangent plane rises above the horizon inside the sector; under a
+        // sector narrower than pi, eight such cells at once (lighting/sky_wedge_lanes.h).
+        const auto addExact = [&](std::size_t col) {
             ApertureSums sums{omega[col], ve[col], vn[col], vu[col]};
             const EnuVector unit = detail::unitNormal({e[col], n[col], u[col]});
             const double lower = std::clamp<double>(h[col], -90.0, 90.0) * kDegToRad;
@@ -392,7 +391,52 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
             ve[col] = sums.ve;
             vn[col] = sums.vn;
             vu[col] = sums.vu;
+        };
+#ifdef DEMLIGHT_SKY_LANES
+        thread_local std::vector<std::size_t> exactCols;
+        exactCols.clear();
+#endif
+        for (std::size_t col = 0; col < width; ++col) {
+            if (kept[col] != 0.0) continue;
+            if (std::isnan(h[col]) || std::isnan(e[col]) || std::isnan(n[col]) || std::isnan(u[col])) {
+                omega[col] = kNaN;
+                continue;
+            }
+#ifdef DEMLIGHT_SKY_LANES
+            if (eightAtOnce) {
+                exactCols.push_back(col);
+                if (exactCols.size() < detail::kSkyLanes) continue;
+                alignas(64) double le[detail::kSkyLanes], ln[detail::kSkyLanes], lu[detail::kSkyLanes],
+                    lh[detail::kSkyLanes], lo[detail::kSkyLanes], lve[detail::kSkyLanes], lvn[detail::kSkyLanes],
+                    lvu[detail::kSkyLanes];
+                for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
+                    const std::size_t c = exactCols[l];
+                    le[l] = e[c];
+                    ln[l] = n[c];
+                    lu[l] = u[c];
+                    lh[l] = h[c];
+                    lo[l] = omega[c];
+                    lve[l] = ve[c];
+                    lvn[l] = vn[c];
+                    lvu[l] = vu[c];
+                }
+                detail::risingApertureSector8(le, ln, lu, lh, sector, lo, lve, lvn, lvu);
+                for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
+                    const std::size_t c = exactCols[l];
+                    omega[c] = lo[l];
+                    ve[c] = lve[l];
+                    vn[c] = lvn[l];
+                    vu[c] = lvu[l];
+                }
+                exactCols.clear();
+                continue;
+            }
+#endif
+            addExact(col);
         }
+#ifdef DEMLIGHT_SKY_LANES
+        for (const std::size_t col : exactCols) addExact(col);  // the last few, one at a time
+#endif
     });
 }
 

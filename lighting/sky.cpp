@@ -18,6 +18,9 @@
 
 namespace demlight {
 
+std::atomic<bool> detail::exactPassEightCellsAtOnce{true};
+
+
 using detail::kHalfPi;
 using detail::kPi;
 
@@ -441,6 +444,8 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const std::vector<PatchPiece> pieces = sectorPatchPieces(index, directions_, patches_);
     const std::size_t width = east_.width();
     const FastSector fast = makeFastSector(sector);
+    [[maybe_unused]] const bool eightAtOnce =
+        fast.narrow && detail::exactPassEightCellsAtOnce.load(std::memory_order_relaxed);
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<std::uint8_t> risesBuffer;
         risesBuffer.resize(width);
@@ -497,7 +502,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
                 continue;
             }
 #ifdef DEMLIGHT_SKY_LANES
-            if (fast.narrow) {
+            if (eightAtOnce) {
                 exactCols.push_back(col);
                 continue;
             }

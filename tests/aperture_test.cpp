@@ -416,6 +416,63 @@ TEST(ApertureGrid, ClosedFormSectorsMatchTheDenseReference) {
               << "grid " << worstRef << ", kernel " << worstKernelRef << "\n";
 }
 
+// The exact pass eight cells at once (lighting/sky_wedge_lanes.h) against one cell at a time,
+// on random grids of every slope with horizons near the tangent plane's elevation: the same
+// maps but for the last bits (the compiler may fuse a multiply and an add in one copy and not
+// the other), and the path taken by most cells whose plane rises.
+TEST(ApertureGrid, EightCellsAtOnceAreOneAtATime) {
+    const std::size_t w = 67, h = 23;
+    std::mt19937_64 rng(20261205);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    struct Restore {
+        ~Restore() { detail::exactPassEightCellsAtOnce = true; }
+    } restore;
+    double worst = 0;
+    std::size_t cells = 0, differing = 0;
+    for (const int d : {3, 8, 16, 32}) {
+        Grid<float> e(w, h), n(w, h), u(w, h);
+        std::vector<Grid<float>> hz(static_cast<std::size_t>(d), Grid<float>(w, h));
+        for (std::size_t r = 0; r < h; ++r)
+            for (std::size_t c = 0; c < w; ++c) {
+                const double slopeDeg = (r * w + c) % 7 == 0 ? 88.0 + 1.9 * unit(rng) : 80.0 * unit(rng);
+                const EnuVector nv = slopeNormal(slopeDeg, 360.0 * unit(rng));
+                e(c, r) = static_cast<float>(nv.east);
+                n(c, r) = static_cast<float>(nv.north);
+                u(c, r) = static_cast<float>(nv.up);
+                for (int i = 0; i < d; ++i) {
+                    const double az = (i + unit(rng) - 0.5) * 360.0 / d * kDeg;
+                    const double plane = std::atan(-(nv.east * std::sin(az) + nv.north * std::cos(az)) / nv.up) / kDeg;
+                    hz[static_cast<std::size_t>(i)](c, r) =
+                        static_cast<float>(unit(rng) < 0.7 ? plane + 20.0 * (unit(rng) - 0.5) : 170.0 * unit(rng) - 85.0);
+                }
+            }
+        hz[0](5, 5) = std::numeric_limits<float>::quiet_NaN();  // a void among them
+        std::vector<const Grid<float>*> ptrs;
+        for (const auto& g : hz) ptrs.push_back(&g);
+        detail::exactPassEightCellsAtOnce = true;
+        const ApertureMaps eight = computeAperture(ptrs, e, n, u, 2);
+        detail::exactPassEightCellsAtOnce = false;
+        const ApertureMaps one = computeAperture(ptrs, e, n, u, 2);
+        const std::pair<const Grid<float>*, const Grid<float>*> maps[] = {
+            {&eight.bentEast, &one.bentEast}, {&eight.bentNorth, &one.bentNorth}, {&eight.bentUp, &one.bentUp},
+            {&eight.solidAngleSr, &one.solidAngleSr}, {&eight.radiusDeg, &one.radiusDeg}};
+        for (const auto& [a, b] : maps)
+            for (std::size_t k = 0; k < a->size(); ++k) {
+                const float x = a->data()[k], y = b->data()[k];
+                if (std::isnan(x) || std::isnan(y)) {
+                    ASSERT_TRUE(std::isnan(x) && std::isnan(y)) << "D " << d << " cell " << k;
+                    continue;
+                }
+                ++cells;
+                differing += x != y;
+                worst = std::max(worst, static_cast<double>(std::abs(x - y)));
+                ASSERT_LE(std::abs(x - y), 1e-5 * std::max(1.0f, std::abs(y))) << "D " << d << " cell " << k;
+            }
+    }
+    std::cout << "[ aperture ] eight cells at once against one: " << differing << " of " << cells
+              << " values differ, at most by " << worst << "\n";
+}
+
 TEST(ApertureGrid, MatchesKernelThreadDeterministicNodata) {
     const std::size_t w = 11, h = 7;
     const int d = 8;
