@@ -11,18 +11,9 @@
 #include "lighting/sky_wedge.h"
 #include "src/angles.h"
 
+#include "src/avx512.h"
+
 #if defined(__AVX512F__)
-// GCC 12 reports its own intrinsics' deliberately undefined start values (_mm512_undefined_*)
-// as (maybe) uninitialized where they are inlined (as in lighting/horizon_sweep.cpp).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
-#include <immintrin.h>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 #define DEMLIGHT_SKY_LANES 1
 #endif
 

@@ -4,6 +4,7 @@
 #include "lighting/aperture.h"
 #include "lighting/lighting_models.h"
 #include "lighting/sky.h"
+#include "rising_planes.h"
 
 #include "src/error.h"
 
@@ -423,36 +424,18 @@ TEST(ApertureGrid, ClosedFormSectorsMatchTheDenseReference) {
 TEST(ApertureGrid, EightCellsAtOnceAreOneAtATime) {
     const std::size_t w = 67, h = 23;
     std::mt19937_64 rng(20261205);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
     struct Restore {
         ~Restore() { detail::exactPassEightCellsAtOnce = true; }
     } restore;
     double worst = 0;
     std::size_t cells = 0, differing = 0;
     for (const int d : {3, 8, 16, 32}) {
-        Grid<float> e(w, h), n(w, h), u(w, h);
-        std::vector<Grid<float>> hz(static_cast<std::size_t>(d), Grid<float>(w, h));
-        for (std::size_t r = 0; r < h; ++r)
-            for (std::size_t c = 0; c < w; ++c) {
-                const double slopeDeg = (r * w + c) % 7 == 0 ? 88.0 + 1.9 * unit(rng) : 80.0 * unit(rng);
-                const EnuVector nv = slopeNormal(slopeDeg, 360.0 * unit(rng));
-                e(c, r) = static_cast<float>(nv.east);
-                n(c, r) = static_cast<float>(nv.north);
-                u(c, r) = static_cast<float>(nv.up);
-                for (int i = 0; i < d; ++i) {
-                    const double az = (i + unit(rng) - 0.5) * 360.0 / d * kDeg;
-                    const double plane = std::atan(-(nv.east * std::sin(az) + nv.north * std::cos(az)) / nv.up) / kDeg;
-                    hz[static_cast<std::size_t>(i)](c, r) =
-                        static_cast<float>(unit(rng) < 0.7 ? plane + 20.0 * (unit(rng) - 0.5) : 170.0 * unit(rng) - 85.0);
-                }
-            }
-        hz[0](5, 5) = std::numeric_limits<float>::quiet_NaN();  // a void among them
-        std::vector<const Grid<float>*> ptrs;
-        for (const auto& g : hz) ptrs.push_back(&g);
+        const RisingPlaneGrids g = risingPlaneGrids(w, h, d, rng);
+        const std::vector<const Grid<float>*> ptrs = g.horizonPointers();
         detail::exactPassEightCellsAtOnce = true;
-        const ApertureMaps eight = computeAperture(ptrs, e, n, u, 2);
+        const ApertureMaps eight = computeAperture(ptrs, g.east, g.north, g.up, 2);
         detail::exactPassEightCellsAtOnce = false;
-        const ApertureMaps one = computeAperture(ptrs, e, n, u, 2);
+        const ApertureMaps one = computeAperture(ptrs, g.east, g.north, g.up, 2);
         const std::pair<const Grid<float>*, const Grid<float>*> maps[] = {
             {&eight.bentEast, &one.bentEast}, {&eight.bentNorth, &one.bentNorth}, {&eight.bentUp, &one.bentUp},
             {&eight.solidAngleSr, &one.solidAngleSr}, {&eight.radiusDeg, &one.radiusDeg}};

@@ -3,6 +3,7 @@
 #include "lighting/sky.h"
 #include "lighting/sky_wedge.h"
 #include "lighting/sky_wedge_lanes.h"
+#include "rising_planes.h"
 
 #include "src/error.h"
 
@@ -115,37 +116,18 @@ TEST(Sky, RisingSectorKEightAtOnceIsTheScalarChain) {
 TEST(Sky, EightCellsAtOnceAreOneAtATime) {
     const std::size_t w = 67, h = 23;
     std::mt19937_64 rng(20261206);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
     struct Restore {
         ~Restore() { detail::exactPassEightCellsAtOnce = true; }
     } restore;
     double worst = 0;
     std::size_t cells = 0, differing = 0;
     for (const int d : {3, 8, 16, 32}) {
-        Grid<float> e(w, h), n(w, h), u(w, h);
-        std::vector<Grid<float>> hz(static_cast<std::size_t>(d), Grid<float>(w, h));
-        for (std::size_t r = 0; r < h; ++r)
-            for (std::size_t c = 0; c < w; ++c) {
-                const double slopeDeg = (r * w + c) % 7 == 0 ? 88.0 + 1.9 * unit(rng) : 80.0 * unit(rng);
-                const EnuVector nv = slopeNormal(slopeDeg, 360.0 * unit(rng));
-                e(c, r) = static_cast<float>(nv.east);
-                n(c, r) = static_cast<float>(nv.north);
-                u(c, r) = static_cast<float>(nv.up);
-                for (int i = 0; i < d; ++i) {
-                    const double az = (i + unit(rng) - 0.5) * 2.0 * std::numbers::pi / d;
-                    const double plane =
-                        std::atan(-(nv.east * std::sin(az) + nv.north * std::cos(az)) / nv.up) * 180.0 / std::numbers::pi;
-                    hz[static_cast<std::size_t>(i)](c, r) =
-                        static_cast<float>(unit(rng) < 0.7 ? plane + 20.0 * (unit(rng) - 0.5) : 170.0 * unit(rng) - 85.0);
-                }
-            }
-        hz[0](5, 5) = std::numeric_limits<float>::quiet_NaN();
-        std::vector<const Grid<float>*> ptrs;
-        for (const auto& g : hz) ptrs.push_back(&g);
+        const RisingPlaneGrids g = risingPlaneGrids(w, h, d, rng);
+        const std::vector<const Grid<float>*> ptrs = g.horizonPointers();
         detail::exactPassEightCellsAtOnce = true;
-        const SkyMaps eight = computeSky(ptrs, e, n, u, 0.2, {}, 2);
+        const SkyMaps eight = computeSky(ptrs, g.east, g.north, g.up, 0.2, {}, 2);
         detail::exactPassEightCellsAtOnce = false;
-        const SkyMaps one = computeSky(ptrs, e, n, u, 0.2, {}, 2);
+        const SkyMaps one = computeSky(ptrs, g.east, g.north, g.up, 0.2, {}, 2);
         for (const auto& [a, b] : {std::pair{&eight.skyK, &one.skyK}, std::pair{&eight.skyFactor, &one.skyFactor}})
             for (std::size_t k = 0; k < a->size(); ++k) {
                 const float x = a->data()[k], y = b->data()[k];
