@@ -127,7 +127,9 @@ void writeImage(const std::string& path, const Image8& image) {
     });
 }
 
-PngPixels encodePng(const Image8& image) { return compressPngRgba("PNG", image.rgba, image.width, image.height); }
+PngPixels encodePng(const Image8& image) {
+    return compressPngRgba("the picture", image.rgba, image.width, image.height);  // (no file yet to name)
+}
 
 void writeImage(const std::string& path, const PngPixels& pixels,
                 const std::vector<std::pair<std::string, std::string>>& text) {

@@ -23,7 +23,8 @@ struct PngPixels {
 };
 
 /// The PNG pixel data of `rgba` (width * height * 4 bytes, rows top to bottom, straight alpha).
-/// Throws Error, its message starting with `path`, when the size is invalid.
+/// Throws Error, its message starting with `path` (the file, or what the picture is), when the
+/// size is invalid.
 PngPixels compressPngRgba(const std::string& path, std::span<const std::uint8_t> rgba, std::size_t width,
                           std::size_t height);
 

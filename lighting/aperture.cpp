@@ -405,37 +405,30 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
 #ifdef DEMLIGHT_SKY_LANES
             if (eightAtOnce) {
                 exactCols.push_back(col);
-                if (exactCols.size() < detail::kSkyLanes) continue;
-                alignas(64) double le[detail::kSkyLanes], ln[detail::kSkyLanes], lu[detail::kSkyLanes],
-                    lh[detail::kSkyLanes], lo[detail::kSkyLanes], lve[detail::kSkyLanes], lvn[detail::kSkyLanes],
-                    lvu[detail::kSkyLanes];
-                for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
-                    const std::size_t c = exactCols[l];
-                    le[l] = e[c];
-                    ln[l] = n[c];
-                    lu[l] = u[c];
-                    lh[l] = h[c];
-                    lo[l] = omega[c];
-                    lve[l] = ve[c];
-                    lvn[l] = vn[c];
-                    lvu[l] = vu[c];
-                }
-                detail::risingApertureSector8(le, ln, lu, lh, sector, lo, lve, lvn, lvu);
-                for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
-                    const std::size_t c = exactCols[l];
-                    omega[c] = lo[l];
-                    ve[c] = lve[l];
-                    vn[c] = lvn[l];
-                    vu[c] = lvu[l];
-                }
-                exactCols.clear();
                 continue;
             }
 #endif
             addExact(col);
         }
 #ifdef DEMLIGHT_SKY_LANES
-        for (const std::size_t col : exactCols) addExact(col);  // the last few, one at a time
+        detail::inGroupsOfEight(exactCols, [&](const std::size_t* cols) {
+            alignas(64) double le[detail::kSkyLanes], ln[detail::kSkyLanes], lu[detail::kSkyLanes],
+                lh[detail::kSkyLanes], lo[detail::kSkyLanes], lve[detail::kSkyLanes], lvn[detail::kSkyLanes],
+                lvu[detail::kSkyLanes];
+            detail::gather8(e, cols, le);
+            detail::gather8(n, cols, ln);
+            detail::gather8(u, cols, lu);
+            detail::gather8(h, cols, lh);
+            detail::gather8(omega, cols, lo);
+            detail::gather8(ve, cols, lve);
+            detail::gather8(vn, cols, lvn);
+            detail::gather8(vu, cols, lvu);
+            detail::risingApertureSector8(le, ln, lu, lh, sector, lo, lve, lvn, lvu);
+            detail::scatter8(lo, cols, omega);
+            detail::scatter8(lve, cols, ve);
+            detail::scatter8(lvn, cols, vn);
+            detail::scatter8(lvu, cols, vu);
+        }, addExact);
 #endif
     });
 }

@@ -20,7 +20,6 @@ namespace demlight {
 
 std::atomic<bool> detail::exactPassEightCellsAtOnce{true};
 
-
 using detail::kHalfPi;
 using detail::kPi;
 
@@ -485,7 +484,9 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             k[col] += static_cast<float>(sectorK);
         };
 #ifdef DEMLIGHT_SKY_LANES
-        // Eight such cells at once under a sector narrower than pi (the same bits per cell).
+        // Eight such cells at once under a sector narrower than pi (lighting/sky_wedge_lanes.h: K
+        // within a few units in the last place of the double; the same floats in every output
+        // compared).
         thread_local std::vector<std::size_t> exactCols;
         exactCols.clear();
 #endif
@@ -510,21 +511,16 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
             addExact(col);
         }
 #ifdef DEMLIGHT_SKY_LANES
-        std::size_t i = 0;
-        for (; i + detail::kSkyLanes <= exactCols.size(); i += detail::kSkyLanes) {
+        detail::inGroupsOfEight(exactCols, [&](const std::size_t* cols) {
             alignas(64) double le[detail::kSkyLanes], ln[detail::kSkyLanes], lu[detail::kSkyLanes],
                 lh[detail::kSkyLanes], lk[detail::kSkyLanes];
-            for (std::size_t l = 0; l < detail::kSkyLanes; ++l) {
-                const std::size_t col = exactCols[i + l];
-                le[l] = e[col];
-                ln[l] = n[col];
-                lu[l] = u[col];
-                lh[l] = h[col];
-            }
+            detail::gather8(e, cols, le);
+            detail::gather8(n, cols, ln);
+            detail::gather8(u, cols, lu);
+            detail::gather8(h, cols, lh);
             detail::risingSectorK8(le, ln, lu, lh, sector, lk);
-            for (std::size_t l = 0; l < detail::kSkyLanes; ++l) k[exactCols[i + l]] += static_cast<float>(lk[l]);
-        }
-        for (; i < exactCols.size(); ++i) addExact(exactCols[i]);
+            for (std::size_t l = 0; l < detail::kSkyLanes; ++l) k[cols[l]] += static_cast<float>(lk[l]);
+        }, addExact);
 #endif
         // Patches: per cell, with the general wedge.
         if (pieces.empty()) return;

@@ -13,6 +13,9 @@
 
 #include "src/avx512.h"
 
+#include <cstddef>
+#include <vector>
+
 #if defined(__AVX512F__)
 #define DEMLIGHT_SKY_LANES 1
 #endif
@@ -21,6 +24,26 @@ namespace demlight::detail {
 
 #ifdef DEMLIGHT_SKY_LANES
 inline constexpr std::size_t kSkyLanes = 8;
+
+/// A row's cells `cols` (in order), eight at a time: eight(cols + i) for each whole group of
+/// eight, then one(col) for each of the rest.
+template <class Eight, class One>
+void inGroupsOfEight(const std::vector<std::size_t>& cols, Eight&& eight, One&& one) {
+    std::size_t i = 0;
+    for (; i + kSkyLanes <= cols.size(); i += kSkyLanes) eight(cols.data() + i);
+    for (; i < cols.size(); ++i) one(cols[i]);
+}
+
+/// row[cols[l]] for the eight lanes, as doubles.
+template <class T>
+void gather8(const T* row, const std::size_t* cols, double out[kSkyLanes]) {
+    for (std::size_t l = 0; l < kSkyLanes; ++l) out[l] = static_cast<double>(row[cols[l]]);
+}
+
+/// row[cols[l]] = in[l] for the eight lanes.
+inline void scatter8(const double in[kSkyLanes], const std::size_t* cols, double* row) {
+    for (std::size_t l = 0; l < kSkyLanes; ++l) row[cols[l]] = in[l];
+}
 
 namespace lanes {
 
