@@ -56,7 +56,9 @@ inline D8 sqrt8(D8 x) { return reinterpret_cast<D8>(_mm512_sqrt_pd(reinterpret_c
 inline constexpr long long kSignBit = std::numeric_limits<long long>::min();
 inline D8 abs8(D8 x) { return reinterpret_cast<D8>(reinterpret_cast<M8>(x) & ~kSignBit); }
 
-/// fastAtan (src/fast_math.h), lane by lane.
+/// fastAtan (src/fast_math.h), lane by lane. A mirror rather than one template for both: written
+/// once for double and vectors, the scalar function compiled differently and changed the
+/// patched sky's values (`sky --patches`, three files of scripts/compare_outputs.sh).
 inline D8 fastAtan8(D8 x) {
     constexpr double kTanPi8 = 0.41421356237309503;
     constexpr double kPi4 = std::numbers::pi / 4.0, kPi2 = std::numbers::pi / 2.0;
