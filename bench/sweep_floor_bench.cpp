@@ -10,7 +10,8 @@
 // the cell's own sample (the vertex below the new top, one division) and push the point. It
 // skips everything else the library does: serving a cell from two lines between centres, other
 // azimuths (regions, distances per line), range limits, nodata bitmaps, the near field, the
-// combine pass, the angle, allocating the map. So no sweep of the library can be faster than
+// combine pass, the angle, allocating the map. The vector kernels step over a vector of nodata
+// only (sea), as the library steps over void blocks; the scalar one tests each cell. So no sweep of the library can be faster than
 // this kernel; the 5 ns target of issue 20 is measured against it (docs/performance.md, "The
 // floor of a hull sweep").
 //
@@ -126,6 +127,10 @@ void simdBlock(const Lines& l, float* out, long c0, std::vector<double>& hull) {
             const __m256 h = _mm256_loadu_ps(l.heights + r * l.width + c0 + q * 8);
             const __m512d hd = _mm512_cvtps_pd(h);
             const __mmask8 valid = _mm512_cmp_pd_mask(hd, hd, _CMP_ORD_Q);
+            if (!valid) {  // nodata only (sea): the hull stays as it is, as the library's void blocks
+                _mm256_storeu_ps(out + r * l.width + c0 + q * 8, h);
+                continue;
+            }
             const __m512d g = hd - drop;
             Group& L = st[q];
             __m512i top = L.top;
@@ -188,6 +193,10 @@ void floatBlock(const Lines& l, float* out, long c0, std::vector<double>& hullD)
             float* G = S + 16 * l.height;
             const __m512 h = _mm512_loadu_ps(l.heights + r * l.width + c0 + q * 16);
             const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
+            if (!valid) {
+                _mm512_storeu_ps(out + r * l.width + c0 + q * 16, h);
+                continue;
+            }
             const __m512 g = h - drop;
             Group& L = st[q];
             __m512i top = L.top;
