@@ -172,7 +172,8 @@ void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
                     "Compute only the window XOFF YOFF XSIZE YSIZE (cells, as gdal_translate -srcwin), reading the "
                     "halo it needs; its output has the window's georeference, and windows mosaicked with "
                     "gdalbuildvrt equal the one-piece output bit for bit")
-        ->expected(4);
+        ->expected(4)
+        ->check(finiteRange(0, kUnbounded));  // before the conversion: "-5" would wrap to 2^64 - 5
 }
 
 RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
@@ -181,7 +182,8 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
     run.extent = dem.whole();
     if (!tiling.srcwin.empty()) {
         const auto& s = tiling.srcwin;
-        if (s[2] == 0 || s[3] == 0 || s[0] + s[2] > dem.width() || s[1] + s[3] > dem.height())
+        if (s[2] == 0 || s[3] == 0 || s[0] >= dem.width() || s[1] >= dem.height() || s[2] > dem.width() - s[0] ||
+            s[3] > dem.height() - s[1])
             throw Error("--srcwin " + std::to_string(s[0]) + " " + std::to_string(s[1]) + " " + std::to_string(s[2]) +
                         " " + std::to_string(s[3]) + ": the window must be non-empty and inside the " +
                         std::to_string(dem.width()) + " x " + std::to_string(dem.height()) + " DEM");

@@ -234,6 +234,15 @@ TEST(TilingCli, BadTileSizesAndWindowsAreRefusedNamingTheOption) {
     EXPECT_NE(b.exitCode, 0);
     EXPECT_NE(b.err.find("--srcwin 100 100 100 100"), std::string::npos) << b.err;
     EXPECT_FALSE(fs::exists(o));
+    // Negative numbers are refused before they are read as cell counts: -5 would wrap to 2^64 - 5
+    // and the window's end back inside the DEM, an empty window "written" with exit 0.
+    for (const std::string window : {"-5 0 10 10", "0 -5 10 10", "0 0 -10 10"}) {
+        const auto c = runDemlight("sun '" + dem + "' -o '" + o + "' --time 2024-06-21T15:30:00Z --srcwin " + window);
+        EXPECT_EQ(c.exitCode, 2) << window << ": " << c.err;
+        EXPECT_NE(c.err.find("--srcwin"), std::string::npos) << window << ": " << c.err;
+        EXPECT_EQ(c.err.find("18446744073709"), std::string::npos) << window << ": " << c.err;
+        EXPECT_FALSE(fs::exists(o)) << window;
+    }
 }
 
 }  // namespace
