@@ -275,6 +275,33 @@ std::size_t readBandWindow(GDALDataset& ds, const RasterBand& header, const Cell
             ++count;
         }
     }
+    // A mask other than the nodata value marks its 0 cells as nodata, as GDAL's readers do: an
+    // internal or .msk mask (gdal_translate -mask), an alpha band (gdalwarp -dstalpha). GDAL
+    // makes only Byte and UInt16 alpha bands a mask; QGIS draws any alpha band as transparency,
+    // and gdalwarp -dstalpha on an Int16 DEM writes an Int16 one, so any band whose colour
+    // interpretation is alpha counts. Read as heights, masked cells would be terrain at whatever
+    // value they hold (often 0 m: cliffs at the mask's edge).
+    GDALRasterBand* band = ds.GetRasterBand(1);
+    GDALRasterBand* mask = nullptr;
+    if (!(band->GetMaskFlags() & (GMF_ALL_VALID | GMF_NODATA))) {
+        mask = band->GetMaskBand();
+    } else {
+        for (int b = 2; b <= ds.GetRasterCount() && !mask; ++b)
+            if (ds.GetRasterBand(b)->GetColorInterpretation() == GCI_AlphaBand) mask = ds.GetRasterBand(b);
+    }
+    if (mask) {
+        std::vector<float> m(cols * rows);
+        if (mask->RasterIO(GF_Read, static_cast<int>(w.col0), static_cast<int>(w.row0), static_cast<int>(cols),
+                           static_cast<int>(rows), m.data(), static_cast<int>(cols), static_cast<int>(rows),
+                           GDT_Float32, 0, 0) != CE_None)
+            throw Error(withGdalReason("cannot read the mask of '" + header.path + "'"));
+        std::vector<float>& v = values.values();
+        for (std::size_t i = 0; i < m.size(); ++i)
+            if (m[i] == 0 && !std::isnan(v[i])) {
+                v[i] = std::numeric_limits<float>::quiet_NaN();
+                ++count;
+            }
+    }
     return count;
 }
 

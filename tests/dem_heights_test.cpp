@@ -65,6 +65,7 @@ HeightOptions zFactorOption(double factor) {
 struct HeightFiles {
     fs::path dir;
     std::string metres, decimetres, feet, furlong, zip;
+    std::string alpha, masked;  // the Luxembourg sample's nodata as an alpha band and as a mask, cells 0
     std::string skipReason;  // non-empty: GDAL's command-line tools are missing
 
     HeightFiles() {
@@ -76,6 +77,8 @@ struct HeightFiles {
         feet = (dir / "feet.tif").string();
         furlong = (dir / "furlong.tif").string();
         zip = (dir / "dem.zip").string();
+        alpha = (dir / "alpha.tif").string();
+        masked = (dir / "masked.tif").string();
         if (!run("command -v gdalwarp && command -v gdal_translate && command -v gdal_edit.py")) {
             skipReason = "GDAL's command-line tools (gdalwarp, gdal_translate, gdal_edit.py) are not installed";
             return;
@@ -94,7 +97,12 @@ struct HeightFiles {
             run("gdal_edit.py -units ft " + shellQuoted(feet)) &&
             run("gdal_translate -q " + shellQuoted(feet) + " " + shellQuoted(furlong)) &&
             run("gdal_edit.py -units furlong " + shellQuoted(furlong)) &&
-            run("cd " + shellQuoted(dir) + " && python3 -m zipfile -c dem.zip metres.tif");
+            run("cd " + shellQuoted(dir) + " && python3 -m zipfile -c dem.zip metres.tif") &&
+            // Int16 heights and an Int16 alpha band, 0 outside the border (no nodata value), as
+            // gdalwarp -dstalpha writes them; then the alpha as an internal mask.
+            run("gdalwarp -q -r near -dstalpha -dstnodata None " +
+                shellQuoted(fs::path(kSamples) / "luxembourg_elev_terra.tif") + " " + shellQuoted(alpha)) &&
+            run("gdal_translate -q -b 1 -mask 2 " + shellQuoted(alpha) + " " + shellQuoted(masked));
         if (!made) skipReason = "making the test DEMs with GDAL's tools or python3 failed";
     }
     ~HeightFiles() {
@@ -299,6 +307,22 @@ TEST(DemHeights, EverySampleLoadsAsItsRawBandBitForBit) {
         EXPECT_EQ(dem.heights.offset, 0.0);
         EXPECT_EQ(dem.heights.toMetres, 1.0);
         EXPECT_TRUE(sameBits(dem.terrain.heightsM, readRasterBand(path).values));
+    }
+}
+
+TEST(DemMask, AlphaBandsAndMasksAreNodataWholeAndInWindows) {
+    REQUIRE_HEIGHT_FILES();
+    const std::string original = (fs::path(kSamples) / "luxembourg_elev_terra.tif").string();
+    const Dem reference = loadDem(original);  // nodata -32768 outside the border: 3942 cells
+    ASSERT_EQ(countNan(reference.terrain.heightsM), 3942u);
+    for (const std::string& path : {files().alpha, files().masked}) {
+        ASSERT_FALSE(readRasterHeader(path).nodata.has_value()) << path << ": only the mask may say nodata";
+        const Dem dem = loadDem(path);
+        EXPECT_EQ(dem.band.nodataCount, 3942u) << path;
+        EXPECT_TRUE(sameBits(dem.terrain.heightsM, reference.terrain.heightsM)) << path;
+        const DemSource source = DemSource::open(path);
+        const CellWindow w{10, 20, 60, 70};
+        EXPECT_TRUE(sameBits(source.heightsM(w), DemSource::open(original).heightsM(w))) << path;
     }
 }
 
