@@ -128,7 +128,20 @@ PointCell locatePoint(const DemSource& source, const PointSpec& point) {
     std::tie(p.x, p.y) = point.wgs84 ? crsPointOfWgs84(dem, point.first, point.second)
                                      : std::pair(point.first, point.second);
     const auto& gt = dem.band.ref.geoTransform;
-    const double col = std::floor((p.x - gt[0]) / gt[1]), row = std::floor((p.y - gt[3]) / gt[5]);
+    double col = std::floor((p.x - gt[0]) / gt[1]);
+    const double width = static_cast<double>(source.width());
+    if (dem.crs.geographic && !(col >= 0 && col < width)) {
+        // Longitudes name a meridian modulo 360: a DEM over 179.9..180.1 or 359.9..360.1 holds
+        // -179.99 and 0 too. Take the turn nearest the DEM's central meridian.
+        const double centre = gt[0] + 0.5 * width * gt[1];
+        const double turned = p.x + 360.0 * std::round((centre - p.x) / 360.0);
+        const double turnedCol = std::floor((turned - gt[0]) / gt[1]);
+        if (turnedCol >= 0 && turnedCol < width) {
+            p.x = turned;
+            col = turnedCol;
+        }
+    }
+    const double row = std::floor((p.y - gt[3]) / gt[5]);
     if (!(col >= 0 && row >= 0 && col < static_cast<double>(source.width()) &&
           row < static_cast<double>(source.height())))
         throw FieldError("point", " " + describePoint(point) + " (x " + formatNumber(p.x) + ", y " + formatNumber(p.y) +

@@ -81,6 +81,28 @@ TEST(Point, LatLonOnAGeographicDemIsItsOwnCoordinate) {
     EXPECT_EQ(p.cell.row, static_cast<std::size_t>(std::floor((lat - gt[3]) / gt[5])));
 }
 
+TEST(Point, LongitudesAreTakenModulo360OnGeographicDems) {
+    // DEMs over the antimeridian (179.9 .. 180.1 E) and over Greenwich written as 359.9 .. 360.1:
+    // a point named with the other turn of longitude is the same meridian and the same cell.
+    for (const double west : {179.9, 359.9, -180.1}) {
+        GeoReference ref;
+        ref.geoTransform = {west, 0.01, 0, 45.0, 0, -0.01};
+        ref.crsWkt = "EPSG:4326";
+        const DemSource source(demFromArray(Grid<float>(20, 20, 100.0f), ref, std::nullopt, "across"));
+        const double inside = west + 0.155;  // column 15
+        for (const double turn : {-360.0, 0.0, 360.0}) {
+            const double lon = inside + turn;
+            if (std::abs(lon) > 360) continue;  // outside what --at accepts
+            const PointCell p = locatePoint(source, {44.945, lon, true});  // row 5.5
+            EXPECT_EQ(p.cell.col, 15u) << west << " " << lon;
+            EXPECT_EQ(p.cell.row, 5u) << west << " " << lon;
+            EXPECT_NEAR(p.x, inside, 1e-9) << west << " " << lon;
+        }
+        // A longitude off the DEM in every turn is still outside.
+        EXPECT_THROW(locatePoint(source, {44.945, west + 1.0, true}), Error) << west;
+    }
+}
+
 TEST(Point, LatLonOnAUtmDemLandsOnThePublishedNorthing) {
     // WGS84 UTM zone 10N, on its central meridian (123 W) at 45 N: easting 500 000 m, northing
     // k0 M(45) = 0.9996 x 4 984 944.378 m = 4 982 950.40 m (meridian arc of WGS84).
