@@ -67,6 +67,11 @@ void describeDataset(GDALDataset& ds, const GeoReference& ref, const WriteOption
     OGRSpatialReference srs;
     if (!ref.crsWkt.empty() && srs.importFromWkt(ref.crsWkt.c_str()) == OGRERR_NONE) ds.SetSpatialRef(&srs);
     for (const auto& [key, value] : options.metadata) ds.SetMetadataItem(key.c_str(), value.c_str());
+    // GDAL makes three or four Byte bands an RGB(A) picture: QGIS would draw a 4-direction
+    // truncation mask in colour, its 4th band as transparency. The bands are values.
+    if (bands.size() >= 3 && ds.GetRasterBand(1)->GetColorInterpretation() != GCI_GrayIndex)
+        for (std::size_t i = 0; i < bands.size(); ++i)
+            ds.GetRasterBand(static_cast<int>(i) + 1)->SetColorInterpretation(i == 0 ? GCI_GrayIndex : GCI_Undefined);
     for (std::size_t i = 0; i < bands.size(); ++i) {
         GDALRasterBand* out = ds.GetRasterBand(static_cast<int>(i) + 1);
         out->SetDescription(bands[i].description.c_str());

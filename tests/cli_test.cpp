@@ -183,6 +183,26 @@ nlohmann::json gdalinfoJson(const std::string& path) {
     return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
 }
 
+TEST(CliOutputs, FourDirectionTruncationMasksAreGreyBandsNotAPicture) {
+    // GDAL's default for three or four Byte bands is an RGB(A) picture; QGIS would then draw the
+    // mask in colour and its fourth direction as transparency.
+    const fs::path dir = freshDir("demlight_cli_mask_bands");
+    for (const std::string format : {"GTiff", "COG"})
+        for (const int directions : {3, 4}) {
+            const std::string out = (dir / ("h" + std::to_string(directions) + format + ".tif")).string();
+            const auto r = runDemlight("-q horizon " + kRocky + " -o " + out + " --directions " +
+                                       std::to_string(directions) + " --of " + format + " --threads 2");
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            const nlohmann::json info = gdalinfoJson((dir / ("h" + std::to_string(directions) + format +
+                                                             ".truncated.tif")).string());
+            ASSERT_EQ(info["bands"].size(), static_cast<std::size_t>(directions)) << format;
+            for (std::size_t b = 0; b < info["bands"].size(); ++b) {
+                const std::string interp = info["bands"][b].value("colorInterpretation", "");
+                EXPECT_EQ(interp, b == 0 ? "Gray" : "Undefined") << format << " " << directions << " band " << b + 1;
+            }
+        }
+}
+
 // --ot Int16: horizons in 16-bit fixed point that every reader applying GDAL's scale and offset
 // reads as degrees, within half a step of the Float32 output (the rounding is the only change),
 // nodata exactly at the same cells, negative (downhill) horizons kept. One piece as GTiff, and
