@@ -6,6 +6,7 @@
 #include "geo/dem_source.h"
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -22,7 +23,9 @@ struct DemInfo {
         double latitudeDeg = 0, cellWidthM = 0, cellHeightM = 0;
     };
     std::size_t width = 0, height = 0;
-    double latMinDeg = 90, latMaxDeg = -90, lonMinDeg = 180, lonMaxDeg = -180;  ///< along the outline
+    /// Along the outline; a latitude/longitude DEM's longitudes as its grid has them (359.9 .. 360.1).
+    double latMinDeg = std::numeric_limits<double>::infinity(), latMaxDeg = -std::numeric_limits<double>::infinity();
+    double lonMinDeg = std::numeric_limits<double>::infinity(), lonMaxDeg = -std::numeric_limits<double>::infinity();
     std::array<Row, 3> rows;
     double elevationMinM = 0, elevationMaxM = 0, reliefM = 0;
     double nodataFraction = 0;

@@ -442,6 +442,20 @@ TEST(Products, DescribeDemReportsTheGrid) {
     EXPECT_NEAR(d.longestShadowM, d.reliefM / std::tan(5.0 * M_PI / 180.0), 1e-6);
 }
 
+TEST(Products, DescribeDemGivesLongitudesAsTheGridHasThem) {
+    // A grid written past 180 E (Greenwich as 360) or before 180 W: the extent is the grid's own.
+    for (const double west : {359.9, -200.0}) {
+        GeoReference ref;
+        ref.geoTransform = {west, 0.01, 0, 45.0, 0, -0.01};
+        ref.crsWkt = "EPSG:4326";
+        const DemInfo d = describeDem(demFromArray(Grid<float>(20, 10, 100.0f), ref, std::nullopt, "grid"));
+        EXPECT_NEAR(d.lonMinDeg, west, 1e-9);
+        EXPECT_NEAR(d.lonMaxDeg, west + 0.2, 1e-9);
+        EXPECT_NEAR(d.latMinDeg, 44.9, 1e-9);
+        EXPECT_NEAR(d.latMaxDeg, 45.0, 1e-9);
+    }
+}
+
 TEST(Products, ColorEncodingNames) {
     EXPECT_EQ(parseColorEncoding("auto", "f"), ColorEncoding::Auto);
     EXPECT_EQ(parseColorEncoding("srgb", "f"), ColorEncoding::Srgb);
