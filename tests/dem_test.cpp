@@ -149,5 +149,22 @@ TEST(DemFromArray, RefusesWhatAFileWouldBeRefusedFor) {
     EXPECT_DOUBLE_EQ(dem.terrain.cellWidthM.front(), 30.0);
 }
 
+TEST(DemFromArray, LatitudesBeyondThePolesAreRefusedNamingThem) {
+    const Grid<float> z(20, 20, 100.0f);
+    GeoReference ref;
+    ref.crsWkt = "EPSG:4326";
+    for (const double north : {91.0, -88.9}) {  // 89 .. 91 N; 90.9 .. 88.9 S
+        ref.geoTransform = {10, 0.1, 0, north, 0, -0.1};
+        try {
+            demFromArray(z, ref, std::nullopt, "heights");
+            FAIL() << "rows past a pole were accepted (north edge " << north << ")";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("beyond the poles"), std::string::npos) << e.what();
+        }
+    }
+    ref.geoTransform = {10, 0.1, 0, 90, 0, -0.1};  // up to the pole is a grid
+    EXPECT_NEAR(demFromArray(z, ref, std::nullopt, "heights").terrain.rowLatitudeDeg.front(), 89.95, 1e-9);
+}
+
 }  // namespace
 }  // namespace demlight
