@@ -305,7 +305,7 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     checkOutputFile(outPath);
     std::error_code ec;
     if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
-        throw Error("output '" + outPath + "' would overwrite the input DEM; choose another -o");
+        throw Error("output '" + outPath + "' would overwrite its input; choose another -o");
     const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
     // Probe that the folder accepts new files, so a long computation does not end in failure.
     const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));

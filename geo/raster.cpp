@@ -148,7 +148,7 @@ DatasetPtr openRaster(const std::string& path) {
 GeoReference readGeoReference(GDALDataset& ds, const std::string& path) {
     GeoReference ref;
     if (ds.GetGeoTransform(ref.geoTransform.data()) != CE_None)
-        throw Error("'" + path + "' has no geotransform: demlight needs a georeferenced DEM");
+        throw Error("'" + path + "' has no geotransform: demlight reads only georeferenced rasters");
     const auto& gt = ref.geoTransform;
     if (gt[2] != 0.0 || gt[4] != 0.0)
         throw Error("'" + path + "' has a rotated or sheared geotransform (terms " +
@@ -565,7 +565,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) &&
         fs::equivalent(fs::path(path), fs::path(inputPath), ec))
-        throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
+        throw Error("output '" + path + "' would overwrite its input; choose another -o");
 
     const GDALDataType type = storedType(bands, options);
     const auto shapeOf = [](const OutputBand& b) {
@@ -800,7 +800,7 @@ RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, 
         throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
-        throw Error("output '" + path + "' would overwrite the input DEM; choose another -o");
+        throw Error("output '" + path + "' would overwrite its input; choose another -o");
     checkOutputFile(path);
     State& st = *state_;
     if (options.format == "COG") {
