@@ -246,6 +246,9 @@ RasterBand bandHeader(GDALDataset& ds, const std::string& path) {
     out.path = path;
     out.ref = readGeoReference(ds, path);
     GDALRasterBand* band = ds.GetRasterBand(1);
+    if (GDALDataTypeIsComplex(band->GetRasterDataType()))
+        throw Error("'" + path + "' holds complex numbers (" + GDALGetDataTypeName(band->GetRasterDataType()) +
+                    "), not heights or values: GDAL would read their real parts");
     out.width = static_cast<std::size_t>(ds.GetRasterXSize());
     out.height = static_cast<std::size_t>(ds.GetRasterYSize());
     out.scale = band->GetScale();

@@ -66,6 +66,7 @@ struct HeightFiles {
     fs::path dir;
     std::string metres, decimetres, feet, furlong, zip;
     std::string alpha, masked;  // the Luxembourg sample's nodata as an alpha band and as a mask, cells 0
+    std::string complex;        // the metres as CFloat32
     std::string skipReason;  // non-empty: GDAL's command-line tools are missing
 
     HeightFiles() {
@@ -79,6 +80,7 @@ struct HeightFiles {
         zip = (dir / "dem.zip").string();
         alpha = (dir / "alpha.tif").string();
         masked = (dir / "masked.tif").string();
+        complex = (dir / "complex.tif").string();
         if (!run("command -v gdalwarp && command -v gdal_translate && command -v gdal_edit.py")) {
             skipReason = "GDAL's command-line tools (gdalwarp, gdal_translate, gdal_edit.py) are not installed";
             return;
@@ -102,7 +104,8 @@ struct HeightFiles {
             // gdalwarp -dstalpha writes them; then the alpha as an internal mask.
             run("gdalwarp -q -r near -dstalpha -dstnodata None " +
                 shellQuoted(fs::path(kSamples) / "luxembourg_elev_terra.tif") + " " + shellQuoted(alpha)) &&
-            run("gdal_translate -q -b 1 -mask 2 " + shellQuoted(alpha) + " " + shellQuoted(masked));
+            run("gdal_translate -q -b 1 -mask 2 " + shellQuoted(alpha) + " " + shellQuoted(masked)) &&
+            run("gdal_translate -q -ot CFloat32 " + shellQuoted(metres) + " " + shellQuoted(complex));
         if (!made) skipReason = "making the test DEMs with GDAL's tools or python3 failed";
     }
     ~HeightFiles() {
@@ -324,6 +327,12 @@ TEST(DemMask, AlphaBandsAndMasksAreNodataWholeAndInWindows) {
         const CellWindow w{10, 20, 60, 70};
         EXPECT_TRUE(sameBits(source.heightsM(w), DemSource::open(original).heightsM(w))) << path;
     }
+}
+
+TEST(DemHeights, ComplexBandsAreRefusedNamingTheType) {
+    REQUIRE_HEIGHT_FILES();
+    const std::string message = messageOf([] { loadDem(files().complex); });
+    EXPECT_NE(message.find("holds complex numbers (CFloat32)"), std::string::npos) << message;
 }
 
 TEST(DemVirtualPath, ZipMemberLoadsLikeTheFile) {
