@@ -382,8 +382,17 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     const std::vector<RasterTarget> targets = tiled ? tiledTargets(o, request) : std::vector<RasterTarget>{};
     if (tiled) ensureOpenFiles(targets.size());
     std::error_code ec;
+    const bool folderWasThere = fs::exists(o.outDir, ec);
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
+    // A run that fails (or is cancelled) before writing anything leaves no empty folder it made.
+    struct RemoveMadeEmptyFolder {
+        std::string dir;
+        ~RemoveMadeEmptyFolder() {
+            std::error_code e;
+            if (!dir.empty() && fs::is_empty(dir, e) && !e) fs::remove(dir, e);
+        }
+    } const removeIfEmpty{folderWasThere ? std::string() : o.outDir};
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
     if (o.overwrite) removeEarlierOutputs(o.outDir, isTimelapseOutput);
     notePlan(o.search, dem.geometry().terrain, ctx);
