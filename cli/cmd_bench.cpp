@@ -253,7 +253,15 @@ void runBench(const BenchOptions& o, const CliContext& ctx) {
     markPareto(result.rows);
     const fs::path csv = dir / "bench.csv";
     std::ofstream(csv) << benchCsv(result.rows);
-    std::ofstream(dir / "bench.gnuplot") << kChartScript;
+    std::string script = kChartScript;
+    const bool anyPeer = std::any_of(result.rows.begin(), result.rows.end(), [](const BenchRow& r) {
+        return r.family != "sweep" && r.family != "reference";
+    });
+    if (!anyPeer) {  // no key entry for points the chart does not have
+        const std::string peersTitle = "title \"peers\"";
+        script.replace(script.find(peersTitle), peersTitle.size(), "notitle");
+    }
+    std::ofstream(dir / "bench.gnuplot") << script;
     std::ofstream(dir / "bench_labels.csv") << chartLabels(result.rows);
 
     std::string chart = "no chart: gnuplot is not installed";

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 namespace demlight {
@@ -381,6 +382,12 @@ TEST(CliOutputs, BenchWritesTimesAndErrorsForEveryRow) {
         }
     }
     EXPECT_EQ(rows, 1u + 3u * 2u);  // the reference, and three sweeps at 4 and 8 directions
+
+    // Without --peers the chart's key has no entry for peers it does not draw.
+    std::ifstream scriptFile(dir / "b" / "bench.gnuplot");
+    const std::string script((std::istreambuf_iterator<char>(scriptFile)), std::istreambuf_iterator<char>());
+    EXPECT_NE(script.find("title \"demlight sweep\""), std::string::npos);
+    EXPECT_EQ(script.find("title \"peers\""), std::string::npos);
 
     // The chart's labels (bench_labels.csv, the point and the label's anchor per row): one per
     // row, and no two overlapping on the chart's log-log plot area (670 x 590 px spanning half
