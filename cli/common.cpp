@@ -78,15 +78,18 @@ DemSource openDem(const DemOptions& o, const CliContext& ctx) {
     } catch (const Cancelled&) {
         throw;
     } catch (const Error& e) {
-        // The library names HeightOptions fields in its messages; the user typed flags.
-        std::string message = e.what();
-        const std::pair<std::string, std::string> fieldToFlag[] = {{"HeightOptions::zUnit", "--z-unit"},
-                                                                   {"HeightOptions::zFactor", "--z-factor"}};
-        for (const auto& [field, flag] : fieldToFlag)
-            for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + flag.size()))
-                message.replace(at, field.size(), flag);
-        throw Error(message);
+        throw Error(heightFieldsAsFlags(e.what()));
     }
+}
+
+std::string heightFieldsAsFlags(std::string message) {
+    // The library names HeightOptions fields in its messages; the user typed flags.
+    const std::pair<std::string, std::string> fieldToFlag[] = {{"HeightOptions::zUnit", "--z-unit"},
+                                                               {"HeightOptions::zFactor", "--z-factor"}};
+    for (const auto& [field, flag] : fieldToFlag)
+        for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + flag.size()))
+            message.replace(at, field.size(), flag);
+    return message;
 }
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) {

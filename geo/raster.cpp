@@ -352,8 +352,13 @@ MemoryRaster::MemoryRaster(const Grid<float>& values, const GeoReference& ref, s
     std::array<double, 6> gt = ref.geoTransform;
     ds->SetGeoTransform(gt.data());
     OGRSpatialReference srs;
-    if (!ref.crsWkt.empty() && srs.SetFromUserInput(ref.crsWkt.c_str()) == OGRERR_NONE) ds->SetSpatialRef(&srs);
-    detail::takeGdalError();  // an unreadable CRS is reported by the reader, as a missing one
+    if (!ref.crsWkt.empty()) {
+        if (srs.SetFromUserInput(ref.crsWkt.c_str()) != OGRERR_NONE)
+            throw Error(withGdalReason("CRS '" + ref.crsWkt.substr(0, 200) +
+                                       "' is not one GDAL reads (WKT, a PROJ string, or AUTHORITY:CODE such as EPSG:32610)"));
+        ds->SetSpatialRef(&srs);
+    }
+    detail::takeGdalError();  // a missing CRS is reported by the reader, as for a file
     GDALRasterBand* band = ds->GetRasterBand(1);
     if (nodata) band->SetNoDataValue(*nodata);
     if (band->RasterIO(GF_Write, 0, 0, static_cast<int>(values.width()), static_cast<int>(values.height()),

@@ -470,7 +470,9 @@ PYBIND11_MODULE(_demlight, m) {
         } catch (const FieldError& e) {
             error(fieldMessage(e).c_str());
         } catch (const Error& e) {
-            error(e.what());
+            // z_unit and z_factor as keywords; other messages as they are ("choose another -o").
+            const std::string message = e.what(), flags = cli::heightFieldsAsFlags(message);
+            error((flags == message ? message : keywordsForFlags(flags)).c_str());
         }
     });
 

@@ -145,7 +145,7 @@ TEST_F(CliBadInput, OutputWouldOverwriteInput) {
     fs::copy_file(kRocky, copy);
     const auto before = fs::file_size(copy);
     expectFailure("horizon " + copy.string() + " -o " + copy.string() + " --azimuth 90",
-                  "overwrite the input", 1);
+                  "overwrite its input", 1);
     EXPECT_EQ(fs::file_size(copy), before);
 }
 

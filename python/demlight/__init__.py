@@ -18,6 +18,7 @@ import datetime as _datetime
 import functools as _functools
 import inspect as _inspect
 import json as _json
+import numbers as _numbers
 import textwrap as _textwrap
 
 from . import _demlight
@@ -88,11 +89,15 @@ def open(path, z_unit=None, z_factor=None, progress=None):  # noqa: A001 (as ras
 def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None, z_factor=None):
     """A DEM from a 2-D numpy array of heights (rows, columns), as a file holding them reads.
 
-    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0); crs: WKT, or a
-    definition GDAL reads such as "EPSG:32610"; nodata: the value marking no data (NaN always
+    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0); crs: WKT, a
+    definition GDAL reads such as "EPSG:32610", an EPSG code (32610) or a pyproj/rasterio CRS; nodata: the value marking no data (NaN always
     does); name: how outputs' DEMLIGHT_INPUT and messages name it. The values are converted to
     Float32, as demlight reads every DEM.
     """
+    if isinstance(crs, _numbers.Integral) and not isinstance(crs, bool):
+        crs = "EPSG:%d" % crs  # a bare EPSG code, as rasterio and pyproj take it
+    elif hasattr(crs, "to_wkt"):
+        crs = crs.to_wkt()  # a pyproj or rasterio CRS object
     return Dem(_demlight.from_array(heights, [float(v) for v in transform], str(crs), nodata, name,
                                     z_unit or "", float(z_factor or 0)))
 
@@ -223,7 +228,7 @@ class Result:
         variables = {}
         for raster in self.rasters:
             for name, values in raster.bands.items():
-                attrs = {"units": raster.units[name], "nodata": raster.nodata}
+                attrs = {"units": raster.units[name]}
                 variables[name] = xr.DataArray(values, dims=("y", "x"), coords={"y": y, "x": x}, attrs=attrs)
         ds = xr.Dataset(variables, attrs=self.metadata)
         try:
@@ -232,12 +237,18 @@ class Result:
         except ImportError:
             ds.attrs["crs_wkt"] = self.crs
             ds.attrs["transform"] = tuple(gt)
+            for raster in self.rasters:
+                for name in raster.bands:
+                    ds[name].attrs["nodata"] = raster.nodata
             return ds
         ds = ds.rio.write_crs(self.crs)
         ds = ds.rio.write_transform(Affine.from_gdal(*gt))
+        # The cells hold NaN where the file holds the nodata value: the value is the encoding
+        # (rio.encoded_nodata; rio.nodata is NaN), so rio.to_raster writes it where NaN is, as
+        # Result.write does.
         for raster in self.rasters:
             for name in raster.bands:
-                ds[name] = ds[name].rio.write_nodata(raster.nodata, encoded=False)
+                ds[name] = ds[name].rio.write_nodata(raster.nodata, encoded=True)
         return ds
 
     def __repr__(self):

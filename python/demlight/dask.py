@@ -16,6 +16,7 @@ line's own writer, and renames it at the end: the file is the command line's out
 """
 
 import functools as _functools
+import numbers as _numbers
 import os as _os
 
 import demlight as _demlight
@@ -27,11 +28,16 @@ __all__ = ["run", "windows"]
 def windows(extent, chunks):
     """The windows (col0, row0, col1, row1) of `chunks` cells (an int, or (rows, columns))
     covering `extent`, row by row from the north-west corner."""
-    if isinstance(chunks, int):
-        return [tuple(w) for w in _core.tiles(list(extent), chunks)]
-    rows, cols = chunks
-    if rows < 1 or cols < 1:
-        raise _demlight.Error("chunks: expected positive cells, got %r" % (chunks,))
+    def cells(n):
+        # Whole numbers of cells, numpy's included; not bool (True would be a 1-cell window).
+        if isinstance(n, bool) or not isinstance(n, _numbers.Integral) or n < 1:
+            raise _demlight.Error("chunks: expected a whole number of cells >= 1, or (rows, columns) of them; "
+                                  "got %r" % (chunks,))
+        return int(n)
+
+    if not (isinstance(chunks, (tuple, list)) and len(chunks) == 2):
+        return [tuple(w) for w in _core.tiles(list(extent), cells(chunks))]
+    rows, cols = cells(chunks[0]), cells(chunks[1])
     col0, row0, col1, row1 = extent
     return [(c, r, min(c + cols, col1), min(r + rows, row1))
             for r in range(row0, row1, rows) for c in range(col0, col1, cols)]
@@ -77,6 +83,9 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
     """
     if product not in _demlight.COMMANDS:
         raise _demlight.Error("product '%s': expected one of %s" % (product, ", ".join(_demlight.COMMANDS)))
+    dem_path = _os.fspath(dem_path)  # pathlib.Path too: the workers' tasks take a string
+    if out_path is not None:
+        out_path = _os.fspath(out_path)
     if client is None:
         from distributed import get_client
         client = get_client()

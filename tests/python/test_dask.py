@@ -29,9 +29,21 @@ def test_windows_cover_the_extent_once():
         assert all(extent[0] <= c0 < c1 <= extent[2] and extent[1] <= r0 < r1 <= extent[3] for c0, r0, c1, r1 in ws)
 
 
+def test_chunks_are_whole_numbers_of_cells_or_an_error():
+    import numpy as np
+    extent = (0, 0, 327, 300)
+    assert demlight.dask.windows(extent, np.int64(100)) == demlight.dask.windows(extent, 100)
+    assert demlight.dask.windows(extent, (np.int32(100), 50)) == demlight.dask.windows(extent, (100, 50))
+    # 0 had become 1: 98 100 one-cell tasks; True the same; -5 and floats failed inside the binding.
+    for bad in (0, True, -5, 100.0, "100", (0, 5), (100, 50.5), (1, 2, 3)):
+        with pytest.raises(demlight.Error, match="chunks: expected a whole number of cells"):
+            demlight.dask.windows(extent, bad)
+
+
 def test_sun_in_windows_equals_cli(tmp_path, client, cli):
-    # 327 x 468 cells in windows of 128: 3 x 4 = 12 tasks on the two workers.
-    out = demlight.dask.run("sun", str(HELENS), str(tmp_path / "dask.tif"), chunks=128, client=client,
+    # 327 x 468 cells in windows of 128: 3 x 4 = 12 tasks on the two workers. The paths as
+    # pathlib.Path, as demlight.open takes them (the workers' tasks had failed on them).
+    out = demlight.dask.run("sun", HELENS, tmp_path / "dask.tif", chunks=128, client=client,
                             time="2024-06-21T07:30", tz="America/Los_Angeles")
     assert out == [str(tmp_path / "dask.tif")]
     assert len(demlight.dask.windows((0, 0, 327, 468), 128)) >= 4

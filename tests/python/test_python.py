@@ -192,6 +192,13 @@ def test_signature_and_help_name_every_cli_option(cli):
     (lambda: demlight.sky(np.zeros((10, 10), np.float32), transform=(0, 30, 0, 0, 0, -30), crs=""),
      ["<array>", "coordinate reference system"]),
     (lambda: demlight.sky(demlight.open(str(HELENS)), z_unit="ft"), ["z_unit", "demlight.open"]),
+    # An unreadable CRS was reported as a missing one.
+    (lambda: demlight.sky(np.zeros((10, 10), np.float32), transform=(0, 30, 0, 0, 0, -30), crs="EPSG:999999"),
+     ["CRS 'EPSG:999999' is not one GDAL reads"]),
+    # The library's DEM-opening messages named its C++ fields (HeightOptions::zUnit).
+    (lambda: demlight.sun(str(HELENS), time="2024-06-21T16:00Z", z_unit="furlong"), ["z_unit \"furlong\""]),
+    (lambda: demlight.open(str(HELENS), z_factor=-2), ["z_factor -2"]),
+    (lambda: demlight.open(str(HELENS), z_unit="ft", z_factor=2), ["z_unit \"ft\" and z_factor 2"]),
 ])
 def test_errors_name_keywords(call, words):
     with pytest.raises(demlight.Error) as e:
@@ -200,13 +207,24 @@ def test_errors_name_keywords(call, words):
     for word in words:
         assert word in message, message
     assert "--" not in message, message
+    assert "::" not in message, message
+
+
+def test_an_array_crs_may_be_an_epsg_code_or_a_crs_object():
+    heights = np.full((12, 10), 100.0, np.float32)
+    transform = (500000, 30, 0, 4000000, 0, -30)
+    wkt = demlight.from_array(heights, transform, "EPSG:26710").crs
+    assert "NAD27 / UTM zone 10N" in wkt
+    assert demlight.from_array(heights, transform, 26710).crs == wkt
+    pyproj = pytest.importorskip("pyproj")
+    assert demlight.from_array(heights, transform, pyproj.CRS.from_epsg(26710)).crs == wkt
 
 
 def test_write_refuses_to_overwrite_the_input(tmp_path):
     dem_path = tmp_path / "dem.tif"
     dem_path.write_bytes(LUXEMBOURG.read_bytes())
     r = demlight.sky(str(dem_path))
-    with pytest.raises(demlight.Error, match="overwrite the input"):
+    with pytest.raises(demlight.Error, match="overwrite its input"):
         r.write(dem_path)
 
 
@@ -275,3 +293,20 @@ def test_to_xarray_carries_crs_and_transform():
     assert ds.rio.crs is not None and ds.rio.crs.to_wkt()
     assert same_cells(ds["sun_visibility"].values, r.bands["sun_visibility"])
     assert ds.sizes["x"] == 327 and ds.sizes["y"] == 468
+
+
+def test_to_xarray_nodata_is_the_encoding_of_its_nan_cells(tmp_path):
+    # The cells hold NaN where the command's file holds -32767: the nodata value is the encoding,
+    # so a file saved with rioxarray masks the same cells as the command's file.
+    pytest.importorskip("rioxarray", reason="rioxarray (python3-rioxarray) attaches the nodata")
+    import rasterio  # rioxarray's reader (osgeo's bindings beside it in one process crash at exit)
+    r = demlight.sun(str(HELENS), **SUN_TIME)
+    da = r.to_xarray()["sun_visibility"]
+    voids = np.isnan(r.bands["sun_visibility"])
+    assert voids.sum() > 0
+    assert np.isnan(da.rio.nodata) and da.rio.encoded_nodata == -32767.0
+    da.rio.to_raster(tmp_path / "xr.tif")
+    r.write(str(tmp_path / "cli.tif"))
+    for name in ("xr.tif", "cli.tif"):
+        with rasterio.open(tmp_path / name) as f:
+            assert np.array_equal(f.read_masks(1) == 0, voids), name
