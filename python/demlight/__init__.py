@@ -211,6 +211,8 @@ class Result:
         Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
         DEMLIGHT_COMMAND records the Python call.
         """
+        if isinstance(creation_options, str):
+            creation_options = [creation_options]  # one KEY=VALUE, not its characters
         return self._call.write(self.rasters, str(path), format, list(creation_options),
                                 _command_line(self.command, self._dem, self._options), self._dem._dem.path)
 

@@ -210,6 +210,16 @@ def test_errors_name_keywords(call, words):
     assert "::" not in message, message
 
 
+def test_write_takes_one_creation_option_as_a_string(tmp_path):
+    # A string had been split into its characters (a garbled GDAL error).
+    r = demlight.sun(str(HELENS), **SUN_TIME)
+    r.write(str(tmp_path / "one.tif"), creation_options="COMPRESS=DEFLATE")
+    r.write(str(tmp_path / "list.tif"), creation_options=["COMPRESS=DEFLATE"])
+    assert raster_facts(tmp_path / "one.tif") == raster_facts(tmp_path / "list.tif")
+    info = subprocess.run(["gdalinfo", str(tmp_path / "one.tif")], check=True, capture_output=True, text=True).stdout
+    assert "COMPRESSION=DEFLATE" in info
+
+
 def test_an_array_crs_may_be_an_epsg_code_or_a_crs_object():
     heights = np.full((12, 10), 100.0, np.float32)
     transform = (500000, 30, 0, 4000000, 0, -30)
