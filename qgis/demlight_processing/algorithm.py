@@ -2,6 +2,8 @@
 (`demlight options --json`): its options become parameters, its help text the algorithm's help,
 and running it runs the CLI, so its outputs are the CLI's."""
 
+import shlex
+
 from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputRasterLayer,
                        QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
                        QgsProcessingParameterFileDestination, QgsProcessingParameterFolderDestination,
@@ -193,7 +195,7 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         args, outputs = self._arguments(parameters, context)
-        feedback.pushCommandInfo(" ".join(args))
+        feedback.pushCommandInfo(shlex.join(args))  # quoted: the log's line pastes into a shell
         stage = [None]
 
         def on_progress(name, percent):

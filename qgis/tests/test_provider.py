@@ -10,6 +10,7 @@ import hashlib
 import json
 import os
 import shutil
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -150,10 +151,13 @@ def test_qgis_process_help_is_the_cli_help(qgis):
 
 
 def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
-    ours = tmp_path / "qgis_sun.tif"
+    (tmp_path / "with space").mkdir()
+    ours = tmp_path / "with space" / "qgis_sun.tif"
     done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
                 "SUN_DIAMETER=1.5", f"OUTPUT={ours}")
     assert done.returncode == 0, done.stdout + done.stderr
+    # The command it logs is quoted for a shell: it pastes back as the same arguments.
+    assert shlex.quote(str(ours)) in done.stdout + done.stderr, done.stdout + done.stderr
     theirs = tmp_path / "cli_sun.tif"
     subprocess.run([demlight_executable(), "-q", "sun", dem, "-o", str(theirs), "--time", TIME, "--tz", TZ,
                     "--quality", "full", "--of", "COG", "--sun-diameter", "1.5"], check=True)
