@@ -156,8 +156,13 @@ def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
     done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", f"TIME={TIME}", f"TZ={TZ}", "QUALITY=full", "OF=COG",
                 "SUN_DIAMETER=1.5", f"OUTPUT={ours}")
     assert done.returncode == 0, done.stdout + done.stderr
-    # The command it logs is quoted for a shell: it pastes back as the same arguments.
-    assert shlex.quote(str(ours)) in done.stdout + done.stderr, done.stdout + done.stderr
+    # The command it logs is quoted for a shell: split as a shell would, it gives the arguments
+    # the CLI ran with, the output path (with its space) as one of them.
+    logged = [line for line in (done.stdout + done.stderr).splitlines()
+              if line.startswith(shlex.quote(demlight_executable()) + " sun ")]
+    assert len(logged) == 1, done.stdout + done.stderr
+    args = shlex.split(logged[0])
+    assert args[args.index("--output") + 1] == str(ours), logged[0]
     theirs = tmp_path / "cli_sun.tif"
     subprocess.run([demlight_executable(), "-q", "sun", dem, "-o", str(theirs), "--time", TIME, "--tz", TZ,
                     "--quality", "full", "--of", "COG", "--sun-diameter", "1.5"], check=True)
