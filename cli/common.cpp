@@ -78,17 +78,16 @@ DemSource openDem(const DemOptions& o, const CliContext& ctx) {
     } catch (const Cancelled&) {
         throw;
     } catch (const Error& e) {
-        throw Error(heightFieldsAsFlags(e.what()));
+        throw Error(renameHeightFields(e.what(), "--z-unit", "--z-factor"));  // the user typed flags
     }
 }
 
-std::string heightFieldsAsFlags(std::string message) {
-    // The library names HeightOptions fields in its messages; the user typed flags.
-    const std::pair<std::string, std::string> fieldToFlag[] = {{"HeightOptions::zUnit", "--z-unit"},
-                                                               {"HeightOptions::zFactor", "--z-factor"}};
-    for (const auto& [field, flag] : fieldToFlag)
-        for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + flag.size()))
-            message.replace(at, field.size(), flag);
+std::string renameHeightFields(std::string message, const std::string& zUnit, const std::string& zFactor) {
+    const std::pair<std::string, const std::string&> renames[] = {{"HeightOptions::zUnit", zUnit},
+                                                                  {"HeightOptions::zFactor", zFactor}};
+    for (const auto& [field, name] : renames)
+        for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + name.size()))
+            message.replace(at, field.size(), name);
     return message;
 }
 
@@ -306,9 +305,8 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     if (outPath.empty()) throw Error("-o: the output path is empty");
     // Before anything touches the folder: a device's folder (/dev) gets no probe file either.
     checkOutputFile(outPath);
+    checkNotInput(outPath, inputPath);
     std::error_code ec;
-    if (fs::exists(outPath, ec) && fs::equivalent(outPath, inputPath, ec))
-        throw Error("output '" + outPath + "' would overwrite its input; choose another -o");
     const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
     // Probe that the folder accepts new files, so a long computation does not end in failure.
     const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));

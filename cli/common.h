@@ -166,9 +166,9 @@ Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets,
 /// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
 /// the field itself when no flag sets it.
 std::string flagForField(const std::string& field);
-/// `message` with the HeightOptions fields it names (zUnit, zFactor) as their flags (--z-unit,
-/// --z-factor): the library's DEM-opening messages as a user of the command line reads them.
-std::string heightFieldsAsFlags(std::string message);
+/// `message` with the HeightOptions fields the library names in its DEM-opening messages
+/// (HeightOptions::zUnit, ::zFactor) as the user spells them: flags, or Python keywords.
+std::string renameHeightFields(std::string message, const std::string& zUnit, const std::string& zFactor);
 
 /// Fails early (before any work) if the output cannot be written or would replace the input.
 void checkOutputPath(const std::string& outPath, const std::string& inputPath);

@@ -246,12 +246,9 @@ Dem openDem(const std::string& path, const HeightOptions& heights) {
         const double north = std::max(gt[3], gt[3] + static_cast<double>(height) * gt[5]);
         const double south = std::min(gt[3], gt[3] + static_cast<double>(height) * gt[5]);
         constexpr double kRoundingDeg = 1e-9;  // an edge at 90 written as 90.0000000001
-        if (north > 90 + kRoundingDeg || south < -90 - kRoundingDeg) {
-            char range[96];
-            std::snprintf(range, sizeof range, "%.9g .. %.9g", south, north);
-            throw Error("'" + path + "' reaches latitudes beyond the poles (" + range +
-                        " degrees): check its geotransform (rows must lie within -90 .. 90)");
-        }
+        if (north > 90 + kRoundingDeg || south < -90 - kRoundingDeg)
+            throw Error("'" + path + "' reaches latitudes beyond the poles (" + formatValue(south) + " .. " +
+                        formatValue(north) + " degrees): check its geotransform (rows must lie within -90 .. 90)");
         geographicCellSizes(dem.crs, dem.band.ref, height, t);
         return dem;
     }

@@ -109,6 +109,12 @@ int probeAppend(int fd) {
 
 }  // namespace
 
+void checkNotInput(const std::string& path, const std::string& inputPath) {
+    std::error_code ec;
+    if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
+        throw Error("output '" + path + "' would overwrite its input; choose another -o");
+}
+
 void checkOutputFile(const std::string& path) {
     if (path.empty()) throw Error("cannot write '': the output path is empty");
     std::error_code ec;

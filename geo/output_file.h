@@ -15,6 +15,10 @@ namespace demlight {
 /// (as root, a GeoTIFF where /dev/null was).
 void checkOutputFile(const std::string& path);
 
+/// Throws Error if `path` is the file `inputPath` names (an empty inputPath: nothing to check):
+/// an output renamed over its input would destroy it.
+void checkNotInput(const std::string& path, const std::string& inputPath);
+
 /// Throws unless `dir` can become an output folder (a folder of files written by one run): missing
 /// (the caller creates it), an empty folder, or, with `replaceEarlier`, any folder. A file, a
 /// device or a fifo at `dir` is refused (Error); a folder that is not empty without

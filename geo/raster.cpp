@@ -570,10 +570,7 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     checkOutputFile(path);
     checkRasterPath(path);
 
-    std::error_code ec;
-    if (!inputPath.empty() && fs::exists(path, ec) &&
-        fs::equivalent(fs::path(path), fs::path(inputPath), ec))
-        throw Error("output '" + path + "' would overwrite its input; choose another -o");
+    checkNotInput(path, inputPath);
 
     const GDALDataType type = storedType(bands, options);
     const auto shapeOf = [](const OutputBand& b) {
@@ -806,9 +803,7 @@ RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, 
     detail::ensureGdal();
     if (options.format != "GTiff" && options.format != "COG")
         throw Error("output format '" + options.format + "' is not supported (-of GTiff or COG)");
-    std::error_code ec;
-    if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
-        throw Error("output '" + path + "' would overwrite its input; choose another -o");
+    checkNotInput(path, inputPath);
     checkOutputFile(path);
     State& st = *state_;
     if (options.format == "COG") {

@@ -142,8 +142,7 @@ PointCell locatePoint(const DemSource& source, const PointSpec& point) {
         }
     }
     const double row = std::floor((p.y - gt[3]) / gt[5]);
-    if (!(col >= 0 && row >= 0 && col < static_cast<double>(source.width()) &&
-          row < static_cast<double>(source.height())))
+    if (!(col >= 0 && row >= 0 && col < width && row < static_cast<double>(source.height())))
         throw FieldError("point", " " + describePoint(point) + " (x " + formatNumber(p.x) + ", y " + formatNumber(p.y) +
                                       " in its CRS) is outside the DEM '" + dem.band.path + "'");
     p.cell = {static_cast<std::size_t>(col), static_cast<std::size_t>(row)};

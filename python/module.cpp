@@ -470,9 +470,7 @@ PYBIND11_MODULE(_demlight, m) {
         } catch (const FieldError& e) {
             error(fieldMessage(e).c_str());
         } catch (const Error& e) {
-            // z_unit and z_factor as keywords; other messages as they are ("choose another -o").
-            const std::string message = e.what(), flags = cli::heightFieldsAsFlags(message);
-            error((flags == message ? message : keywordsForFlags(flags)).c_str());
+            error(cli::renameHeightFields(e.what(), "z_unit", "z_factor").c_str());
         }
     });
 

@@ -102,6 +102,11 @@ def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None
                                     z_unit or "", float(z_factor or 0)))
 
 
+def _creation_options(options):
+    """GDAL KEY=VALUE items as a list: one given as a string is one item, not its characters."""
+    return [options] if isinstance(options, str) else list(options)
+
+
 def _as_dem(dem, transform, crs, nodata, options):
     """The DEM a product runs on: `dem` itself, opened from a path, or made from an array, with
     the options that apply when a DEM is opened (z_unit, z_factor)."""
@@ -211,9 +216,7 @@ class Result:
         Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
         DEMLIGHT_COMMAND records the Python call.
         """
-        if isinstance(creation_options, str):
-            creation_options = [creation_options]  # one KEY=VALUE, not its characters
-        return self._call.write(self.rasters, str(path), format, list(creation_options),
+        return self._call.write(self.rasters, str(path), format, _creation_options(creation_options),
                                 _command_line(self.command, self._dem, self._options), self._dem._dem.path)
 
     def to_xarray(self):

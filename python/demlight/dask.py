@@ -99,9 +99,8 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
         return _arrays(client, product, dem_path, arguments, parts)
     command_line = "demlight.dask.run(%r, %r, %r, chunks=%r%s)" % (
         product, dem_path, out_path, chunks, "".join(", %s=%r" % kv for kv in options.items()))
-    if isinstance(creation_options, str):
-        creation_options = [creation_options]  # one KEY=VALUE, not its characters
-    writer = _core.Writer(call, dem._dem, str(out_path), format, list(creation_options), command_line)
+    writer = _core.Writer(call, dem._dem, str(out_path), format, _demlight._creation_options(creation_options),
+                          command_line)
     futures = client.map(_compute, [product] * len(parts), [dem_path] * len(parts), [arguments] * len(parts), parts,
                          pure=False)
     index = {f.key: i for i, f in enumerate(futures)}
