@@ -4,9 +4,11 @@
 // the same crop, directions and distance, and is scored against the same reference.
 #include "cli/common.h"
 #include "cli/progress_bar.h"
+#include "geo/output_file.h"
 #include "products/bench.h"
 #include "products/horizon.h"
 #include "src/error.h"
+#include "src/process.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace demlight::cli {
@@ -36,9 +39,13 @@ struct BenchOptions {
 /// The chart (gnuplot): median error against time per cell and direction, log-log, one colour
 /// per method family, the Pareto front joined, peers as large squares, the reference (error 0)
 /// at the floor, each point labelled with its method and directions.
-constexpr const char* kChartScript = R"gp(# Drawn by demlight bench from bench.csv; rerun: gnuplot -e "csv='bench.csv'; out='bench.png'; term='png'" bench.gnuplot
+constexpr const char* kChartScript = R"gp(# Drawn by demlight bench from bench.csv; rerun in this folder: gnuplot -c bench.gnuplot png [TITLE [OUTPUT]]
+# Its arguments are data, never code: the terminal (png or svg), the title, the picture's path.
 floor = 1e-3
-if (!exists("name")) name = csv
+csv = 'bench.csv'
+term = ARGC >= 1 ? ARG1 : 'png'
+name = ARGC >= 2 ? ARG2 : csv
+out = ARGC >= 3 ? ARG3 : 'bench.' . term
 set datafile separator comma
 if (term eq 'svg') { set terminal svg size 1100,700 font "DejaVu Sans,12" } else { set terminal pngcairo size 1100,700 font "DejaVu Sans,11" }
 set output out
@@ -52,11 +59,10 @@ stats csv skip 1 using 5 nooutput
 set xrange [STATS_min / 2 : STATS_max * 3]
 stats csv skip 1 using ($6 > floor ? $6 : floor) nooutput
 set yrange [STATS_min / 2 : STATS_max * 3]
-if (!exists("labels")) labels = 'bench_labels.csv'
+labels = 'bench_labels.csv'
 e(x) = x > floor ? x : floor
 fam(f) = strcol(1) eq f ? e($6) : NaN
-front = "< awk -F, 'NR > 1 && $9 == 1' " . csv . " | sort -t, -k5,5g"
-plot front using 5:(e($6)) with lines lw 2 lc rgb "#d62728" title "Pareto front", \
+plot 'bench_front.csv' skip 1 using 5:(e($6)) with lines lw 2 lc rgb "#d62728" title "Pareto front", \
      csv skip 1 using 5:(fam("sweep")) with points pt 7 ps 1.4 lc rgb "#1f77b4" title "demlight sweep", \
      '' skip 1 using 5:(fam("reference")) with points pt 9 ps 1.8 lc rgb "#2ca02c" title "demlight reference (sample)", \
      '' skip 1 using 5:(strcol(1) ne "sweep" && strcol(1) ne "reference" ? e($6) : NaN) with points pt 5 ps 2 lc rgb "#ff7f0e" title "peers", \
@@ -130,14 +136,59 @@ std::string chartLabels(const std::vector<BenchRow>& rows) {
     return out.str();
 }
 
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
+bool onPath(const std::string& tool) { return findProgram(tool).has_value(); }
+
+/// Writes `text` to `path` through a temporary file (an existing name there, link or not, is
+/// replaced, never written through); throws Error naming the file when the write fails.
+void writeTextFile(const fs::path& path, const std::string& text) {
+    TemporaryFile tmp(path.string());
+    std::ofstream out(tmp.path(), std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw Error(writeFailureMessage("'" + path.string() + "'", tmp.path(), {}));
+    tmp.commit();
 }
 
-bool onPath(const std::string& tool) {
-    return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
+/// Whether `path` holds a whole picture of gnuplot's `term`: a PNG ending with its IEND chunk, an
+/// SVG with its closing tag. gnuplot does not always fail when its output is cut short.
+bool wholePicture(const fs::path& path, const std::string& term) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (term == "png") {
+        static const std::string kIend("\x00\x00\x00\x00IEND\xae\x42\x60\x82", 12);
+        return bytes.size() > 8 + kIend.size() && bytes.compare(0, 4, "\x89PNG") == 0 && bytes.ends_with(kIend);
+    }
+    const auto close = bytes.rfind("</svg>");
+    return close != std::string::npos && bytes.find_first_not_of(" \t\r\n", close + 6) == std::string::npos;
+}
+
+/// Draws DIR/bench.TERM with gnuplot (the script and its data files already in `dir`) under a
+/// temporary name; an empty string, or why not.
+std::string drawChart(const fs::path& dir, const std::string& term, const std::string& title) {
+    const fs::path final = dir / ("bench." + term);
+    TemporaryFile tmp(final.string());
+    const fs::path log = fs::path(tmp.path()).parent_path() / "gnuplot.log";  // removed with the folder
+    const ProgramExit run = runProgram({{"gnuplot", "-c", "bench.gnuplot", term, title, tmp.path()}, dir.string(), log.string()});
+    if (!run.ok()) {
+        std::ifstream in(log);
+        std::string line, last;
+        while (std::getline(in, line))
+            if (!line.empty()) last = line;
+        return "gnuplot failed to draw " + final.string() + " (" + run.why + (last.empty() ? "" : ": " + last) + ")";
+    }
+    if (!wholePicture(tmp.path(), term))
+        return writeFailureMessage("'" + final.string() + "'", tmp.path(), "gnuplot's picture is cut short");
+    tmp.commit();
+    return {};
+}
+
+/// The rows on the Pareto front by rising time, as bench.csv rows (the chart joins them).
+std::vector<BenchRow> paretoFront(std::vector<BenchRow> rows) {
+    std::erase_if(rows, [](const BenchRow& r) { return !r.pareto; });
+    std::stable_sort(rows.begin(), rows.end(), [](const BenchRow& a, const BenchRow& b) {
+        return a.nsPerCellPerDirection < b.nsPerCellPerDirection;
+    });
+    return rows;
 }
 
 /// GRASS r.horizon on the crop (written to DIR/peers/crop.tif): `directions` azimuths, the
@@ -164,16 +215,20 @@ std::optional<BenchRow> grassRow(const BenchScene& scene, std::size_t directions
     const double distance = std::isfinite(scene.maxDistanceM) ? scene.maxDistanceM : 1e9;
     const fs::path timeFile = peers / "grass_seconds.txt";
     const double stepDeg = 360.0 / static_cast<double>(directions);
+    // The script is a constant: the paths and numbers reach it as its positional arguments
+    // ($1 the crop, $2 the peers folder, $3 the time file, $4 the step, $5 the distance).
     const std::string script =
-        "set -e; r.external input=" + shellQuote(crop.string()) + " output=dem --quiet --overwrite; g.region raster=dem; "
-        "s=$(date +%s.%N); r.horizon -d elevation=dem step=" + formatNumber(stepDeg) +
-        " maxdistance=" + formatNumber(distance) + " output=hor --quiet --overwrite; e=$(date +%s.%N); "
-        "awk -v s=\"$s\" -v e=\"$e\" 'BEGIN { printf \"%.6f\\n\", e - s }' > " + shellQuote(timeFile.string()) + "; "
-        "for m in $(g.list type=raster pattern='hor_*'); do r.out.gdal input=$m output=" + shellQuote(peers.string()) +
-        "/$m.tif format=GTiff type=Float32 --quiet --overwrite -c; done";
-    const std::string command = "grass --tmp-location " + shellQuote(crop.string()) + " --exec bash -c " + shellQuote(script) +
-                                " > " + shellQuote((peers / "grass_log.txt").string()) + " 2>&1";
-    if (std::system(command.c_str()) != 0) {
+        "set -e; r.external input=\"$1\" output=dem --quiet --overwrite; g.region raster=dem; "
+        "s=$(date +%s.%N); r.horizon -d elevation=dem step=\"$4\" maxdistance=\"$5\" output=hor --quiet --overwrite; "
+        "e=$(date +%s.%N); awk -v s=\"$s\" -v e=\"$e\" 'BEGIN { printf \"%.6f\\n\", e - s }' > \"$3\"; "
+        "for m in $(g.list type=raster pattern='hor_*'); do "
+        "r.out.gdal input=\"$m\" output=\"$2/$m.tif\" format=GTiff type=Float32 --quiet --overwrite -c; done";
+    const ProgramExit grass = runProgram({{"grass", "--tmp-location", crop.string(), "--exec", "bash", "-c", script, "bash",
+                                           crop.string(), peers.string(), timeFile.string(), formatNumber(stepDeg),
+                                           formatNumber(distance)},
+                                          {},
+                                          (peers / "grass_log.txt").string()});
+    if (!grass.ok()) {
         why = "GRASS r.horizon failed (its log: " + (peers / "grass_log.txt").string() + ")";
         return std::nullopt;
     }
@@ -252,7 +307,8 @@ void runBench(const BenchOptions& o, const CliContext& ctx) {
     }
     markPareto(result.rows);
     const fs::path csv = dir / "bench.csv";
-    std::ofstream(csv) << benchCsv(result.rows);
+    writeTextFile(csv, benchCsv(result.rows));
+    writeTextFile(dir / "bench_front.csv", benchCsv(paretoFront(result.rows)));
     std::string script = kChartScript;
     const bool anyPeer = std::any_of(result.rows.begin(), result.rows.end(), [](const BenchRow& r) {
         return r.family != "sweep" && r.family != "reference";
@@ -261,21 +317,16 @@ void runBench(const BenchOptions& o, const CliContext& ctx) {
         const std::string peersTitle = "title \"peers\"";
         script.replace(script.find(peersTitle), peersTitle.size(), "notitle");
     }
-    std::ofstream(dir / "bench.gnuplot") << script;
-    std::ofstream(dir / "bench_labels.csv") << chartLabels(result.rows);
+    writeTextFile(dir / "bench.gnuplot", script);
+    writeTextFile(dir / "bench_labels.csv", chartLabels(result.rows));
 
     std::string chart = "no chart: gnuplot is not installed";
     if (onPath("gnuplot")) {
-        const std::string name = fs::path(o.dem.path).stem().string() + " " + std::to_string(result.scene.crop.terrain.width()) +
-                                 "x" + std::to_string(result.scene.crop.terrain.height());
-        bool drawn = true;
-        for (const std::string term : {"png", "svg"}) {
-            const std::string cmd = "cd " + shellQuote(dir.string()) + " && gnuplot -e " +
-                                    shellQuote("csv='bench.csv'; out='bench." + term + "'; term='" + term + "'; name='" + name + "'") +
-                                    " bench.gnuplot 2>/dev/null";
-            drawn = drawn && std::system(cmd.c_str()) == 0;
-        }
-        chart = drawn ? (dir / "bench.png").string() + " and bench.svg" : "gnuplot failed to draw the chart";
+        const std::string title = fs::path(o.dem.path).stem().string() + " " + std::to_string(result.scene.crop.terrain.width()) +
+                                  "x" + std::to_string(result.scene.crop.terrain.height());
+        for (const std::string term : {"png", "svg"})
+            if (const std::string failed = drawChart(dir, term, title); !failed.empty()) throw Error(failed);
+        chart = (dir / "bench.png").string() + " and bench.svg";
     }
     for (const BenchRow& r : result.rows)
         std::printf("%-18s %-28s N=%-4zu %10.2f ns/cell/dir  median %.4g deg  p99 %.4g deg%s\n", r.family.c_str(),

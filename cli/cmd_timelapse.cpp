@@ -14,6 +14,7 @@
 #include "geo/output_file.h"
 #include "products/timelapse.h"
 #include "src/error.h"
+#include "src/process.h"
 
 #include <algorithm>
 #include <cctype>
@@ -63,7 +64,7 @@ std::set<std::string> parseFormats(const std::string& text) {
         out.insert(f);
     }
     if (out.empty()) throw Error("--formats: give at least one of tif, png, gif, mp4");
-    if (out.count("mp4") && std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
+    if (out.count("mp4") && !findProgram("ffmpeg"))
         throw Error("--formats mp4 needs the ffmpeg program on PATH (Debian: apt-get install ffmpeg)");
     return out;
 }
@@ -82,15 +83,29 @@ std::string frameName(std::size_t i, std::size_t count, const std::string& ext) 
 }
 
 /// Encodes DIR/frame_*.png into DIR/timelapse.mp4 with ffmpeg (H.264, yuv420p, even size),
-/// under a temporary name (so -f mp4) renamed on success.
+/// under a temporary name (so -f mp4) renamed on success. ffmpeg starts from an argument vector:
+/// no shell reads the folder's name.
 void encodeMp4(const std::string& dir, std::size_t frameCount, int fps) {
     const int digits = std::max(3, static_cast<int>(std::to_string(frameCount - 1).size()));
-    TemporaryFile mp4((fs::path(dir) / "timelapse.mp4").string(), TemporaryNaming::Hidden);
-    const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" +
-                            (fs::path(dir) / ("frame_%0" + std::to_string(digits) + "d.png")).string() +
-                            "' -c:v libx264 -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -f mp4 '" +
-                            mp4.path() + "'";
-    if (std::system(cmd.c_str()) != 0) throw Error("ffmpeg could not encode " + mp4.finalPath());
+    TemporaryFile mp4((fs::path(dir) / "timelapse.mp4").string());
+    // ffmpeg's image-sequence input reads '%' in its path as a pattern: the folder's are doubled.
+    std::string pattern;
+    for (char c : fs::absolute(fs::path(dir)).string()) pattern += c == '%' ? std::string("%%") : std::string(1, c);
+    pattern += "/frame_%0" + std::to_string(digits) + "d.png";
+    const fs::path log = fs::path(mp4.path()).parent_path() / "ffmpeg.log";  // removed with the folder
+    const ProgramExit run = runProgram({{"ffmpeg", "-nostdin", "-loglevel", "error", "-y", "-framerate", std::to_string(fps),
+                                         "-f", "image2", "-i", pattern, "-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf",
+                                         "scale=trunc(iw/2)*2:trunc(ih/2)*2", "-f", "mp4", mp4.path()},
+                                        {},
+                                        log.string()});
+    if (!run.ok()) {
+        std::ifstream in(log);
+        std::string line, last;
+        while (std::getline(in, line))
+            if (!line.empty()) last = line;
+        throw Error(writeFailureMessage("'" + mp4.finalPath() + "'", mp4.path(),
+                                        "ffmpeg could not encode it: " + run.why + (last.empty() ? "" : "; " + last)));
+    }
     mp4.commit();
 }
 
@@ -128,7 +143,7 @@ TimelapseInstants chooseFrames(const TimelapseOptions& o, const Dem& dem) {
 class FrameIndex {
 public:
     explicit FrameIndex(const std::string& dir)
-        : file_((fs::path(dir) / kIndexFile).string(), TemporaryNaming::Hidden), out_(file_.path()) {
+        : file_((fs::path(dir) / kIndexFile).string()), out_(file_.path()) {
         out_ << "frame,time_local,time_utc,sun_azimuth_deg,sun_elevation_deg\n";
     }
     void add(const TimelapseFrame& f) {
@@ -367,6 +382,11 @@ TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const 
 
 void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     if (o.outDir.empty()) throw Error("-o: the output folder path is empty");
+    // One run at a time in a folder: a folder that is there is held from now on (a second run
+    // into it is refused, naming the first), a new one once this run has made it.
+    std::error_code ec;
+    std::optional<FolderLock> lock;
+    if (fs::is_directory(o.outDir, ec)) lock.emplace(o.outDir);
     checkOutputFolder(o.outDir, o.overwrite);
     const std::set<std::string> formats = parseFormats(o.formats);
     checkCreationOptions("GTiff", o.creationOptions);  // before the work, not at the first file
@@ -381,10 +401,14 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
                     "; give --formats tif" + (tiled ? " (or a --memory-limit that fits the DEM in one piece)" : ""));
     const std::vector<RasterTarget> targets = tiled ? tiledTargets(o, request) : std::vector<RasterTarget>{};
     if (tiled) ensureOpenFiles(targets.size());
-    std::error_code ec;
     const bool folderWasThere = fs::exists(o.outDir, ec);
     fs::create_directories(o.outDir, ec);
     if (!fs::is_directory(o.outDir)) throw Error("-o " + o.outDir + ": cannot create the output folder");
+    if (!lock) {
+        // Made since the first check, by this run or another: the rule again under the lock.
+        lock.emplace(o.outDir);
+        checkOutputFolder(o.outDir, o.overwrite);
+    }
     // A run that fails (or is cancelled) before writing anything leaves no empty folder it made.
     struct RemoveMadeEmptyFolder {
         std::string dir;
@@ -396,6 +420,16 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     checkOutputPath((fs::path(o.outDir) / "frame_000.tif").string(), o.dem.path);
     if (o.overwrite) removeEarlierOutputs(o.outDir, isTimelapseOutput);
     notePlan(o.search, dem.geometry().terrain, ctx);
+    // A run stopped by an error or a signal keeps the frames it finished, each whole, and nothing
+    // else: the shared sky term and the fit go with it.
+    struct RemoveSharedOnFailure {
+        fs::path dir;
+        ~RemoveSharedOnFailure() {
+            if (std::uncaught_exceptions() == 0) return;
+            std::error_code e;
+            for (const std::string& name : {kSkyFile, kFitFile}) fs::remove(dir / name, e);
+        }
+    } const removeShared{o.outDir};
 
     const auto start = std::chrono::steady_clock::now();
     if (tiled) {

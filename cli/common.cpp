@@ -306,16 +306,8 @@ void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
     // Before anything touches the folder: a device's folder (/dev) gets no probe file either.
     checkOutputFile(outPath);
     checkNotInput(outPath, inputPath);
-    std::error_code ec;
-    const fs::path parent = fs::absolute(fs::path(outPath)).parent_path();
     // Probe that the folder accepts new files, so a long computation does not end in failure.
-    const fs::path probe = parent / (".demlight-probe-" + std::to_string(::getpid()));
-    if (std::FILE* f = std::fopen(probe.c_str(), "w")) {
-        std::fclose(f);
-        fs::remove(probe, ec);
-    } else {
-        throw Error("cannot write '" + outPath + "': folder '" + parent.string() + "' is not writable");
-    }
+    checkFolderAcceptsFiles(fs::absolute(fs::path(outPath)).parent_path().string(), outPath);
 }
 
 void checkOutputPath(const OutputOptions& out, const std::string& inputPath) {

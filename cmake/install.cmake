@@ -33,5 +33,7 @@ install(FILES ${PROJECT_BINARY_DIR}/demlightConfig.cmake ${PROJECT_BINARY_DIR}/d
               ${PROJECT_SOURCE_DIR}/cmake/demlightDependencies.cmake
         DESTINATION ${DEMLIGHT_INSTALL_CMAKEDIR})
 
-install(TARGETS demlight RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The launcher, the program it runs and the program's picture plugin, in one folder: each finds
+# the next in its own folder.
+install(TARGETS demlight demlight_core_program RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS demlight_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -92,7 +92,7 @@ std::string checkGif(const std::string& path, std::size_t frames) {
 /// when that returns; its Error becomes a failure naming `path`.
 template <class Write>
 void writeThroughTemporary(const std::string& path, Write&& write) {
-    TemporaryFile tmp(path, TemporaryNaming::Hidden);
+    TemporaryFile tmp(path);
     try {
         write(tmp.path());
     } catch (const Error& e) {
@@ -124,6 +124,11 @@ void writeImage(const std::string& path, const Image8& image) {
         if (oiioPlugin().write(tmp.c_str(), ext.c_str(), image.rgba.data(), image.width, image.height, err,
                                sizeof err) != 0)
             throw Error(tmp + ": " + err);
+        // OpenImageIO's GIF writer reports no failed write, and its reader takes a GIF cut short:
+        // the file is walked block by block to its trailer.
+        if (ext == "gif")
+            if (const std::string broken = checkGif(tmp, 1); !broken.empty())
+                throw Error(tmp + ": the GIF written is " + broken);
     });
 }
 
@@ -146,7 +151,7 @@ struct GifWriter::Impl {
 GifWriter::GifWriter(std::string path, int framesPerSecond)
     : path_(std::move(path)), fps_(framesPerSecond), impl_(std::make_unique<Impl>()) {
     checkOutputFile(path_);
-    impl_->tmp.emplace(path_, TemporaryNaming::Hidden);
+    impl_->tmp.emplace(path_);
     char err[512];
     impl_->gif = oiioPlugin().gifOpen(impl_->tmp->path().c_str(), fps_, err, sizeof err);
     if (!impl_->gif) throw Error(path_ + ": " + err);

@@ -9,10 +9,17 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <limits>
+#include <mutex>
+#include <set>
 #include <vector>
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 namespace demlight {
@@ -32,8 +39,9 @@ constexpr off_t kProbeBytes = 64 * 1024;
 
 enum SlotState : int { kFree = 0, kFilling = 1, kLive = 2, kRemoving = 3 };
 
-/// One temporary path. The state moves kFree -> kFilling (a writer claims it and copies the
-/// path) -> kLive -> kFree (committed or removed), or kLive -> kRemoving (removeTemporaryFiles).
+/// One private folder of a temporary file. The state moves kFree -> kFilling (a writer claims it
+/// and makes the folder) -> kLive -> kFree (committed or removed), or kLive -> kRemoving
+/// (removeTemporaryFiles).
 struct Slot {
     std::atomic<int> state{kFree};
     char path[kMaxTemporaryPath];
@@ -45,16 +53,93 @@ static_assert(std::atomic<int>::is_always_lock_free);
 // remove must already sit in static storage.
 Slot gSlots[kMaxTemporaries];
 
-int claimSlot(const std::string& path) {
-    if (path.size() >= kMaxTemporaryPath) return -1;
-    for (std::size_t i = 0; i < kMaxTemporaries; ++i) {
-        int expected = kFree;
-        if (!gSlots[i].state.compare_exchange_strong(expected, kFilling, std::memory_order_acquire)) continue;
-        std::memcpy(gSlots[i].path, path.c_str(), path.size() + 1);
-        gSlots[i].state.store(kLive, std::memory_order_release);
-        return static_cast<int>(i);
+/// Claims a slot and makes the private folder from `templ` (ending in "XXXXXX") inside it, so
+/// that the folder is in the table from the moment it exists. Returns the slot, or -1 with
+/// `folder` made all the same when the table is full or the path too long; throws Error when
+/// mkdtemp fails.
+int makePrivateFolder(const std::string& templ, std::string& folder) {
+    const auto make = [&](char* buffer) {
+        if (::mkdtemp(buffer) == nullptr) {
+            const int err = errno;
+            throw Error("cannot write in folder '" + fs::path(templ).parent_path().string() + "': " + std::strerror(err));
+        }
+        folder = buffer;
+    };
+    if (templ.size() < kMaxTemporaryPath) {
+        for (std::size_t i = 0; i < kMaxTemporaries; ++i) {
+            int expected = kFree;
+            if (!gSlots[i].state.compare_exchange_strong(expected, kFilling, std::memory_order_acquire)) continue;
+            std::memcpy(gSlots[i].path, templ.c_str(), templ.size() + 1);
+            try {
+                make(gSlots[i].path);
+            } catch (...) {
+                gSlots[i].state.store(kFree, std::memory_order_release);
+                throw;
+            }
+            gSlots[i].state.store(kLive, std::memory_order_release);
+            return static_cast<int>(i);
+        }
     }
+    std::vector<char> buffer(templ.begin(), templ.end());
+    buffer.push_back('\0');
+    make(buffer.data());
     return -1;
+}
+
+/// Removes `folder` and the files directly in it (a private folder holds no subfolders) without
+/// following any link: async-signal-safe system calls only.
+void removeFolderSignalSafe(const char* folder) noexcept {
+    const int fd = ::open(folder, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd >= 0) {
+        alignas(8) char buffer[4096];
+        for (;;) {
+            const long n = ::syscall(SYS_getdents64, fd, buffer, sizeof buffer);
+            if (n <= 0) break;
+            for (long at = 0; at < n;) {
+                // struct linux_dirent64: d_ino (8), d_off (8), d_reclen (2), d_type (1), d_name.
+                unsigned short reclen;
+                std::memcpy(&reclen, buffer + at + 16, sizeof reclen);
+                const char* name = buffer + at + 19;
+                if (std::strcmp(name, ".") != 0 && std::strcmp(name, "..") != 0) ::unlinkat(fd, name, 0);
+                at += reclen;
+            }
+        }
+        ::close(fd);
+    }
+    ::rmdir(folder);
+}
+
+/// Whether process `pid` still runs (or runs as another user).
+bool processRuns(long pid) {
+    if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return false;
+    return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+
+/// The pid in a temporary name's ".tmp<pid>" or ".tmp<pid>-XXXXXX" tail, or -1.
+long pidOfTemporary(const std::string& name) {
+    const auto tmp = name.rfind(".tmp");
+    if (tmp == std::string::npos) return -1;
+    std::size_t end = name.size();
+    if (const auto dash = name.find('-', tmp); dash != std::string::npos) {
+        if (name.size() - dash - 1 != 6) return -1;
+        end = dash;
+    }
+    const std::string digits = name.substr(tmp + 4, end - tmp - 4);
+    if (digits.empty() || digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
+        return -1;
+    return std::stol(digits);
+}
+
+/// Removes what a temporary name in `dir` left when its process no longer runs: a private folder
+/// and its files, or an earlier version's temporary file. Only this user's; links are removed,
+/// never followed.
+void removeStaleTemporary(const fs::path& entry) {
+    struct stat st {};
+    if (::lstat(entry.c_str(), &st) != 0 || st.st_uid != ::geteuid()) return;
+    if (processRuns(pidOfTemporary(entry.filename().string()))) return;
+    std::error_code ec;
+    fs::remove_all(entry, ec);  // does not follow links
 }
 
 void releaseSlot(int slot) {
@@ -107,6 +192,27 @@ int probeAppend(int fd) {
     return err;
 }
 
+/// Removes, the first time this process writes into `folder`, the private folders that processes
+/// no longer running left there (SIGKILL leaves them): directories named ".NAME.tmp<pid>-XXXXXX"
+/// and owned by this user. Files of other names, other users' and live processes' are left.
+void removeStaleFoldersOnce(const fs::path& folder) {
+    static std::mutex mutex;
+    static std::set<std::string> scanned;
+    {
+        std::lock_guard lock(mutex);
+        if (!scanned.insert(folder.string()).second) return;
+    }
+    std::error_code ec;
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.starts_with('.') && name.find('-', name.rfind(".tmp")) != std::string::npos && isTemporaryName(name) &&
+            e.is_directory(ec) && !e.is_symlink(ec))
+            stale.push_back(e.path());
+    }
+    for (const auto& p : stale) removeStaleTemporary(p);
+}
+
 }  // namespace
 
 void checkNotInput(const std::string& path, const std::string& inputPath) {
@@ -148,34 +254,71 @@ void checkOutputFolder(const std::string& dir, bool replaceEarlier) {
                                           "files there, or choose a new folder");
 }
 
+bool isTemporaryName(const std::string& name, std::string* finalName) {
+    if (pidOfTemporary(name) < 0) return false;
+    if (finalName) {
+        *finalName = name.substr(0, name.rfind(".tmp"));
+        if (finalName->starts_with('.')) finalName->erase(0, 1);
+    }
+    return true;
+}
+
 void removeEarlierOutputs(const std::string& dir, const std::function<bool(const std::string& name)>& isEarlierOutput) {
-    // A temporary name is the final one, hidden or not, with ".tmp<pid>" after it (TemporaryFile).
-    const auto finalName = [](std::string name) {
-        const auto tmp = name.rfind(".tmp");
-        if (tmp == std::string::npos || tmp + 4 == name.size() ||
-            !std::all_of(name.begin() + static_cast<std::ptrdiff_t>(tmp) + 4, name.end(),
-                         [](unsigned char c) { return std::isdigit(c); }))
-            return name;
-        name.erase(tmp);
-        if (name.starts_with('.')) name.erase(0, 1);
-        return name;
-    };
     std::error_code ec;
-    std::vector<fs::path> earlier;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.is_regular_file(ec) && isEarlierOutput(finalName(e.path().filename().string()))) earlier.push_back(e.path());
+    std::vector<fs::path> earlier, stale;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        std::string finalName;
+        if (isTemporaryName(name, &finalName)) {
+            if (isEarlierOutput(finalName)) stale.push_back(e.path());
+        } else if (e.is_regular_file(ec) && !e.is_symlink(ec) && isEarlierOutput(name)) {
+            earlier.push_back(e.path());
+        }
+    }
+    for (const auto& p : stale) removeStaleTemporary(p);
     for (const auto& p : earlier)
         if (!fs::remove(p, ec) && ec) throw Error("cannot remove '" + p.string() + "' of an earlier run (" + ec.message() + ")");
 }
 
+FolderLock::FolderLock(const std::string& dir) {
+    fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) {
+        const int err = errno;
+        throw Error("cannot write into folder '" + dir + "': " + std::strerror(err));
+    }
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        const int err = errno;
+        ::close(fd_);
+        fd_ = -1;
+        throw Error(err == EWOULDBLOCK ? "folder '" + dir + "' is being written by another demlight run; wait for it to "
+                                                            "end or choose another folder"
+                                       : "cannot lock folder '" + dir + "': " + std::strerror(err));
+    }
+}
+
+FolderLock::~FolderLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+void checkFolderAcceptsFiles(const std::string& folder, const std::string& forOutput) {
+    std::string made;
+    try {
+        const int slot = makePrivateFolder((fs::path(folder) / (".demlight-probe.tmp" + std::to_string(::getpid()) + "-XXXXXX")).string(), made);
+        ::rmdir(made.c_str());
+        releaseSlot(slot);
+    } catch (const Error&) {
+        throw Error("cannot write '" + forOutput + "': folder '" + folder + "' is not writable");
+    }
+}
+
 std::string diagnoseWriteFailure(const std::string& path) {
-    int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    int fd = ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
     std::string probe;
     if (fd < 0) {
         std::error_code ec;
         probe = (fs::absolute(fs::path(path), ec).parent_path() / (".demlight-probe-" + std::to_string(::getpid())))
                     .string();
-        fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+        fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
         if (fd < 0) return errno == ENOSPC || errno == EDQUOT ? describeErrno(errno) : std::string();
     }
     const int err = probeAppend(fd);
@@ -193,20 +336,14 @@ std::string writeFailureMessage(const std::string& subject, const std::string& w
     return message;
 }
 
-TemporaryFile::TemporaryFile(const std::string& finalPath, TemporaryNaming naming) : finalPath_(finalPath) {
+TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
     std::error_code ec;
     const fs::path p = fs::absolute(fs::path(finalPath), ec);
-    std::string name = naming == TemporaryNaming::Hidden ? "." : "";
-    name += p.filename().string();
-    name += ".tmp" + std::to_string(::getpid());
-    path_ = (p.parent_path() / name).string();
-    slot_ = claimSlot(path_);
-}
-
-TemporaryFile::TemporaryFile(const std::string& scratchPath) : path_(scratchPath) {
-    std::error_code ec;
-    path_ = fs::absolute(fs::path(scratchPath), ec).string();
-    slot_ = claimSlot(path_);
+    const std::string name = p.filename().string();
+    removeStaleFoldersOnce(p.parent_path());
+    const std::string prefix = "." + name + ".tmp";
+    slot_ = makePrivateFolder((p.parent_path() / (prefix + std::to_string(::getpid()) + "-XXXXXX")).string(), folder_);
+    path_ = (fs::path(folder_) / name).string();
 }
 
 TemporaryFile::~TemporaryFile() { discard(); }
@@ -220,22 +357,24 @@ void TemporaryFile::commit() {
         throw Error("cannot write '" + finalPath_ + "': rename failed (" + ec.message() + ")");
     }
     done_ = true;
+    fs::remove_all(folder_, ec);  // the writer's scratch files, if it left any
     releaseSlot(slot_);
 }
 
 void TemporaryFile::discard() noexcept {
     if (done_) return;
     done_ = true;
-    ::unlink(path_.c_str());
+    std::error_code ec;
+    fs::remove_all(folder_, ec);
     releaseSlot(slot_);
 }
 
 void removeTemporaryFiles() noexcept {
     for (Slot& s : gSlots) {
         int expected = kLive;
-        // A slot already removing is unlinked again: its file may have been created since.
+        // A slot already removing is removed again: a file may have been created in it since.
         if (s.state.compare_exchange_strong(expected, kRemoving, std::memory_order_acquire) || expected == kRemoving)
-            ::unlink(s.path);
+            removeFolderSignalSafe(s.path);
     }
 }
 

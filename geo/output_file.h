@@ -1,4 +1,4 @@
-// Output files (DESIGN.md §5 "Outputs"): each is written under a temporary name beside its final
+// Output files (docs/outputs.md): each is written under a temporary name beside its final
 // one and renamed into place on success, so a failure or a signal never leaves a partial file
 // under the final name. The temporary names live in a fixed table until they are committed or
 // removed, so that a signal handler can still remove them when the process is ended at once.
@@ -25,9 +25,24 @@ void checkNotInput(const std::string& path, const std::string& inputPath);
 /// `replaceEarlier` too (FieldError "overwrite"), since the files of two runs would mix.
 void checkOutputFolder(const std::string& dir, bool replaceEarlier);
 
+/// An exclusive lock on an output folder for the life of the object (flock(2) on the folder
+/// itself, released when the process ends in any way, SIGKILL included), so that two runs never
+/// write into one folder at once. Throws Error naming the folder when another process holds it
+/// or it cannot be opened.
+class FolderLock {
+public:
+    explicit FolderLock(const std::string& dir);
+    ~FolderLock();
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+private:
+    int fd_ = -1;
+};
+
 /// Removes the regular files in `dir` whose names `isEarlierOutput` accepts, and the temporary
-/// files of such names (".NAME.tmpPID", "NAME.tmpPID"); nothing else. Throws Error naming a
-/// file that cannot be removed.
+/// files and private folders of such names whose process no longer runs (isTemporaryName);
+/// nothing else. Throws Error naming a file that cannot be removed.
 void removeEarlierOutputs(const std::string& dir, const std::function<bool(const std::string& name)>& isEarlierOutput);
 
 /// Why writing `path` failed at the file-system level, when that can be told, e.g. "the disk is
@@ -43,42 +58,54 @@ std::string diagnoseWriteFailure(const std::string& path);
 std::string writeFailureMessage(const std::string& subject, const std::string& writtenPath,
                                 const std::string& reason);
 
-/// How a temporary name is formed from the final one.
-enum class TemporaryNaming {
-    Suffix,  ///< "out.tif.tmp<pid>"
-    Hidden,  ///< ".out.png.tmp<pid>" (not shown by ls)
-};
-
-/// A temporary file beside `finalPath` (same folder, so the rename stays on one file system).
-/// Constructing it reserves the name in the process-wide table; the file itself is created by the
-/// writer. The destructor removes the file unless it was committed.
+/// A temporary file for `finalPath`, written in a private folder beside it and renamed out onto
+/// the final path by commit(). The folder, ".NAME.tmp<pid>-XXXXXX" in the final path's folder,
+/// is made by mkdtemp(3): created exclusively with mode 0700, so no name inside it can have been
+/// planted (a link there would redirect the write), and no other user can look in while it is
+/// written. The file inside has the final name, so writers that choose a format by extension
+/// choose the same one, and their own scratch files (GDAL's COG overviews) land in the folder too.
+/// The file keeps the mode its writer gave it (the umask applies), and the rename stays on one
+/// file system. The destructor removes the folder and everything in it unless committed; a
+/// folder left by a process that no longer runs (SIGKILL) is removed by the next TemporaryFile
+/// for the same final path.
 class TemporaryFile {
 public:
-    TemporaryFile(const std::string& finalPath, TemporaryNaming naming);
-    /// A temporary file at an exact path that is never committed (another writer's scratch file,
-    /// e.g. GDAL's COG overview file): removed at destruction and by removeTemporaryFiles().
-    explicit TemporaryFile(const std::string& scratchPath);
+    /// Throws Error naming the folder when the private folder cannot be made.
+    explicit TemporaryFile(const std::string& finalPath);
     ~TemporaryFile();
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
 
+    /// The file to write: FOLDER/NAME inside the private folder.
     const std::string& path() const { return path_; }
     const std::string& finalPath() const { return finalPath_; }
-    /// Renames the file onto the final path. Throws Error (the temporary file removed) on failure.
+    /// Renames the file onto the final path and removes the private folder. Throws Error (the
+    /// folder removed) on failure.
     void commit();
-    /// Removes the file now (no error if it does not exist).
+    /// Removes the folder and its files now (no error if they do not exist).
     void discard() noexcept;
 
 private:
     std::string finalPath_;
+    std::string folder_;
     std::string path_;
     int slot_ = -1;  ///< its entry in the table, or -1 when the table was full or the path too long
     bool done_ = false;
 };
 
-/// Unlinks every temporary file of this process not committed (again for names being removed: a
-/// writer may have created the file after the first unlink). Async-signal-safe (atomics and unlink() over a fixed table): for a handler that ends the
-/// process at once, and for std::terminate.
+/// Whether `name` is the name of a TemporaryFile's private folder (".NAME.tmp<pid>-XXXXXX"), or
+/// of a temporary file of an earlier demlight ("NAME.tmp<pid>", ".NAME.tmp<pid>"); `finalName`
+/// receives NAME.
+bool isTemporaryName(const std::string& name, std::string* finalName = nullptr);
+
+/// Throws Error unless a new file can be made in `folder` (a probe made and removed exclusively,
+/// so that no planted name there is followed).
+void checkFolderAcceptsFiles(const std::string& folder, const std::string& forOutput);
+
+/// Removes the private folder of every temporary file of this process not committed, and the
+/// files in it (again for folders being removed: a writer may have created a file after the first
+/// pass). Async-signal-safe (atomics, open, getdents64, unlinkat and rmdir over a fixed table):
+/// for a handler that ends the process at once, and for std::terminate.
 void removeTemporaryFiles() noexcept;
 
 }  // namespace demlight

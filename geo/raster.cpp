@@ -599,15 +599,10 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
 
     // Write under a temporary name in the same folder and rename on success, so a failed or
     // interrupted run never leaves a partial file at `path`.
-    TemporaryFile tmp(path, TemporaryNaming::Suffix);
+    TemporaryFile tmp(path);
     const bool direct = options.format == "GTiff";
-    // The COG driver's own scratch files beside its output, when it builds overviews or
-    // reprojects itself (user options).
-    std::optional<TemporaryFile> cogOverviews, cogWarped;
-    if (!direct) {
-        cogOverviews.emplace(tmp.path() + ".ovr.tmp");
-        cogWarped.emplace(tmp.path() + ".warped.tif.tmp");
-    }
+    // (The COG driver's own scratch files, when it builds overviews or reprojects itself, go
+    // beside its output: into the temporary file's private folder, removed with it.)
     WriteProgress progress(options.progress);
     detail::takeGdalError();
 
@@ -764,7 +759,7 @@ void copyRasterWithMetadata(const std::string& source, const std::string& path,
     detail::ensureGdal();
     checkOutputFile(path);
     checkRasterPath(path);
-    TemporaryFile tmp(path, TemporaryNaming::Suffix);
+    TemporaryFile tmp(path);
     const auto fail = [&](const std::string& reason) {
         const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), reason);
         tmp.discard();
@@ -807,9 +802,9 @@ RasterSink::RasterSink(std::string path, std::size_t width, std::size_t height, 
     checkOutputFile(path);
     State& st = *state_;
     if (options.format == "COG") {
-        st.file.emplace(path + ".tmp" + std::to_string(::getpid()) + ".stream.tif");
+        st.file.emplace(path + ".stream.tif");  // never committed: copied to the COG at commit
     } else {
-        st.file.emplace(path, TemporaryNaming::Suffix);
+        st.file.emplace(path);
     }
     st.path = std::move(path);
     st.width = width;

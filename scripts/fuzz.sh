@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:?usage: scripts/fuzz.sh SECONDS}
 jobs=${FUZZ_JOBS:-2}
-targets=(time duration patches cli_args)
+targets=(time duration patches cli_args paths)
 
 scripts/install-deps.sh
 cmake --preset asan >/dev/null

@@ -29,6 +29,21 @@ std::vector<std::uint8_t> rgbOf(const std::uint8_t* rgba, std::size_t width, std
     return rgb;
 }
 
+/// Empty when `path` reads back whole as a `width` x `height` picture, else why not.
+std::string readBackProblem(const char* path, std::size_t width, std::size_t height) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return OIIO::geterror().empty() ? std::string("cannot open it") : OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    if (static_cast<std::size_t>(spec.width) != width || static_cast<std::size_t>(spec.height) != height)
+        return "its size is " + std::to_string(spec.width) + " x " + std::to_string(spec.height);
+    std::vector<std::uint8_t> pixels(width * height * static_cast<std::size_t>(spec.nchannels));
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data())) {
+        const std::string e = in->geterror();
+        return e.empty() ? std::string("its pixels cannot be read") : e;
+    }
+    return {};
+}
+
 struct Gif {
     std::unique_ptr<OIIO::ImageOutput> out;
     OIIO::ImageSpec spec;
@@ -60,6 +75,11 @@ int demlight_oiio_write(const char* path, const char* ext, const std::uint8_t* r
     if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, alpha ? rgba : rgb.data()) ||
         !out->close())
         return failWith(out->geterror(), err, errSize);
+    // Some of OpenImageIO's writers (GIF, through giflib) do not check their writes or fclose: a
+    // file cut short by a full disk or a file size limit is reported as written. Reading the
+    // whole picture back is what tells.
+    const std::string unreadable = readBackProblem(path, width, height);
+    if (!unreadable.empty()) return failWith("the file written is unreadable (" + unreadable + ")", err, errSize);
     return 0;
 }
 
