@@ -1,4 +1,4 @@
-// Output files (DESIGN.md §5 "Outputs"): each is written under a temporary name beside its final
+// Output files (docs/design.md §8): each is written under a temporary name beside its final
 // one and renamed into place on success, so a failure or a signal never leaves a partial file
 // under the final name. The temporary names live in a fixed table until they are committed or
 // removed, so that a signal handler can still remove them when the process is ended at once.
