@@ -20,7 +20,7 @@ IMG_SRC = re.compile(r"<img[^>]*\ssrc=\"([^\"]+)\"", re.I)
 # Text a doc must not hold: outside paths and documents a clone does not have.
 FORBIDDEN = [
     (re.compile(r"\.\./shared\b"), "names ../shared, which a clone of the repository does not have"),
-    (re.compile(r"DESIGN(\.md)?\s*(§|Sec)"), "cites a design brief outside the repository (cite docs/design.md)"),
+    (re.compile(r"[D]ESIGN(\.md)?\s*(§|Sec)"), "cites a design brief outside the repository (cite docs/design.md)"),
     (re.compile(r"\bseed (Eq|0\d\d)"), "cites a seed file (cite the paper and its equation)"),
     (re.compile(r"\b[Ii]ssues? #?\d+"), "names an issue number (say what the thing is)"),
 ]
