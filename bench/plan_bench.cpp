@@ -1,9 +1,9 @@
 // The scene plan's horizon sweep (--quality auto, one thread): time per cell and direction at
 // four azimuths: the median and the minimum thread CPU time of R repeats (on a shared machine the
 // minimum is the steadier figure: interference only adds time). It uses only calls the library has had
-// since before the near field (issue 18), so the same file built in a worktree of an earlier
+// since before the near field, so the same file built in a worktree of an earlier
 // commit times that commit's sweep: run the two builds in alternation and quote the median of
-// the per-round ratios (docs/performance.md, "Against the sweep before issue 18").
+// the per-round ratios (docs/journal.md, "Against the sweep before the near field").
 // Usage: demlight_plan_bench DEM [REPEATS [AZIMUTH]]   (default 9 repeats; one azimuth in degrees
 // instead of the four, e.g. for a profiler)
 #include "geo/dem.h"

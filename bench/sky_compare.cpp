@@ -1,5 +1,5 @@
 // demlight's sky bands side by side with SAGA's Sky View Factor (`saga_cmd ta_lighting 3`,
-// SAGA 8.5) on one DEM crop (issue 4): the accuracy of both against the dense reference of
+// SAGA 8.5) on one DEM crop: the accuracy of both against the dense reference of
 // tests/sky_realdem_test.cpp, and the time of each. scripts/compare_saga.sh crops the DEM, runs
 // and times both command-line tools, then runs this program, whose Markdown output becomes
 // docs/compare/saga.md.

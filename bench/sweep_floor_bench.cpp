@@ -11,9 +11,9 @@
 // skips everything else the library does: serving a cell from two lines between centres, other
 // azimuths (regions, distances per line), range limits, nodata bitmaps, the near field, the
 // combine pass, the angle, allocating the map. The vector kernels step over a vector of nodata
-// only (sea), as the library steps over void blocks; the scalar one tests each cell. So no sweep of the library can be faster than
-// this kernel; the 5 ns target of issue 20 is measured against it (docs/performance.md, "The
-// floor of a hull sweep").
+// only (sea), as the library steps over void blocks; the scalar one tests each cell. So no sweep
+// of the library can be faster than this kernel (docs/performance.md, "The floor of a hull
+// sweep").
 //
 // Kernels: scalar, 64 lines in lock-step with the heights prefetched a few rows ahead (the
 // library's layout); where AVX-512 is compiled in, eight lines a vector with each line's two top

@@ -1,4 +1,4 @@
-// Speed against accuracy (issue 6 part 1, DESIGN §4): every method and parameter set on the same
+// Speed against accuracy (docs/design.md §7): every method and parameter set on the same
 // DEM and the same random sample of non-truncated cells, in one run. For each: time per cell
 // (whole-grid run time / cells, median of repeats, one thread) and error against the reference.
 //
@@ -11,12 +11,12 @@
 //   Whole DEMs (default: the bundled samples): wall time and error of --quality auto against
 //   full for horizon, sun and sky; writes DIR/auto_vs_full.csv and prints a markdown table.
 //
-// References (DESIGN §4), full physics: the ray march (referenceHorizonAt, curvature on,
+// References (docs/design.md §7), full physics: the ray march (referenceHorizonAt, curvature on,
 // refraction 0.13) over the whole crop, i.e. everything the DEM knows; the same reference as
 // DEMLIGHT_EXPECTED_ERROR_DEG and tests/quality_realdem_test.cpp.
 //  - Sun horizon: the reference at the sun azimuth.
-//  - Sun visibility / irradiance: the horizon method (seed Eq. 3, 5-7) on the reference horizons
-//    with the exact normals.
+//  - Sun visibility / irradiance: the horizon method (Hoffman & Mitchell 2001b, Eq. 3, 5-7) on
+//    the reference horizons with the exact normals.
 //  - Sky K: the dense reference (the reference in M azimuths, integrated by referenceSky), as in
 //    tests/sky_realdem_test.cpp.
 // D0 is the scene's default search distance on the crop (defaultMaxDistanceM: relief / tan 2 deg
@@ -66,12 +66,12 @@ constexpr double kSunElevationDeg = 5.0;
 constexpr double kMarginSideFraction = 1.0 / 6.0;
 /// Timed runs use one thread: the figure is cost per core, comparable with GRASS r.horizon.
 constexpr int kThreads = 1;
-/// Palette normals: the seed's table size.
+/// Palette normals: the table size of Hoffman & Mitchell 2001a.
 constexpr std::size_t kPaletteSize = 256;
 /// Palette training: Lloyd iterations on at most this many normals.
 constexpr int kPaletteIterations = 10;
 constexpr std::size_t kPaletteTrainingCells = 50000;
-/// Seed 000: 0x0000 = 0 deg and 0xFFFF = 90 deg.
+/// Hoffman & Mitchell 2001a: 0x0000 = 0 deg and 0xFFFF = 90 deg.
 constexpr double kFixedFullScaleDeg = 90.0;
 constexpr double kFixedMax = 65535.0;
 /// Directions of the 16-bit sky rows (the default of `demlight sky`).
@@ -121,9 +121,9 @@ std::string fmt(const char* f, double a) {
     return b;
 }
 
-/// 16-bit fixed-point horizon storage. Seed 000 maps 0 deg -> 0x0000 and 90 deg -> 0xFFFF (only
-/// the quarter circle: negative horizons are stored as 0); the signed variant spends the same 16
-/// bits on [-90, 90] deg (step 0.0027 deg) so downhill horizons survive.
+/// 16-bit fixed-point horizon storage. Hoffman & Mitchell 2001a map 0 deg -> 0x0000 and 90 deg ->
+/// 0xFFFF (only the quarter circle: negative horizons are stored as 0); the signed variant spends
+/// the same 16 bits on [-90, 90] deg (step 0.0027 deg) so downhill horizons survive.
 enum class FixedRange { Seed0To90, Signed };
 
 std::uint16_t toFixed16(float deg, FixedRange range) {
@@ -169,8 +169,8 @@ std::size_t nearestPaletteEntry(const std::vector<Enu>& table, double e, double 
     return best;
 }
 
-/// Palette normals (seed 000 "palette normal mapping"): the table and one index per cell (255 at
-/// nodata is harmless: nodata cells are never read).
+/// Palette normals (Hoffman & Mitchell 2001a, "palette normal mapping"): the table and one index
+/// per cell (255 at nodata is harmless: nodata cells are never read).
 struct Palette {
     std::vector<Enu> table;
     std::vector<std::uint8_t> index;
@@ -206,8 +206,9 @@ Palette buildPalette(const Normals& normals, std::vector<Enu> table, int iterati
     return p;
 }
 
-/// One frame of palette shading (seed 000): the 256-entry lighting table max(0, N_k . s) and the
-/// per-entry tangent-plane elevation, then per cell a lookup times the disk visibility.
+/// One frame of palette shading (Hoffman & Mitchell 2001a): the 256-entry lighting table
+/// max(0, N_k . s) and the per-entry tangent-plane elevation, then per cell a lookup times the
+/// disk visibility.
 Grid<float> paletteIrradiance(const Palette& pal, const Grid<float>& horizonDeg) {
     const Enu s = directionEnu(kSunAzimuthDeg, kSunElevationDeg);
     std::array<float, kPaletteSize> lambert{}, planeDeg{};
@@ -418,7 +419,8 @@ private:
                     "no curvature or refraction; reference is curved");
         }
 
-        // 16-bit fixed-point horizon storage (seed 000), the seed's range and a signed range.
+        // 16-bit fixed-point horizon storage (Hoffman & Mitchell 2001a), the paper's range and a
+        // signed range.
         for (const FixedRange range : {FixedRange::Seed0To90, FixedRange::Signed}) {
             const bool seed = range == FixedRange::Seed0To90;
             HorizonMap m;
@@ -440,7 +442,8 @@ private:
                         (seed ? " on h>=0; negative horizons stored as 0" : ""));
         }
 
-        // Palette normals (seed 000): 256-entry normal table, per frame one lighting table.
+        // Palette normals (Hoffman & Mitchell 2001a): 256-entry normal table, per frame one
+        // lighting table.
         for (const bool trained : {false, true}) {
             const auto t0 = std::chrono::steady_clock::now();
             const Palette pal = buildPalette(normals_, fibonacciHemisphere(kPaletteSize), trained ? kPaletteIterations : 0);

@@ -1,4 +1,4 @@
-# Speed against accuracy chart for one DEM of demlight_tradeoff_bench's CSV (issue 6).
+# Speed against accuracy chart for one DEM of demlight_tradeoff_bench's CSV.
 # Usage: gnuplot -e "csv='docs/bench/tradeoff.csv'; dem='mount_st_helens_1980_usgs'; out='x.png'" \
 #          bench/tradeoff_chart.gnuplot
 # One panel per error metric: time per cell against error, log-log; every method / parameter set

@@ -72,7 +72,7 @@ struct Dem {
 /// checks the georeferencing, computes per-row metric cell sizes (GeographicLib on the CRS's
 /// ellipsoid for geographic CRSs) and the meridian convergence lattice for projected CRSs.
 /// Nodata is matched on the raw values, and dem.band keeps the raw values and nodata value.
-/// Throws Error on all bad input listed in DESIGN §6 and on invalid `heights`.
+/// Throws Error on all bad input listed in docs/design.md §9 and on invalid `heights`.
 Dem loadDem(const std::string& path, const HeightOptions& heights = {});
 
 /// loadDem of band values held in memory: `values` (raw, NaN or `nodata` for no data) on `ref`

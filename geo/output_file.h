@@ -1,7 +1,8 @@
-// Output files (docs/outputs.md): each is written under a temporary name beside its final
-// one and renamed into place on success, so a failure or a signal never leaves a partial file
-// under the final name. The temporary names live in a fixed table until they are committed or
-// removed, so that a signal handler can still remove them when the process is ended at once.
+// Output files (docs/design.md §8, docs/outputs.md): each is written in a private folder beside
+// its final name and renamed into place on success, so a failure or a signal never leaves a
+// partial file under the final name and no planted link is followed. The private folders live in
+// a fixed table until they are committed or removed, so that a signal handler can still remove
+// them when the process is ended at once.
 #pragma once
 
 #include <functional>

@@ -103,11 +103,11 @@ struct OutputBand {
     Resampling resampling = Resampling::Average;
 };
 
-/// 16-bit fixed-point storage of Float32 bands (the seed's compact horizon maps): a value v is
-/// stored in Int16 as round((v - offset) / scale), clamped to +-kFixedPoint16Max, with the band's
-/// GDAL scale and offset set, so that every reader that applies them (gdalinfo -stats, QGIS,
-/// rasterio's masked and scaled reads) gets v back within scale / 2. NaN (nodata) is stored as
-/// `nodata`, outside the clamped range.
+/// 16-bit fixed-point storage of Float32 bands (the compact horizon maps of Hoffman & Mitchell
+/// 2001a): a value v is stored in Int16 as round((v - offset) / scale), clamped to
+/// +-kFixedPoint16Max, with the band's GDAL scale and offset set, so that every reader that applies
+/// them (gdalinfo -stats, QGIS, rasterio's masked and scaled reads) gets v back within scale / 2.
+/// NaN (nodata) is stored as `nodata`, outside the clamped range.
 struct FixedPoint16 {
     double scale = 1.0;
     double offset = 0.0;

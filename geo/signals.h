@@ -1,4 +1,4 @@
-// How a program that writes outputs ends (DESIGN.md §5 "Outputs"): by a signal, by std::terminate
+// How a program that writes outputs ends (docs/design.md §8): by a signal, by std::terminate
 // or by exit() from inside a library, it leaves no temporary file behind (geo/output_file.h).
 // Process-wide by nature (signal dispositions are), so a program calls it once, from main.
 #pragma once

@@ -3,8 +3,8 @@
 //   NREL/TP-560-34302, revised January 2008. Stated uncertainty ±0.0003° for years −2000..6000.
 // Written from the report's equations and periodic-term tables (section 3, appendix A.2).
 //
-// Conventions (DESIGN.md §1): topocentric, apparent positions; azimuth in degrees clockwise from
-// TRUE north in [0, 360); elevation above the local horizontal; refraction from pressure and
+// Conventions (docs/design.md §3): topocentric, apparent positions; azimuth in degrees clockwise
+// from TRUE north in [0, 360); elevation above the local horizontal; refraction from pressure and
 // temperature with SPA's model.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Time input for demlight: ISO 8601 instants with an explicit offset, or local times in an IANA
 // zone (daylight saving from the system tz database through Howard Hinnant's date/tz). A time
-// with no zone is an error, never silently UTC (DESIGN.md §1).
+// with no zone is an error, never silently UTC (docs/design.md §3).
 //
 // Accepted instant text:  YYYY-MM-DD('T'|' ')HH:MM[:SS[.fraction]][zone]
 // where zone is 'Z', ±HH:MM, ±HHMM or ±HH (at most ±18:00). Fractions are rounded to the
@@ -90,7 +90,7 @@ LocalDay localDay(std::chrono::sys_days date, const TimeZoneSpec& zone);
 LocalDay localDayOf(UtcInstant t, const TimeZoneSpec& zone);
 
 /// The zone of local calendar days given as dates alone. A date has times too (where its day
-/// starts and ends, the clock times in it), so DESIGN.md §1's rule for a time without a zone holds:
+/// starts and ends, the clock times in it), so the rule for a time without a zone holds:
 /// an empty name throws FieldError "zone" instead of meaning UTC. "UTC" names UTC; anything else
 /// is an IANA zone (TimeZoneSpec::iana).
 TimeZoneSpec zoneOfDays(const std::string& tzName);

@@ -1,9 +1,9 @@
-// Ambient aperture (Oat & Sander 2007, "Ambient Aperture Lighting"; seed 002): per cell the
+// Ambient aperture (Oat & Sander 2007, "Ambient Aperture Lighting"): per cell the
 // visible solid angle A_p, the bent normal (normalised mean visible direction) and the radius
 // r_p = arccos(1 - A_p / 2 pi) of the spherical cap of equal area; and the spherical cap-cap
 // intersection used to light the aperture with a cap-shaped source (the sun disk).
 //
-// Visible set: as in the seed, the visibility function integrated over the hemisphere around
+// Visible set: as in Oat & Sander, the visibility function integrated over the hemisphere around
 // the surface NORMAL: directions above the horizon h_i of their sector (same D-sector
 // convention as sky.h) and above the cell's tangent plane (N.v > 0). Flat open ground: A_p =
 // 2 pi sr, r_p = 90 degrees, bent normal = up.
@@ -48,7 +48,7 @@ double capAreaSr(double rRad);
 ///        - cos r2 acos((cos r1 - cos d cos r2) / (sin d sin r2))].
 double capIntersectionAreaSr(double r1Rad, double r2Rad, double dRad);
 
-/// Oat & Sander's cheaper approximation (seed 002, Sec. 3.2):
+/// Oat & Sander's cheaper approximation (Oat & Sander 2007, Sec. 3.2):
 /// capArea(min(r1, r2)) * smoothstep(0, 1, 1 - (d - |r1 - r2|) / (r1 + r2 - |r1 - r2|)).
 /// Same containment/disjoint cases as the exact form, and exact at both ends of the partial
 /// range. Measured error (tests/aperture_test.cpp, radii 0.25..90 degrees, all separations):

@@ -1,7 +1,7 @@
-// Horizon angle in one true azimuth for every cell of a DEM (DESIGN §3, the core kernel), and
-// the brute-force reference it is measured against.
+// Horizon angle in one true azimuth for every cell of a DEM (docs/design.md §6.1, the core kernel),
+// and the brute-force reference it is measured against.
 //
-// Definitions (DESIGN §1–2):
+// Definitions (docs/design.md §3–4):
 //  - The horizon of cell p in azimuth A is the largest elevation angle (degrees above p's local
 //    horizontal plane) of any valid terrain point on the line leaving p in TRUE azimuth A, within
 //    maxDistanceM of p, on a curved earth of effective radius R/(1-k): a point at distance d and
@@ -181,11 +181,11 @@ std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const Ho
 /// Lines step one cell along the major grid axis of the direction and lie one cell apart along
 /// the minor axis; a line sample is linearly interpolated between the two cells bracketing it
 /// (one of them if the other is nodata; both nodata = a gap). Each line is walked from its far end
-/// toward the observer side keeping the upper hull of g(s) = h(s) - s²/(2 R_eff) (DESIGN §2), so
-/// the curved-earth slope is (g_q - g_p)/(s_q - s_p) + s_p/R_eff. A cell is served by the two
-/// lines bracketing it at its major index: each line's hull is queried with the cell's own height
-/// (tangent search starting from the line sample's tangent), and the two tangents (slopes) are
-/// interpolated by the cross-line weight. Distances s accumulate per-row metric step lengths.
+/// toward the observer side keeping the upper hull of g(s) = h(s) - s²/(2 R_eff) (docs/design.md
+/// §4), so the curved-earth slope is (g_q - g_p)/(s_q - s_p) + s_p/R_eff. A cell is served by the
+/// two lines bracketing it at its major index: each line's hull is queried with the cell's own
+/// height (tangent search starting from the line sample's tangent), and the two tangents (slopes)
+/// are interpolated by the cross-line weight. Distances s accumulate per-row metric step lengths.
 ///
 /// maxDistanceM is exact: each line is cut into chunks of maxDistanceM with a fresh hull each, and
 /// a cell also takes the tangent to the previous chunk's hull when its vertex is in range; the

@@ -1,5 +1,5 @@
-// Reference horizon: a brute-force ray march per cell (DESIGN §3), slow and simple, used to
-// measure every fast method. See lighting/horizon.h.
+// Reference horizon: a brute-force ray march per cell (docs/design.md §6.1), slow and simple, used
+// to measure every fast method. See lighting/horizon.h.
 #include "lighting/horizon.h"
 
 #include "src/angles.h"
@@ -82,7 +82,7 @@ public:
             // instead would leave a ray running along the edge with no terrain and no flag.
             const double h = bilinearHeight(t_.heightsM, x, y);
             if (std::isnan(h)) continue;
-            // Elevation on a curved earth: the target sits d²/(2 R_eff) lower (DESIGN §2).
+            // Elevation on a curved earth: the target sits d²/(2 R_eff) lower (docs/design.md §4).
             best = std::max(best, (h - h0 - 0.5 * d * d * invR_) / d);
         }
         out.angleDeg = std::isinf(best) ? static_cast<float>(kNoHorizonDeg)

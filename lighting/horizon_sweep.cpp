@@ -1,5 +1,5 @@
 // Horizon sweep: upper convex hulls along lines parallel to the azimuth (Dozier 1981; Timonen &
-// Westerholm 2010), with the curvature trick of DESIGN §2. See lighting/horizon.h.
+// Westerholm 2010), with the curvature trick of docs/design.md §4. See lighting/horizon.h.
 #include "lighting/horizon.h"
 
 #include "src/angles.h"

@@ -1,4 +1,4 @@
-// Irradiation totals over a period (Wh m-2) by binned sun positions (DESIGN §3 "Irradiance"):
+// Irradiation totals over a period (Wh m-2) by binned sun positions (docs/design.md §6.8):
 // the period's sun positions are put in bins by azimuth sector (the D directions of the sky
 // sweeps) and elevation band, each bin keeping its time and its time-weighted mean sun; every
 // cell then sums, over the bins, the irradiance of lighting/irradiance.h at the bin's mean sun

@@ -2,7 +2,8 @@
 // (lighting/esra.h) lit through demlight's geometry, the sun-disk visibility and Lambert term of
 // the sun frame (lighting/sun_frame.h) and the visible sky from the horizons (lighting/sky.h).
 //
-//   beam      = B0c O max(0, N.s)                              both models (E6 times seed Eq. 3)
+//   beam      = B0c O max(0, N.s)                              both models
+//             (E6 times Hoffman & Mitchell 2001b, Eq. 3)
 //   visible-sky (demlight): the sky and the ground are the two parts of the normal hemisphere,
 //             split by the horizon raised to the horizontal, max(h, 0):
 //     diffuse   = Dhc K0                                       isotropic sky of radiance Dhc / pi

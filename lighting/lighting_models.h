@@ -1,5 +1,5 @@
 // Lighting models that turn per-cell geometry (normals, horizons, apertures, sky factors) into
-// normalised irradiance (irradiance / pi for unit source radiance; DESIGN.md Sec. 1): a flat,
+// normalised irradiance (irradiance / pi for unit source radiance; docs/design.md §3): a flat,
 // unshadowed cell under a unit zenith sun, or under a unit uniform sky, gets 1.0.
 //
 //   horizon          sun visibility from the horizon angle in the sun's azimuth (Hoffman &
@@ -32,7 +32,7 @@ enum class SkyModel { StewartLanger, Hemisphere, None };
 SkyModel parseSkyModel(std::string_view name);
 std::string_view skyModelName(SkyModel model);
 
-// ---- Ambient aperture (Oat & Sander 2007, seed 002 Sec. 3) -----------------------------------
+// ---- Ambient aperture (Oat & Sander 2007, Sec. 3) ---------------------------------------------
 
 /// Sun angular radius (degrees): half of kSunDiameterDeg (lighting/sun.h).
 inline constexpr double kSunRadiusDeg = 0.5 * kSunDiameterDeg;
@@ -60,7 +60,7 @@ struct ApertureLight {
 ///                    intersection while it lies above the tangent plane (pi sin^2 r_l is
 ///                    that integral for the whole disk at normal incidence);
 ///   aperture-smooth: smoothstep area / A_sun * max(0, N . capIntersectionCentroidFast).
-/// Ambient fill: the seed fills the part of the aperture the sun does not cover with sky
+/// Ambient fill: Oat & Sander fill the part of the aperture the sun does not cover with sky
 /// light; we weight it with the exact Lambert integral of a uniform cap that does not cross
 /// the tangent plane, (1/pi) integral_cap N.v d(omega) = sin^2(r_p) N.V_p, so a flat open cell
 /// under a unit sky gets 1 - A_int / A_p ~ 1.
@@ -96,7 +96,7 @@ ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>
                                  const SunField& field, const ApertureLightParams& params,
                                  int threads = 0);
 
-// ---- Hemisphere lighting (Hargreaves 2003, seed 001) -----------------------------------------
+// ---- Hemisphere lighting (Hargreaves 2003) ---------------------------------------------------
 
 /// sky * (1 + N_up) / 2 + ground * (1 - N_up) / 2, normalUp in [-1, 1].
 double hemisphereLight(double normalUp, double skyRadiance, double groundRadiance);

@@ -1,4 +1,4 @@
-// Preview rig; see preview.h. Quilez, "outdoors lighting" (seed 004): lighting equation with
+// Preview rig; see preview.h. Quilez, "Outdoors lighting" (iquilezles.org): lighting equation with
 // key, sky and indirect lights, coloured penumbra, gamma at the end.
 #include "lighting/preview.h"
 

@@ -1,5 +1,5 @@
-// The preview rig: how demlight shows a person a lit DEM (DESIGN §3, after Quilez, "outdoors
-// lighting", seed 004). Three lights in linear space on an albedo of about 0.2:
+// The preview rig: how demlight shows a person a lit DEM (docs/design.md §6.5, after Quilez,
+// "Outdoors lighting"). Three lights in linear space on an albedo of about 0.2:
 //   key    sun · max(0, N·s) · visibility^(1, 1.2, 1.5)   (coloured penumbra; no occlusion)
 //   fill   sky colour · sky light (Lambert-weighted visible sky K, lighting/sky.h)
 //   bounce bounce colour · max(0, N·b) · sky light, b = horizontal direction opposite the sun

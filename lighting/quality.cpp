@@ -83,7 +83,7 @@ double cellAspectRatio(const Terrain& t) {
 /// models azimuth by azimuth (measured there over the horizons the statement covers: worst
 /// median 0.098 deg, at 123.4 deg on Manhattan; worst p99 on the diagonals; on the grid axes
 /// medians of 0.006-0.024 deg; docs/accuracy.md "Surface models"). Pooled over seven azimuths,
-/// as issue 18 measured, every horizon: median 0.030-0.035, p99 2.58-2.63 deg.
+/// as the surface-model targets were set, every horizon: median 0.030-0.035, p99 2.58-2.63 deg.
 constexpr double kSurfaceMedianErrorDeg = 0.15;
 constexpr double kSurfaceP99ErrorDeg = 5.0;
 constexpr const char* kSurfaceErrorSource =

@@ -1,7 +1,7 @@
-// "Model no more than a scene needs" (DESIGN §3): from the scene and an error budget, choose the
-// search distance, curvature, scan-direction tolerance, number of sky directions and sun-position
-// granularity. `auto` spends only what the budget needs; `full` turns every effect on at its
-// finest setting. The plan is recorded in output metadata and printed with --verbose.
+// "Model no more than a scene needs" (docs/design.md §6.11): from the scene and an error budget,
+// choose the search distance, curvature, scan-direction tolerance, number of sky directions and
+// sun-position granularity. `auto` spends only what the budget needs; `full` turns every effect on
+// at its finest setting. The plan is recorded in output metadata and printed with --verbose.
 #pragma once
 
 #include "lighting/horizon.h"

@@ -1,6 +1,6 @@
 // Compact lightmap sequences: a day of frames stored per cell as a low-order polynomial in time
 // (Hoffman & Mitchell's "polynomial texture maps" applied over time rather than light direction;
-// seed 000). Each cell's values v_k at times t_k are fitted in least squares by
+// Hoffman & Mitchell 2001a). Each cell's values v_k at times t_k are fitted in least squares by
 //     v(t) ≈ sum_j c_j P_j(x),   x = 2 (t - t0) / (t1 - t0) - 1 in [-1, 1],
 // with Legendre polynomials P_j, j = 0..degree. Frames stream in one at a time, so only the
 // (degree + 2) accumulators per cell are held, never the sequence.

@@ -252,7 +252,8 @@ double skyKWedge(const EnuVector& normal, double az0Deg, double az1Deg, double h
 
 double skyK(std::span<const float> horizonDeg, const EnuVector& normalIn) {
     const EnuVector normal = detail::unitNormal(normalIn);
-    // Stewart & Langer 1997; seed 003 Eq. 9-12, exact per sector with per-azimuth clamping.
+    // Stewart & Langer 1997 (Hoffman & Mitchell 2001b, Eq. 9-12), exact per sector with per-azimuth
+    // clamping.
     const detail::NormalFrame f = detail::makeNormalFrame(normal);
     // Horizontal tangent plane: every sector integrates to N_up cos^2 max(h, 0) / D; summing
     // the weights before dividing keeps open flat ground at exactly 1.
@@ -267,7 +268,7 @@ double skyK(std::span<const float> horizonDeg, const EnuVector& normalIn) {
 }
 
 double skyFactor(double skyK, double albedo) {
-    // Seed 003 Eq. 8 (Stewart & Langer interreflection approximation).
+    // Hoffman & Mitchell 2001b, Eq. 8 (Stewart & Langer's interreflection approximation).
     const double k = std::clamp(skyK, 0.0, 1.0);
     const double c = std::clamp(albedo, 0.0, 1.0);
     if (!(k > 0.0)) return 0.0;

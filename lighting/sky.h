@@ -1,5 +1,5 @@
 // Sky factors from horizon angles: the sky-view factors GIS users know, the Lambert-weighted
-// visible sky K(p) and the interreflection sky factor f_sky of Hoffman & Mitchell (seed 003,
+// visible sky K(p) and the interreflection sky factor f_sky of Hoffman & Mitchell (2001b,
 // Eq. 8-12, after Stewart & Langer 1997), and sky patches.
 //
 // Sector convention: D horizon angles h_i (degrees, may be negative) are given for the true
@@ -61,8 +61,8 @@ double svfHorizontal(std::span<const float> horizonDeg);
 double skyFraction(std::span<const float> horizonDeg);
 
 /// K(p) = (1/pi) * integral over visible sky within the normal hemisphere of N.v d(omega)
-/// (seed 003 Eq. 9), integrated exactly for a piecewise-constant horizon over D sectors
-/// (generalises Eq. 10-12). `normal` is the cell's unit ENU normal. In [0, 1].
+/// (Hoffman & Mitchell 2001b, Eq. 9), integrated exactly for a piecewise-constant horizon over D
+/// sectors (generalises Eq. 10-12). `normal` is the cell's unit ENU normal. In [0, 1].
 double skyK(std::span<const float> horizonDeg, const EnuVector& normal);
 
 /// Contribution to K of the directions with azimuth in [az0Deg, az1Deg] (az1Deg >= az0Deg,
@@ -71,10 +71,10 @@ double skyK(std::span<const float> horizonDeg, const EnuVector& normal);
 double skyKWedge(const EnuVector& normal, double az0Deg, double az1Deg, double horizonDeg,
                  double bandLowDeg = -90.0, double bandHighDeg = 90.0);
 
-/// Interreflection sky factor f_sky = K / (1 - C (1 - K)) (seed 003 Eq. 8, Stewart & Langer).
-/// albedo C is clamped to [0, 1] and K to [0, 1]. Limits: K = 0 gives 0 for any C (no sky, no
-/// light enters; the C = 1, K = 0 corner is 0/0 and is defined as 0); C = 1 with K > 0 gives 1;
-/// C = 0 gives K. The denominator is >= K, so no division by zero for K > 0.
+/// Interreflection sky factor f_sky = K / (1 - C (1 - K)) (Hoffman & Mitchell 2001b, Eq. 8, after
+/// Stewart & Langer 1997). albedo C is clamped to [0, 1] and K to [0, 1]. Limits: K = 0 gives 0 for
+/// any C (no sky, no light enters; the C = 1, K = 0 corner is 0/0 and is defined as 0); C = 1 with
+/// K > 0 gives 1; C = 0 gives K. The denominator is >= K, so no division by zero for K > 0.
 double skyFactor(double skyK, double albedo);
 
 // ---- Sky patches -----------------------------------------------------------------------------

@@ -30,13 +30,13 @@ double tangentPlaneElevationDeg(const Enu& n, double azimuthDeg) {
 
 double sunVisibility(double horizonDeg, double sunElevationDeg, double sunDiameterDeg) {
     if (std::isnan(horizonDeg)) return std::numeric_limits<double>::quiet_NaN();
-    // Hoffman & Mitchell seed Eq. 5, 6: the disk spans [θmin, θmax].
+    // Hoffman & Mitchell 2001b, Eq. 5, 6: the disk spans [θmin, θmax].
     const double thetaMin = sunElevationDeg - 0.5 * sunDiameterDeg;
     const double thetaMax = sunElevationDeg + 0.5 * sunDiameterDeg;
     if (!(thetaMax > thetaMin)) {
         return horizonDeg < sunElevationDeg ? 1.0 : horizonDeg > sunElevationDeg ? 0.0 : 0.5;
     }
-    // Seed Eq. 7, clamped to [0, 1].
+    // Hoffman & Mitchell 2001b, Eq. 7, clamped to [0, 1].
     return std::clamp((thetaMax - horizonDeg) / (thetaMax - thetaMin), 0.0, 1.0);
 }
 
@@ -68,7 +68,7 @@ SunTerms sunTerms(const Enu& normal, double horizonDeg, const SunAngles& sun, do
     const double o = sunVisibility(std::max(horizonDeg, planeDeg), sun.elevationDeg, sunDiameterDeg);
     const double cosine = (normal.east * sun.sinAzimuth + normal.north * sun.cosAzimuth) * sun.cosElevation +
                           normal.up * sun.sinElevation;
-    // Seed Eq. 3 with Li_sun = 1 (normalised irradiance, DESIGN §1).
+    // Hoffman & Mitchell 2001b, Eq. 3 with Li_sun = 1 (normalised irradiance, docs/design.md §3).
     return {o, o * std::max(0.0, cosine)};
 }
 

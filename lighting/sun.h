@@ -1,5 +1,5 @@
 // Direct sun: visibility of the sun's disk over the horizon and the lit irradiance
-// (Hoffman & Mitchell, seed Eq. 3 and 5–7; DESIGN §3 "Sun").
+// (Hoffman & Mitchell 2001b, Eq. 3 and 5–7; docs/design.md §6.2).
 #pragma once
 
 #include "lighting/horizon.h"
@@ -19,18 +19,19 @@ Enu directionEnu(double azimuthDeg, double elevationDeg);
 /// azimuth `azimuthDeg`: directions below it are behind the surface.
 double tangentPlaneElevationDeg(const Enu& normal, double azimuthDeg);
 
-/// Fraction of the sun's disk above a horizon (seed Eq. 5–7): with θmin/max = θsun ∓ α/2,
-/// O = clamp((θmax - θh) / (θmax - θmin), 0, 1). A disk of zero diameter is a step (0.5 exactly
-/// on the horizon). Angles in degrees; NaN horizon gives NaN.
+/// Fraction of the sun's disk above a horizon (Hoffman & Mitchell 2001b, Eq. 5–7): with θmin/max =
+/// θsun ∓ α/2, O = clamp((θmax - θh) / (θmax - θmin), 0, 1). A disk of zero diameter is a step (0.5
+/// exactly on the horizon). Angles in degrees; NaN horizon gives NaN.
 double sunVisibility(double horizonDeg, double sunElevationDeg, double sunDiameterDeg);
 
-/// Visibility with the horizon clamped to the hemisphere of the normal (seed "effective
-/// horizon"): θh' = max(θh, tangent-plane elevation in the sun's azimuth).
+/// Visibility with the horizon clamped to the hemisphere of the normal (Hoffman & Mitchell's
+/// "effective horizon"): θh' = max(θh, tangent-plane elevation in the sun's azimuth).
 double sunVisibilityClamped(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                             double sunElevationDeg, double sunDiameterDeg);
 
-/// Normalised direct-sun irradiance for a unit-radiance sun (seed Eq. 3; DESIGN §1: a flat,
-/// unshadowed cell under a zenith sun gets 1): O · max(0, N·s) with O from sunVisibilityClamped.
+/// Normalised direct-sun irradiance for a unit-radiance sun (Hoffman & Mitchell 2001b, Eq. 3;
+/// docs/design.md §3: a flat, unshadowed cell under a zenith sun gets 1): O · max(0, N·s) with O
+/// from sunVisibilityClamped.
 double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
                      double sunElevationDeg, double sunDiameterDeg);
 

@@ -17,10 +17,10 @@ namespace {
 constexpr double kLowestShadowElevationDeg = 0.25;
 
 /// sunTerms() along one row, branch-free so the compiler vectorises it: the horizon clamped to
-/// the tangent plane in the sun's azimuth, the visible fraction of the disk (seed Eq. 5-7; a
-/// point sun when !Disk) and the Lambert term. Normals of a height field have N_up > 0
-/// (computeNormals), where sunTerms() takes the same arctangent; NaN horizons (nodata) give
-/// NaN. The pointers do not alias (restrict).
+/// the tangent plane in the sun's azimuth, the visible fraction of the disk (Hoffman & Mitchell
+/// 2001b, Eq. 5-7; a point sun when !Disk) and the Lambert term. Normals of a height field have
+/// N_up > 0 (computeNormals), where sunTerms() takes the same arctangent; NaN horizons (nodata)
+/// give NaN. The pointers do not alias (restrict).
 template <bool Disk>
 void shadeRow(const float* __restrict horizonDeg, const float* __restrict east, const float* __restrict north,
               const float* __restrict up, const detail::SunRowAngles sun, float* __restrict visibility,

@@ -1,4 +1,4 @@
-// Integrals of direct sun over a sequence of instants (DESIGN §3 "Time-lapse and integrals"):
+// Integrals of direct sun over a sequence of instants (docs/design.md §6.6):
 // hours of direct sun, normalised sun irradiation, and the first and last time each cell is lit;
 // and the hours of daylight, from which the sky irradiation follows.
 //
@@ -7,11 +7,11 @@
 // sun's upper limb is below the horizon everywhere (field elevation < kSunDownElevationDeg) are
 // not swept: every valid cell gets visibility 0 there.
 //
-// Sky irradiation: the sky is a uniform sky of unit radiance (DESIGN §1: a flat open cell gets
-// 1) while the sun is up, and dark otherwise. The sky term does not depend on the sun's position,
-// so its integral is the cell's sky term (computed once: K, or f_sky) times the cell's hours of
-// daylight (skyIrradiation). Daylight is SPA's sunrise-to-sunset at the cell, with no terrain:
-// the GEOMETRIC elevation of the sun's centre above kSunriseGeometricElevationDeg. It is
+// Sky irradiation: the sky is a uniform sky of unit radiance (docs/design.md §3: a flat open cell
+// gets 1) while the sun is up, and dark otherwise. The sky term does not depend on the sun's
+// position, so its integral is the cell's sky term (computed once: K, or f_sky) times the cell's
+// hours of daylight (skyIrradiation). Daylight is SPA's sunrise-to-sunset at the cell, with no
+// terrain: the GEOMETRIC elevation of the sun's centre above kSunriseGeometricElevationDeg. It is
 // interpolated linearly between instants and each crossing integrated exactly (geometric, not
 // apparent, elevation: SPA switches refraction on at that elevation, so the apparent elevation
 // jumps by ~0.6 deg there and cannot be interpolated across). Neither the sun's elevation nor
@@ -87,8 +87,8 @@ HorizonStack computeHorizonStack(const Terrain& terrain, std::size_t directions,
 
 /// Sun light at one instant from a stack instead of an exact sweep: each cell's horizon is
 /// interpolated linearly in azimuth between the two directions bracketing its own sun azimuth,
-/// then visibility and irradiance as computeSunFrame (seed Eq. 3, 5-7). All zero (NaN at nodata)
-/// when the sun's upper limb is below the horizon everywhere.
+/// then visibility and irradiance as computeSunFrame (Hoffman & Mitchell 2001b, Eq. 3, 5-7). All
+/// zero (NaN at nodata) when the sun's upper limb is below the horizon everywhere.
 SunLight sunLightFromStack(const Terrain& terrain, const Normals& normals,
                            const HorizonStack& stack, const SunField& field,
                            double sunDiameterDeg, int threads = 0);

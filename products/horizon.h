@@ -34,9 +34,9 @@ struct HorizonResult {
     double maxDistanceM = 0;  ///< the search distance used (infinite = the whole DEM)
 };
 
-/// 16-bit storage of horizon angles (the seed's compact horizon maps, in a signed range so that
-/// downhill horizons survive): -90..90 deg over +-32767, a step of 90 / 32767 = 0.00275 deg, so
-/// a stored angle is within 0.0014 deg of the Float32 one; nodata -32768.
+/// 16-bit storage of horizon angles (the compact horizon maps of Hoffman & Mitchell 2001a, in a
+/// signed range so that downhill horizons survive): -90..90 deg over +-32767, a step of 90 / 32767
+/// = 0.00275 deg, so a stored angle is within 0.0014 deg of the Float32 one; nodata -32768.
 inline FixedPoint16 horizonFixedPoint() { return {90.0 / kFixedPoint16Max, 0.0, FixedPoint16{}.nodata}; }
 
 /// Crops both results to `window` (onWindow).

@@ -1,5 +1,5 @@
-// The combined lightmap at one instant, sun + sky, Float32 linear (Hoffman & Mitchell: lightmap =
-// sun term + sky term, times colour; DESIGN §1 normalisation):
+// The combined lightmap at one instant, sun + sky, Float32 linear (Hoffman & Mitchell 2001b:
+// lightmap = sun term + sky term, times colour; the normalisation of docs/design.md §3):
 //   light   = sunColor · sun term · cloud + skyColor · sky term                   (one band, or R, G, B)
 //   light_c = albedo_c · (sunColor_c · sun term · cloud + skyColor_c · sky term_c)  (colour raster)
 // The sun term is the sun product's irradiance (SunModel), the sky term (SkyModel) f_sky =

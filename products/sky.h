@@ -1,5 +1,5 @@
-// Sky-view factors and skylight (Hoffman & Mitchell with Stewart & Langer, seed Eq. 8-12) from
-// horizons in evenly spaced azimuths; or Hargreaves' hemisphere lighting (no horizons).
+// Sky-view factors and skylight (Hoffman & Mitchell 2001b, Eq. 8-12, after Stewart & Langer 1997)
+// from horizons in evenly spaced azimuths; or Hargreaves' hemisphere lighting (no horizons).
 #pragma once
 
 #include "lighting/lighting_models.h"

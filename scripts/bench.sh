@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# `demlight bench` (issue 6): builds demlight_tradeoff_bench, runs every method and parameter set
-# on the default DEMs and draws the speed-vs-accuracy chart with gnuplot; then times
+# The speed-against-accuracy chart: builds demlight_tradeoff_bench, runs every method and parameter
+# set on the default DEMs and draws the speed-vs-accuracy chart with gnuplot; then times
 # --quality auto against full on the sample DEMs (and the shared ones when present).
 # Usage: scripts/bench.sh [--quick] [--out DIR] [--dem PATH ...]   (default --out docs/bench)
 #   BUILD_DIR=DIR selects the build folder (default build/tradeoff).

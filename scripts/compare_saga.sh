@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# demlight sky against SAGA's Sky View Factor (issue 4), in one run: crops a projected DEM, runs
+# demlight sky against SAGA's Sky View Factor, in one run: crops a projected DEM, runs
 # and times `saga_cmd ta_lighting 3` and `demlight sky` with the same number of directions N and
 # the same search distance, and measures both against the dense reference
 # (bench/sky_compare.cpp). Writes the report (Markdown) to --out.

@@ -14,7 +14,7 @@ namespace demlight {
 
 /// WGS84 mean earth radius (metres); curvature uses R / (1 - k) with refraction coefficient k.
 inline constexpr double kEarthRadiusM = 6371008.8;
-/// Default refraction coefficient k of terrain sight lines (DESIGN §1), for every product.
+/// Default refraction coefficient k of terrain sight lines (docs/design.md §3), for every product.
 inline constexpr double kDefaultRefraction = 0.13;
 
 /// Meridian convergence sampled on a coarse lattice: value (i, j) is gamma at cell
@@ -38,7 +38,7 @@ struct ConvergenceField {
 /// The full grid a terrain was cut from (a tile of a larger DEM): its size, per-row cell sizes
 /// and convergence. Horizon sweeps lay their regions, scan lines and distances on this grid, so a
 /// cut terrain's horizons are the same bits as the full one's on the cells they share
-/// (DESIGN's "a tile computed with its halo gives the same bits as the whole DEM").
+/// (docs/design.md §2: a tile computed with its halo gives the same bits as the whole DEM).
 struct GridFrame {
     std::size_t width = 0, height = 0;
     std::vector<double> cellWidthM, cellHeightM;  ///< one entry per row of the full grid

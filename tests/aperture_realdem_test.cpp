@@ -1,5 +1,5 @@
-// Aperture vs horizon sun visibility over one day on a real DEM (issue 4; DESIGN §3 "Ambient
-// aperture ... Known failure: band-shaped visibility (N-S canyons) that no single cap fits").
+// Aperture vs horizon sun visibility over one day on a real DEM (docs/design.md §6.4: the
+// aperture's known failure is band-shaped visibility, N-S canyons, that no single cap fits).
 //
 // Every 30 minutes of a local day with the sun up at the DEM centre, each valid cell is
 // classified lit (visibility >= 0.5) or in shadow by the horizon model (computeSunFrame, the

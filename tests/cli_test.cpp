@@ -1,5 +1,5 @@
-// End-to-end CLI tests: every bad input of DESIGN §6 gets one clear message naming the problem,
-// a non-zero exit, and leaves no output file behind; good runs produce aligned GeoTIFFs.
+// End-to-end CLI tests: every bad input of docs/design.md §9 gets one clear message naming the
+// problem, a non-zero exit, and leaves no output file behind; good runs produce aligned GeoTIFFs.
 #include "cli_runner.h"
 #include "geo/raster.h"
 

@@ -1,4 +1,4 @@
-// Sweep vs reference horizon on real DEMs (DESIGN §4): median and 99th-percentile absolute
+// Sweep vs reference horizon on real DEMs (docs/design.md §7): median and 99th-percentile absolute
 // horizon error (degrees) and sun-visibility mean absolute error, on cells whose horizon is not
 // truncated by the DEM edge. The reference runs on a fixed pseudo-random subset of cells.
 #include "geo/dem.h"

@@ -185,7 +185,7 @@ Diff compare(const std::vector<double>& exact, const Grid<float>& binned) {
     return e;
 }
 
-// The target of issue 19: within 1 % (MAE relative to the mean) of the per-instant integral at
+// The insolation target: within 1 % (MAE relative to the mean) of the per-instant integral at
 // 10-minute steps, the default step. docs/accuracy.md#insolation-accuracy has the same comparison
 // on St Helens over 8 to 128 sectors; this one is smaller (and with fewer sectors than the
 // default 64, so harder) so that it runs with the suite.

@@ -1,4 +1,4 @@
-// Outputs that survive odd paths, full disks and Ctrl-C (DESIGN.md §5 "Outputs", issue 16):
+// Outputs that survive odd paths, full disks and Ctrl-C (docs/design.md §8):
 //  - a device, a fifo or a directory as an output is refused before any work and stays what it
 //    was (the library's writers refuse it too);
 //  - a write that fails (the file size limit, `ulimit -f`, stands in for a full disk: tests cannot

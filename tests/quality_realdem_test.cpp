@@ -1,4 +1,4 @@
-// --quality auto against full and the full-physics reference on real DEMs (issue 6 part 3).
+// --quality auto against full and the full-physics reference on real DEMs (docs/design.md §6.11).
 //
 // What a plan states (ScenePlan::expectedError, written as DEMLIGHT_EXPECTED_ERROR_DEG): the
 // median and the 99th percentile, over cells and azimuths where both meet terrain, of

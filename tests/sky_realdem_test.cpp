@@ -1,6 +1,6 @@
-// Sky factors and apertures from D sweep directions vs a dense reference on real DEMs (DESIGN §4,
-// issue 4): mean absolute error of every sky and aperture band at D = 4, 8, 16, 32, 64. The time
-// of each D (sweep + accumulation over the whole crop) is measured by bench/sky_bench.cpp.
+// Sky factors and apertures from D sweep directions vs a dense reference on real DEMs
+// (docs/design.md §7): mean absolute error of every sky and aperture band at D = 4, 8, 16, 32, 64.
+// The time of each D (sweep + accumulation over the whole crop) is measured by bench/sky_bench.cpp.
 //
 // Reference per sampled cell: ray-marched horizons (referenceHorizonAt) in kReferenceAzimuths
 // azimuths (j + 0.5) * 360 / M, integrated by referenceSky (midpoint rule in azimuth, exact in

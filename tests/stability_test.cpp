@@ -1,4 +1,4 @@
-// Stability suite (issue 6): probes every method where it is known to fail — grazing and
+// Stability suite (docs/design.md §7): probes every method where it is known to fail — grazing and
 // set suns, strong refraction, azimuth wrap-around, flat ground, cliffs, nodata holes and
 // edges, 78 deg N cells, narrow north-south canyons, thin ridges with few directions, extreme
 // cell sizes, 1x1 and 2x2 DEMs — and checks that outputs stay finite and bounded, monotone

@@ -1,6 +1,7 @@
 // computeSunFrame over a DEM whose sun azimuth varies from cell to cell, by both strategies (one
 // sweep following the azimuth; windowed sweeps at a few azimuths, interpolated per cell), against
-// the reference horizon taken at every sampled cell's own sun azimuth (DESIGN §4), on a real DEM.
+// the reference horizon taken at every sampled cell's own sun azimuth (docs/design.md §7), on a
+// real DEM.
 #include "geo/dem.h"
 #include "lighting/horizon.h"
 #include "lighting/sun.h"

@@ -19,7 +19,7 @@ namespace {
 const Enu kUp{0.0, 0.0, 1.0};
 
 TEST(SunVisibility, FullyVisibleHiddenAndHalfDisk) {
-    // Seed Eq. 5-7 with α = 0.533°.
+    // Hoffman & Mitchell 2001b, Eq. 5-7 with α = 0.533°.
     EXPECT_EQ(sunVisibility(5.0, 10.0, kSunDiameterDeg), 1.0);
     EXPECT_EQ(sunVisibility(15.0, 10.0, kSunDiameterDeg), 0.0);
     EXPECT_DOUBLE_EQ(sunVisibility(10.0, 10.0, kSunDiameterDeg), 0.5);

@@ -135,10 +135,10 @@ Grid<float> daylight(const Terrain& t, SolarSite site, const Day& day) {
     }, 1);
 }
 
-// Sky irradiation on flat open ground = 1 (the sky normalisation, DESIGN §1) integrated over the
-// daytime. The sky term comes from the real sky driver (sweeps + Stewart-Langer f_sky) and the
-// daytime from SPA's own sunrise and sunset routine (A.2, interpolated transit and hour angles),
-// a separate code path from the per-instant positions the integral uses.
+// Sky irradiation on flat open ground = 1 (the sky normalisation, docs/design.md §3) integrated
+// over the daytime. The sky term comes from the real sky driver (sweeps + Stewart-Langer f_sky) and
+// the daytime from SPA's own sunrise and sunset routine (A.2, interpolated transit and hour
+// angles), a separate code path from the per-instant positions the integral uses.
 TEST(SunHours, SkyIrradiationOnFlatOpenGroundIsTheDayLength) {
     const Terrain t = makeUniformTerrain(Grid<float>(16, 16, 100.0f), kCellM);
     const Normals normals = computeNormals(t, 1);

@@ -420,8 +420,8 @@ double quantile(std::vector<double>& v, double q) {
     return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
 }
 
-/// Issue 18's seven azimuths, pooled as it measured them; the two diagonals, whose p99 on one
-/// band is the highest measured, are checked band by band only.
+/// The seven azimuths of the surface-model targets, pooled as they were set; the two diagonals,
+/// whose p99 on one band is the highest measured, are checked band by band only.
 constexpr double kPooledAzimuthsDeg[] = {0.0, 37.0, 90.0, 123.4, 200.0, 250.0, 301.7};
 constexpr double kBandOnlyAzimuthsDeg[] = {45.0, 135.0};
 
@@ -485,7 +485,8 @@ TEST_P(SurfaceModel, HorizonsMeetTheTargetsAgainstTheReference) {
     const DsmStats st = compareWithReference(*dem, p, 1500, plan.expectedError.aboveElevationDeg);
     std::cout << GetParam() << ": " << st.count << " horizons, median " << st.median << " deg, p99 " << st.p99
               << " deg, lit/shaded at a 20 deg sun differ on " << 100 * st.misclassified << " %\n";
-    // Issue 18's targets, over every horizon of the seven azimuths pooled (as it measured them).
+    // The surface-model targets, over every horizon of the seven azimuths pooled (as they were
+    // set).
     EXPECT_LE(st.median, 0.05);
     EXPECT_LE(st.p99, 3.0);
     EXPECT_LE(st.misclassified, 0.01);

@@ -34,7 +34,8 @@ def demlight_executable():
 
 def qgis_process_program():
     # Debian 12's /usr/bin/qgis_process wrapper passes --noversioncheck, which qgis_process 3.22
-    # rejects as an unknown command (QGIS issue 57683); the program it wraps works.
+    # rejects as an unknown command (a known QGIS bug, github.com/qgis/QGIS #57683); the program it
+    # wraps works.
     return shutil.which("qgis_process.bin") or shutil.which("qgis_process")
 
 
