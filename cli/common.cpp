@@ -179,7 +179,9 @@ void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
                     "exceeds --memory-limit")
         ->capture_default_str();
     cmd->add_option("--memory-limit", o.memoryLimitMB,
-                    "Memory (MB) that --tile-size auto sizes tiles for (default: half of this machine's memory)")
+                    "Peak memory (MB) of the whole process that --tile-size auto plans for: the program, the pass "
+                    "over the DEM's heights and each tile must fit; a run that cannot is refused, naming the "
+                    "smallest limit that fits (default: half of this machine's memory)")
         ->check(finiteRange(16, 1e9));
     cmd->add_option("--srcwin", o.srcwin,
                     "Compute only the window XOFF YOFF XSIZE YSIZE (cells, as gdal_translate -srcwin), reading the "

@@ -119,12 +119,17 @@ constexpr std::size_t kConvergenceStepCells = 64;
 /// lattice every 64 cells would be larger (past 65 000 cells a side) gets a coarser one, so that
 /// opening it costs the same whatever size its header declares.
 constexpr std::size_t kMaxConvergenceNodes = std::size_t{1} << 20;
-/// Points per PROJ call when transforming rows of points, and between two calls of the progress
-/// callback.
+/// Points per PROJ call when transforming rows of points (rows per batch of geodesics), and
+/// between two calls of the progress callback.
 constexpr std::size_t kTransformBatch = 4096;
 /// Transforms an opening makes before it reports progress ("opening DEM"): below this it takes
 /// a fraction of a second.
 constexpr std::size_t kReportedTransforms = std::size_t{1} << 18;
+/// Most cells a DEM may have a side: its geometry holds a few numbers per row (cell sizes,
+/// latitude; 40 bytes with the frame's copies) and a pass over its heights at least a row at
+/// once, so a header declaring billions of either would ask for gigabytes before any height is
+/// read. 2^22 cells is 4 000 km at 1 m cells.
+constexpr std::size_t kMaxSideCells = std::size_t{1} << 22;
 /// Latitude offset used to find the true-north direction numerically (degrees).
 constexpr double kNorthProbeDeg = 1e-4;
 
@@ -188,16 +193,16 @@ CrsInfo describeCrs(const std::string& wkt, const std::string& path) {
     return info;
 }
 
-/// Per-row cell sizes of a geographic grid on the CRS's ellipsoid: the arc of the parallel for
-/// the width, the geodesic along the meridian for the height.
-void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_t rows,
+/// Per-row cell sizes of rows [row0, row1) of a geographic grid on the CRS's ellipsoid: the arc
+/// of the parallel for the width, the geodesic along the meridian for the height.
+void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_t row0, std::size_t row1,
                          Terrain& t) {
     const double f = crs.inverseFlattening > 0 ? 1.0 / crs.inverseFlattening : 0.0;
     const GeographicLib::Geodesic geodesic(crs.semiMajorM, f);
     const GeographicLib::Ellipsoid ellipsoid(crs.semiMajorM, f);
     const auto& gt = ref.geoTransform;
     const double dLonRad = gt[1] * M_PI / 180.0;
-    for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t r = row0; r < row1; ++r) {
         const double latTop = gt[3] + static_cast<double>(r) * gt[5];
         const double latBottom = latTop + gt[5];
         const double lat = std::clamp(0.5 * (latTop + latBottom), -90.0, 90.0);
@@ -247,6 +252,10 @@ Dem openDem(const std::string& path, const HeightOptions& heights, const Progres
     dem.band = readRasterHeader(path);
     const std::size_t width = dem.band.width;
     const std::size_t height = dem.band.height;
+    if (width > kMaxSideCells || height > kMaxSideCells)
+        throw Error("'" + path + "' declares " + std::to_string(width) + " x " + std::to_string(height) +
+                    " cells; demlight opens DEMs of at most " + std::to_string(kMaxSideCells) +
+                    " cells a side (cut it with gdal_translate -srcwin)");
     dem.crs = describeCrs(dem.band.ref.crsWkt, path);
 
     dem.heights = heightTransform(dem.band, heights);
@@ -266,7 +275,14 @@ Dem openDem(const std::string& path, const HeightOptions& heights, const Progres
         if (north > 90 + kRoundingDeg || south < -90 - kRoundingDeg)
             throw Error("'" + path + "' reaches latitudes beyond the poles (" + formatValue(south) + " .. " +
                         formatValue(north) + " degrees): check its geotransform (rows must lie within -90 .. 90)");
-        geographicCellSizes(dem.crs, dem.band.ref, height, t);
+        // A geodesic per row, in batches; a caller asked to stop hears of it between them.
+        for (std::size_t r0 = 0; r0 < height; r0 += kTransformBatch) {
+            geographicCellSizes(dem.crs, dem.band.ref, r0, std::min(height, r0 + kTransformBatch), t);
+            if (progress && height >= kReportedTransforms &&
+                !progress(static_cast<double>(std::min(height, r0 + kTransformBatch)) / static_cast<double>(height),
+                          "opening DEM"))
+                throw Cancelled();
+        }
         return dem;
     }
 

@@ -86,7 +86,7 @@ Dem demFromArray(const Grid<float>& values, const GeoReference& ref, std::option
 /// loadDem without reading the heights: the band's header (band.values empty, band.width and
 /// band.height set), CRS, height transform, and the terrain's per-row cell sizes, latitudes and
 /// convergence for the whole grid (terrain.heightsM empty). What a streamed source keeps.
-/// A projected DEM costs one PROJ call per row and two per convergence node (at most
+/// Refuses a DEM of more than 2^22 cells a side. A projected DEM costs one PROJ call per row and two per convergence node (at most
 /// 2^20 nodes, convergenceStepCells); when that is much work `progress` hears of it ("opening
 /// DEM") between batches of points, and stops it (Cancelled) by returning false.
 Dem openDem(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});

@@ -223,7 +223,7 @@ Grid<float> DemSource::heightsM(const CellWindow& w) const {
 std::size_t DemSource::stripRows() const { return stripRowsFor(width()); }
 
 double DemSource::passBytes() const {
-    constexpr double kBytesPerCell = 8;
+    constexpr double kBytesPerCell = 12;
     return static_cast<double>(std::min(stripRows(), height())) * static_cast<double>(width()) * kBytesPerCell;
 }
 

@@ -77,8 +77,8 @@ public:
     Grid<float> heightsM(const CellWindow& w) const;
     /// Rows per strip of a pass over the whole DEM (about 8 Mi cells a strip).
     std::size_t stripRows() const;
-    /// Memory (bytes) the opening pass over the heights holds at once: a strip's raw values
-    /// and heights, 8 bytes a cell (GDAL's blocks of the strip's source included).
+    /// Memory (bytes) the opening pass over the heights holds at once: a strip's raw values,
+    /// heights and the file's decoded blocks, 12 bytes a cell.
     double passBytes() const;
     /// NodeHeights of the whole DEM, read from the rows the nodes lie on (remembered per step:
     /// every instant of a period asks for the same).
