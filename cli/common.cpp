@@ -40,6 +40,13 @@ namespace {
 
 constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
+/// Megabytes as a whole number (rounded up: a limit named must be enough).
+std::string wholeMegabytes(double megabytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f", std::ceil(megabytes));
+    return text;
+}
+
 }  // namespace
 
 void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
@@ -53,7 +60,11 @@ void addOutputOptions(CLI::App* cmd, OutputOptions& o) {
             },
             "{GTiff,COG}");
     cmd->add_option("--co", o.creationOptions,
-                    "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=DEFLATE for readers without ZSTD");
+                    "GDAL creation option KEY=VALUE (also -co; repeatable), e.g. -co COMPRESS=DEFLATE for readers "
+                    "without ZSTD; block sides (BLOCKXSIZE, BLOCKYSIZE, BLOCKSIZE) 1 to " +
+                        std::to_string(kMaxBlockSideCells) + " cells")
+        ->check(CLI::Validator(
+            [](std::string& option) { return blockSizeProblem(option); }, "KEY=VALUE"));
 }
 
 void addDemArgument(CLI::App* cmd, DemOptions& o) {
@@ -168,7 +179,9 @@ void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
                     "exceeds --memory-limit")
         ->capture_default_str();
     cmd->add_option("--memory-limit", o.memoryLimitMB,
-                    "Memory (MB) that --tile-size auto sizes tiles for (default: half of this machine's memory)")
+                    "Peak memory (MB) of the whole process that --tile-size auto plans for: the program, the pass "
+                    "over the DEM's heights and each tile must fit; a run that cannot is refused, naming the "
+                    "smallest limit that fits (default: half of this machine's memory)")
         ->check(finiteRange(16, 1e9));
     cmd->add_option("--srcwin", o.srcwin,
                     "Compute only the window XOFF YOFF XSIZE YSIZE (cells, as gdal_translate -srcwin), reading the "
@@ -191,12 +204,30 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
                         std::to_string(dem.width()) + " x " + std::to_string(dem.height()) + " DEM");
         run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
     }
-    std::size_t tile = 0;
+    TileShape tile;
     const std::size_t halo = haloCellsFor(dem.geometry().terrain, planFor(search, dem.geometry().terrain).maxDistanceM);
     const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
     setRasterCacheBytes(rasterCacheBytes(limit));  // streamed outputs' blocks count in the budget
     if (tiling.tileSize == "auto") {
-        tile = automaticTileCells(run.extent, halo, bytes, tileMemoryBytes(limit));
+        const TilePlan plan = automaticTiles(run.extent, dem.width(), dem.height(), halo, bytes, tileMemoryBytes(limit));
+        // The limit is the process's peak: the opening pass (done by now) and the tiles must
+        // each fit. Holding it being impossible, say which limit would do rather than exceed it.
+        const double openingBytes = kProcessBytes + dem.passBytes();
+        if (plan.shape.cols == 0 || limit < openingBytes) {
+            const std::string need =
+                wholeMegabytes(std::max(openingBytes, memoryBudgetFor(plan.smallestTileBytes)) / 1e6);
+            const std::string given = tiling.memoryLimitMB > 0
+                                          ? "--memory-limit " + CLI::detail::to_string(tiling.memoryLimitMB) + " MB"
+                                          : "the default --memory-limit (half of this machine's memory, " +
+                                                wholeMegabytes(limit / 1e6) + " MB)";
+            throw Error(given + " is less than this command needs on this " + std::to_string(dem.width()) + " x " +
+                        std::to_string(dem.height()) + " DEM: at least " + need +
+                        " MB (the program, its pass over the DEM's heights, GDAL's block cache, and the smallest "
+                        "tile with its halo of " +
+                        std::to_string(halo) + " cells); give --memory-limit " + need +
+                        " or more, or a shorter --max-distance");
+        }
+        tile = plan.shape;
     } else {
         std::size_t used = 0;
         unsigned long long n = 0;
@@ -207,15 +238,15 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
         }
         if (used != tiling.tileSize.size() || n < 16 || n > 1000000)
             throw Error("--tile-size '" + tiling.tileSize + "': expected auto or a whole number of cells from 16 to 1000000");
-        tile = static_cast<std::size_t>(n);
+        tile = {static_cast<std::size_t>(n), static_cast<std::size_t>(n)};
     }
     run.ref = dem.geometry().band.ref;
     run.ref.geoTransform[0] += static_cast<double>(run.extent.col0) * run.ref.geoTransform[1];
     run.ref.geoTransform[3] += static_cast<double>(run.extent.row0) * run.ref.geoTransform[5];
     run.tiles = tilesOf(run.extent, tile);
     if (run.tiles.size() > 1) {
-        note(ctx, "computing in " + std::to_string(run.tiles.size()) + " tiles of up to " + std::to_string(tile) +
-                      " x " + std::to_string(tile) + " cells, each with a halo of " + std::to_string(halo) + " cells");
+        note(ctx, "computing in " + std::to_string(run.tiles.size()) + " tiles of up to " + std::to_string(tile.cols) +
+                      " x " + std::to_string(tile.rows) + " cells, each with a halo of " + std::to_string(halo) + " cells");
         if (halo >= std::max(dem.width(), dem.height()))
             note(ctx, "note: the search reaches across the whole DEM, so every tile reads and sweeps all of it: tiles "
                       "then bound the output's memory only and multiply the time; a --max-distance shorter than the "

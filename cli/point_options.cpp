@@ -1,6 +1,7 @@
 #include "cli/point_options.h"
 
 #include "cli/common.h"
+#include "cli/progress_bar.h"
 #include "src/error.h"
 
 #include <cmath>
@@ -61,7 +62,9 @@ void refuseRasterOptions(const TilingOptions& tiling) {
 
 DemSource openPointDem(const DemOptions& dem, const SearchRequest& search, const CliContext& ctx) {
     if (!search.maxDistanceM) return openDem(dem, ctx);
-    return DemSource::openWithoutHeightPass(dem.path, dem.heights);
+    // No bar for a point query's opening; Ctrl-C still stops it.
+    return DemSource::openWithoutHeightPass(dem.path, dem.heights,
+                                            [](double, const std::string&) { return !cancelRequested(); });
 }
 
 void refusePointCall(const PointOptions& o, const CliContext& ctx) {

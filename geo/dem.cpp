@@ -115,6 +115,21 @@ namespace {
 /// Convergence lattice spacing (cells). Gamma varies smoothly (about dLambda * sin(phi)), so
 /// bilinear interpolation between nodes 64 cells apart is accurate to far below 0.001 deg.
 constexpr std::size_t kConvergenceStepCells = 64;
+/// Most nodes of the convergence lattice (4 MiB of floats, two PROJ calls each): a DEM whose
+/// lattice every 64 cells would be larger (past 65 000 cells a side) gets a coarser one, so that
+/// opening it costs the same whatever size its header declares.
+constexpr std::size_t kMaxConvergenceNodes = std::size_t{1} << 20;
+/// Points per PROJ call when transforming rows of points (rows per batch of geodesics), and
+/// between two calls of the progress callback.
+constexpr std::size_t kTransformBatch = 4096;
+/// Transforms an opening makes before it reports progress ("opening DEM"): below this it takes
+/// a fraction of a second.
+constexpr std::size_t kReportedTransforms = std::size_t{1} << 18;
+/// Most cells a DEM may have a side: its geometry holds a few numbers per row (cell sizes,
+/// latitude; 40 bytes with the frame's copies) and a pass over its heights at least a row at
+/// once, so a header declaring billions of either would ask for gigabytes before any height is
+/// read. 2^22 cells is 4 000 km at 1 m cells.
+constexpr std::size_t kMaxSideCells = std::size_t{1} << 22;
 /// Latitude offset used to find the true-north direction numerically (degrees).
 constexpr double kNorthProbeDeg = 1e-4;
 
@@ -178,16 +193,16 @@ CrsInfo describeCrs(const std::string& wkt, const std::string& path) {
     return info;
 }
 
-/// Per-row cell sizes of a geographic grid on the CRS's ellipsoid: the arc of the parallel for
-/// the width, the geodesic along the meridian for the height.
-void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_t rows,
+/// Per-row cell sizes of rows [row0, row1) of a geographic grid on the CRS's ellipsoid: the arc
+/// of the parallel for the width, the geodesic along the meridian for the height.
+void geographicCellSizes(const CrsInfo& crs, const GeoReference& ref, std::size_t row0, std::size_t row1,
                          Terrain& t) {
     const double f = crs.inverseFlattening > 0 ? 1.0 / crs.inverseFlattening : 0.0;
     const GeographicLib::Geodesic geodesic(crs.semiMajorM, f);
     const GeographicLib::Ellipsoid ellipsoid(crs.semiMajorM, f);
     const auto& gt = ref.geoTransform;
     const double dLonRad = gt[1] * M_PI / 180.0;
-    for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t r = row0; r < row1; ++r) {
         const double latTop = gt[3] + static_cast<double>(r) * gt[5];
         const double latBottom = latTop + gt[5];
         const double lat = std::clamp(0.5 * (latTop + latBottom), -90.0, 90.0);
@@ -224,12 +239,23 @@ std::optional<double> metresPerUnit(const std::string& unit) {
     return std::nullopt;
 }
 
-Dem openDem(const std::string& path, const HeightOptions& heights) {
+std::size_t convergenceStepCells(std::size_t width, std::size_t height) {
+    std::size_t step = kConvergenceStepCells;
+    const auto nodes = [&](std::size_t cells) { return (std::max<std::size_t>(cells, 1) - 1) / step + 2; };
+    while (nodes(width) * nodes(height) > kMaxConvergenceNodes) step *= 2;
+    return step;
+}
+
+Dem openDem(const std::string& path, const HeightOptions& heights, const ProgressFn& progress) {
     checkHeightOptions(heights);
     Dem dem;
     dem.band = readRasterHeader(path);
     const std::size_t width = dem.band.width;
     const std::size_t height = dem.band.height;
+    if (width > kMaxSideCells || height > kMaxSideCells)
+        throw Error("'" + path + "' declares " + std::to_string(width) + " x " + std::to_string(height) +
+                    " cells; demlight opens DEMs of at most " + std::to_string(kMaxSideCells) +
+                    " cells a side (cut it with gdal_translate -srcwin)");
     dem.crs = describeCrs(dem.band.ref.crsWkt, path);
 
     dem.heights = heightTransform(dem.band, heights);
@@ -249,7 +275,14 @@ Dem openDem(const std::string& path, const HeightOptions& heights) {
         if (north > 90 + kRoundingDeg || south < -90 - kRoundingDeg)
             throw Error("'" + path + "' reaches latitudes beyond the poles (" + formatValue(south) + " .. " +
                         formatValue(north) + " degrees): check its geotransform (rows must lie within -90 .. 90)");
-        geographicCellSizes(dem.crs, dem.band.ref, height, t);
+        // A geodesic per row, in batches; a caller asked to stop hears of it between them.
+        for (std::size_t r0 = 0; r0 < height; r0 += kTransformBatch) {
+            geographicCellSizes(dem.crs, dem.band.ref, r0, std::min(height, r0 + kTransformBatch), t);
+            if (progress && height >= kReportedTransforms &&
+                !progress(static_cast<double>(std::min(height, r0 + kTransformBatch)) / static_cast<double>(height),
+                          "opening DEM"))
+                throw Cancelled();
+        }
         return dem;
     }
 
@@ -258,40 +291,78 @@ Dem openDem(const std::string& path, const HeightOptions& heights) {
     std::fill(t.cellHeightM.begin(), t.cellHeightM.end(), -gt[5] * dem.crs.linearUnitM);
     dem.toLatLon = std::make_shared<LatLonTransform>(dem.band.ref.crsWkt);
     auto crs = makeTransforms(dem.band.ref.crsWkt);
-    const auto toLatLon = [&](double col, double row) {
-        double lon = gt[0] + col * gt[1];
-        double lat = gt[3] + row * gt[5];
-        if (!crs->toGeo->Transform(1, &lon, &lat))
-            throw Error("cannot find latitude/longitude of cell (" + std::to_string(col) + ", " +
-                        std::to_string(row) + ") of '" + path + "'");
-        return std::pair(lat, lon);
-    };
-    const double midCol = 0.5 * static_cast<double>(width);
-    for (std::size_t r = 0; r < height; ++r)
-        t.rowLatitudeDeg[r] = toLatLon(midCol, static_cast<double>(r) + 0.5).first;
 
     // Meridian convergence on a coarse lattice: the direction of true north in grid
     // coordinates, found by stepping a little north in latitude and projecting back.
-    const std::size_t step = kConvergenceStepCells;
+    const std::size_t step = convergenceStepCells(width, height);
     const std::size_t ni = (width - 1) / step + 2;
     const std::size_t nj = (height - 1) / step + 2;
+
+    // The work is one PROJ call per row and two per lattice node, in batches; a caller asked
+    // to stop hears of it between batches.
+    const std::size_t work = height + 2 * ni * nj;
+    std::size_t done = 0;
+    const auto advance = [&](std::size_t points) {
+        done += points;
+        if (progress && work >= kReportedTransforms &&
+            !progress(static_cast<double>(done) / static_cast<double>(work), "opening DEM"))
+            throw Cancelled();
+    };
+    std::vector<double> xs, ys;
+    std::vector<int> ok;
+    // Transforms the first n points (xs, ys) in place through `ct`; false, with `failed` its
+    // index, at a point PROJ cannot transform.
+    const auto transform = [&](OGRCoordinateTransformation& ct, std::size_t n, std::size_t& failed) {
+        ok.assign(n, 0);
+        ct.Transform(static_cast<int>(n), xs.data(), ys.data(), nullptr, ok.data());
+        for (failed = 0; failed < n; ++failed)
+            if (!ok[failed]) return false;
+        return true;
+    };
+
+    const double midCol = 0.5 * static_cast<double>(width);
+    for (std::size_t r0 = 0; r0 < height; r0 += kTransformBatch) {
+        const std::size_t n = std::min(kTransformBatch, height - r0);
+        xs.assign(n, gt[0] + midCol * gt[1]);
+        ys.resize(n);
+        for (std::size_t k = 0; k < n; ++k) ys[k] = gt[3] + (static_cast<double>(r0 + k) + 0.5) * gt[5];
+        std::size_t failed = 0;
+        if (!transform(*crs->toGeo, n, failed))
+            throw Error("cannot find latitude/longitude of cell (" + std::to_string(midCol) + ", " +
+                        std::to_string(static_cast<double>(r0 + failed) + 0.5) + ") of '" + path + "'");
+        std::copy_n(ys.begin(), n, t.rowLatitudeDeg.begin() + static_cast<std::ptrdiff_t>(r0));
+        advance(n);
+    }
+
     t.convergence.stepCells = step;
     t.convergence.gammaDeg = Grid<float>(ni, nj);
+    std::vector<double> gridX, gridY;
     for (std::size_t j = 0; j < nj; ++j) {
-        for (std::size_t i = 0; i < ni; ++i) {
-            const double col = static_cast<double>(std::min(i * step, width - 1)) + 0.5;
-            const double row = static_cast<double>(std::min(j * step, height - 1)) + 0.5;
-            const double x = gt[0] + col * gt[1];
-            const double y = gt[3] + row * gt[5];
-            const auto [lat, lon] = toLatLon(col, row);
-            double x2 = lon, y2 = std::min(lat + kNorthProbeDeg, 90.0);
-            if (!crs->fromGeo->Transform(1, &x2, &y2))
-                throw Error("cannot project a point near cell (" + std::to_string(col) + ", " +
+        const double row = static_cast<double>(std::min(j * step, height - 1)) + 0.5;
+        for (std::size_t i0 = 0; i0 < ni; i0 += kTransformBatch) {
+            const std::size_t n = std::min(kTransformBatch, ni - i0);
+            gridX.resize(n), gridY.resize(n), xs.resize(n), ys.resize(n);
+            for (std::size_t k = 0; k < n; ++k) {
+                const double col = static_cast<double>(std::min((i0 + k) * step, width - 1)) + 0.5;
+                gridX[k] = xs[k] = gt[0] + col * gt[1];
+                gridY[k] = ys[k] = gt[3] + row * gt[5];
+            }
+            const auto colOf = [&](std::size_t k) { return static_cast<double>(std::min((i0 + k) * step, width - 1)) + 0.5; };
+            std::size_t failed = 0;
+            if (!transform(*crs->toGeo, n, failed))
+                throw Error("cannot find latitude/longitude of cell (" + std::to_string(colOf(failed)) + ", " +
                             std::to_string(row) + ") of '" + path + "'");
-            // True north points at angle alpha clockwise from grid north; grid north therefore
-            // lies at -alpha clockwise from true north.
-            const double alphaDeg = std::atan2(x2 - x, y2 - y) * 180.0 / M_PI;
-            t.convergence.gammaDeg(i, j) = static_cast<float>(-alphaDeg);
+            for (std::size_t k = 0; k < n; ++k) ys[k] = std::min(ys[k] + kNorthProbeDeg, 90.0);
+            if (!transform(*crs->fromGeo, n, failed))
+                throw Error("cannot project a point near cell (" + std::to_string(colOf(failed)) + ", " +
+                            std::to_string(row) + ") of '" + path + "'");
+            for (std::size_t k = 0; k < n; ++k) {
+                // True north points at angle alpha clockwise from grid north; grid north therefore
+                // lies at -alpha clockwise from true north.
+                const double alphaDeg = std::atan2(xs[k] - gridX[k], ys[k] - gridY[k]) * 180.0 / M_PI;
+                t.convergence.gammaDeg(i0 + k, j) = static_cast<float>(-alphaDeg);
+            }
+            advance(2 * n);
         }
     }
     return dem;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "geo/raster.h"
+#include "src/progress.h"
 #include "src/terrain.h"
 
 #include <memory>
@@ -85,7 +86,15 @@ Dem demFromArray(const Grid<float>& values, const GeoReference& ref, std::option
 /// loadDem without reading the heights: the band's header (band.values empty, band.width and
 /// band.height set), CRS, height transform, and the terrain's per-row cell sizes, latitudes and
 /// convergence for the whole grid (terrain.heightsM empty). What a streamed source keeps.
-Dem openDem(const std::string& path, const HeightOptions& heights = {});
+/// Refuses a DEM of more than 2^22 cells a side. A projected DEM costs one PROJ call per row and two per convergence node (at most
+/// 2^20 nodes, convergenceStepCells); when that is much work `progress` hears of it ("opening
+/// DEM") between batches of points, and stops it (Cancelled) by returning false.
+Dem openDem(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});
+
+/// The spacing (cells) of the convergence lattice of a width x height projected DEM: every 64
+/// cells, or the smallest power-of-two multiple of that which keeps the lattice within 2^20
+/// nodes, so that a header declaring a vast grid costs no more to open than a 65 000-cell one.
+std::size_t convergenceStepCells(std::size_t width, std::size_t height);
 
 /// Raw band values as metres through `tr` (NaN stays NaN; the identity copies the bits); throws
 /// Error naming `path` for a value beyond what a float holds.

@@ -101,7 +101,7 @@ NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
 }
 
 DemSource DemSource::open(const std::string& path, const HeightOptions& heights, const ProgressFn& progress) {
-    Dem dem = openDem(path, heights);
+    Dem dem = openDem(path, heights, progress);
     const std::size_t width = dem.band.width, height = dem.band.height;
     HeightStats stats;
     SteepSteps steps;
@@ -128,8 +128,9 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
     return s;
 }
 
-DemSource DemSource::openWithoutHeightPass(const std::string& path, const HeightOptions& heights) {
-    Dem dem = openDem(path, heights);
+DemSource DemSource::openWithoutHeightPass(const std::string& path, const HeightOptions& heights,
+                                           const ProgressFn& progress) {
+    Dem dem = openDem(path, heights, progress);
     DemSource s;
     s.derived_ = std::make_shared<Derived>();
     const Terrain& t = dem.terrain;
@@ -220,5 +221,10 @@ Grid<float> DemSource::heightsM(const CellWindow& w) const {
 }
 
 std::size_t DemSource::stripRows() const { return stripRowsFor(width()); }
+
+double DemSource::passBytes() const {
+    constexpr double kBytesPerCell = 12;
+    return static_cast<double>(std::min(stripRows(), height())) * static_cast<double>(width()) * kBytesPerCell;
+}
 
 }  // namespace demlight

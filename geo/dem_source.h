@@ -30,15 +30,17 @@ public:
     /// Opens any path GDAL opens (band 1) for windowed reading: its header and geometry
     /// (openDem), then one pass over its heights in strips of rows for their range, valid count
     /// and mean; the file must stay readable while the source is used. Throws what loadDem
-    /// throws (a DEM with no valid cell included). `progress`
-    /// hears of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and
-    /// stops it (Cancelled) by returning false.
+    /// throws (a DEM with no valid cell included). `progress` hears of the opening (openDem) and
+    /// of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and stops
+    /// either (Cancelled) by returning false.
     static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});
     /// Opens the DEM as `open` does but without the pass over its heights, for callers that read
     /// a few small windows with a search distance of their own (point queries given a distance):
     /// the height range is unknown (frame lowM > highM, the relief of a DEM without heights, so
     /// planned search distances are the smallest cell side), and meanHeightM and validCells are 0.
-    static DemSource openWithoutHeightPass(const std::string& path, const HeightOptions& heights = {});
+    /// `progress` hears of the opening (openDem) and may stop it.
+    static DemSource openWithoutHeightPass(const std::string& path, const HeightOptions& heights = {},
+                                           const ProgressFn& progress = {});
     /// A DEM already in memory (tests, bindings).
     explicit DemSource(Dem dem);
 
@@ -75,6 +77,9 @@ public:
     Grid<float> heightsM(const CellWindow& w) const;
     /// Rows per strip of a pass over the whole DEM (about 8 Mi cells a strip).
     std::size_t stripRows() const;
+    /// Memory (bytes) the opening pass over the heights holds at once: a strip's raw values,
+    /// heights and the file's decoded blocks, 12 bytes a cell.
+    double passBytes() const;
     /// NodeHeights of the whole DEM, read from the rows the nodes lie on (remembered per step:
     /// every instant of a period asks for the same).
     NodeHeights nodeHeights(std::size_t stepCells) const;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -204,9 +205,13 @@ std::vector<std::string> creationOptions(const WriteOptions& options, GDALDataTy
 }
 
 /// The user's -co options against the driver's option list (GDALValidateCreationOptions), so a
-/// misspelt key or value is an error instead of a silently different file.
+/// misspelt key or value is an error instead of a silently different file, and block sizes
+/// against what a writer can hold.
 void validateUserCreationOptions(GDALDriver* driver, const WriteOptions& options) {
     if (options.creationOptions.empty()) return;
+    for (const auto& kv : options.creationOptions)
+        if (const std::string problem = blockSizeProblem(kv); !problem.empty())
+            throw Error("invalid creation option for " + options.format + ": " + problem);
     CPLStringList list;
     for (const auto& kv : options.creationOptions) list.AddString(kv.c_str());
     std::string messages;
@@ -743,6 +748,23 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     }
     // A request to stop that comes now finds the file complete: it is kept.
     tmp.commit();
+}
+
+std::string blockSizeProblem(const std::string& option) {
+    const std::size_t eq = option.find('=');
+    if (eq == std::string::npos) return {};
+    const std::string key = option.substr(0, eq), value = option.substr(eq + 1);
+    if (strcasecmp(key.c_str(), "BLOCKXSIZE") != 0 && strcasecmp(key.c_str(), "BLOCKYSIZE") != 0 &&
+        strcasecmp(key.c_str(), "BLOCKSIZE") != 0)
+        return {};
+    const std::string range = "a block side must be a whole number of cells from 1 to " +
+                              std::to_string(kMaxBlockSideCells) + " (a block is held whole in memory)";
+    const bool digits = !value.empty() && value.size() <= 18 &&
+                        std::all_of(value.begin(), value.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+    if (!digits) return "'" + option + "': " + range;
+    const long long side = std::stoll(value);
+    if (side < 1 || side > kMaxBlockSideCells) return "'" + option + "': " + range;
+    return {};
 }
 
 void checkCreationOptions(const std::string& format, const std::vector<std::string>& userOptions) {

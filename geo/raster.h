@@ -147,9 +147,19 @@ void checkRasterPath(const std::string& path);
 /// run streaming gigabytes of output fills whatever its memory budget.
 void setRasterCacheBytes(double bytes);
 
+/// Largest block side (cells) a creation option may set (BLOCKXSIZE, BLOCKYSIZE; COG's
+/// BLOCKSIZE): the writer and GDAL's block cache hold blocks whole, once per compressing thread,
+/// and 4096 x 4096 Float32 cells are 64 MiB.
+inline constexpr long long kMaxBlockSideCells = 4096;
+
+/// Why one user creation option (KEY=VALUE) asks for blocks the writer cannot hold: a block
+/// side (BLOCKXSIZE, BLOCKYSIZE, BLOCKSIZE) that is not a whole number from 1 to
+/// kMaxBlockSideCells. Empty for any other option, and for a block side in range.
+std::string blockSizeProblem(const std::string& option);
+
 /// Checks user creation options (KEY=VALUE) against `format`'s driver ("GTiff" or "COG") as
-/// writeRaster will: a key or value the driver does not list is an Error. For checking them
-/// before a long computation.
+/// writeRaster will: a key or value the driver does not list, or a block size beyond
+/// blockSizeProblem's range, is an Error. For checking them before a long computation.
 void checkCreationOptions(const std::string& format, const std::vector<std::string>& userOptions);
 
 /// Writes bands to `path` atomically: a temporary name in the same folder, renamed on success

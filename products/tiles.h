@@ -11,8 +11,16 @@
 
 namespace demlight {
 
-/// Tiles of at most `tileCells` x `tileCells` covering `extent`, row by row from its north-west
+/// The size of a run's tiles (cells): cols x rows.
+struct TileShape {
+    std::size_t cols = 0, rows = 0;
+    bool operator==(const TileShape&) const = default;
+};
+
+/// Tiles of at most shape.cols x shape.rows covering `extent`, row by row from its north-west
 /// corner (the last column and row of tiles may be narrower).
+std::vector<CellWindow> tilesOf(const CellWindow& extent, TileShape shape);
+/// Square tiles of at most `tileCells` x `tileCells`.
 std::vector<CellWindow> tilesOf(const CellWindow& extent, std::size_t tileCells);
 
 /// A tile's progress as its share of the whole job's: fraction f of tile `index` of `count`
@@ -36,13 +44,31 @@ TileBytes productTileBytes(std::size_t outputBands);
 /// memory of their own (`newBands`: not made from the sums in place) for the tile's cells.
 TileBytes windowProductTileBytes(std::size_t sumBytesPerCell, std::size_t newBands);
 
-/// The tile side for --tile-size auto: the whole extent when extent + halo fits `memoryBytes`
-/// at `bytes` (one piece is fastest), else the largest side s whose tile with its halo fits,
-/// at least 256 cells (a smaller tile re-reads more halo than it computes); then evened out so
-/// that the extent's longer side is cut into tiles of equal size (a thin last tile would read a
-/// whole halo for a few cells).
-std::size_t automaticTileCells(const CellWindow& extent, std::size_t haloCells, const TileBytes& bytes,
-                               double memoryBytes);
+/// Memory (bytes, at `bytes`) of a tile of `shape` on a grid of gridCols x gridRows cells: the
+/// tile and what it reads, the tile grown by haloCells on every side and clipped to the grid (a
+/// halo cannot read past the DEM's edges, so a halo longer than the DEM reads the DEM once).
+double tileBytes(TileShape shape, std::size_t haloCells, std::size_t gridCols, std::size_t gridRows,
+                 const TileBytes& bytes);
+
+/// The tiles --tile-size auto cuts an extent into.
+struct TilePlan {
+    /// The tile size; {0, 0} when not even the smallest tile fits the memory given.
+    TileShape shape;
+    /// Memory (bytes) of the smallest tile the planner would use: what the budget must be at
+    /// least.
+    double smallestTileBytes = 0;
+};
+
+/// Plans --tile-size auto for `extent` (cells of a gridCols x gridRows DEM): one piece when the
+/// extent with its halo fits `memoryBytes` at `bytes` (one piece is fastest); else the tiles
+/// that fit and read the fewest cells in all, halos included, of three kinds: squares, strips
+/// the extent's full width, and strips its full height (a halo that spans the DEM's short side
+/// makes strips along the long side cheaper than squares). Each kind takes the largest tile
+/// that fits, at least 256 cells a side (a smaller tile re-reads more halo than it computes),
+/// evened out so that the extent is cut into tiles of equal size (a thin last tile would read a
+/// whole halo for a few cells). Squares are evened on the extent's longer side.
+TilePlan automaticTiles(const CellWindow& extent, std::size_t gridCols, std::size_t gridRows, std::size_t haloCells,
+                        const TileBytes& bytes, double memoryBytes);
 
 /// GDAL's block cache a run allows itself out of a memory budget of `memoryBytes`: an eighth,
 /// at most 256 MiB.
@@ -55,6 +81,9 @@ inline constexpr double kProcessBytes = 64.0 * (1 << 20);
 /// The memory --tile-size auto sizes tiles for out of a budget of `memoryBytes`: the budget less
 /// the block cache (rasterCacheBytes) and the process (kProcessBytes).
 double tileMemoryBytes(double memoryBytes);
+
+/// The smallest budget (bytes) whose tileMemoryBytes is at least `tileBytes`.
+double memoryBudgetFor(double tileBytes);
 
 /// Half of this machine's physical memory (bytes): --memory-limit's default.
 double defaultMemoryLimitBytes();

@@ -36,12 +36,14 @@ struct PlanCase {
     double limitMB;
 };
 
-/// The plan's memory for a tile of `tile` cells: the read window (tile + 2 halo)^2 at
-/// perReadCell, the tile at perTileCell, plus the block cache and the process.
-double plannedBytes(const PlanCase& c, std::size_t tile) {
-    const double read = static_cast<double>(tile + 2 * c.halo);
-    const double cells = static_cast<double>(tile);
-    return read * read * c.bytes.perReadCell + cells * cells * c.bytes.perTileCell +
+/// The plan's memory for a tile of `shape` on the case's square grid: the read window (the tile
+/// and its halo, clipped to the grid) at perReadCell, the tile at perTileCell, plus the block
+/// cache and the process.
+double plannedBytes(const PlanCase& c, TileShape shape) {
+    const double readCols = static_cast<double>(std::min(shape.cols + 2 * c.halo, c.side));
+    const double readRows = static_cast<double>(std::min(shape.rows + 2 * c.halo, c.side));
+    return readCols * readRows * c.bytes.perReadCell +
+           static_cast<double>(shape.cols) * static_cast<double>(shape.rows) * c.bytes.perTileCell +
            rasterCacheBytes(c.limitMB * 1e6) + kProcessBytes;
 }
 
@@ -60,24 +62,75 @@ TEST(TilePlan, TilesFitTheMemoryLimitAndNoFewerEqualTilesWould) {
     };
     for (const PlanCase& c : cases) {
         const CellWindow extent{0, 0, c.side, c.side};
-        const std::size_t tile = automaticTileCells(extent, c.halo, c.bytes, tileMemoryBytes(c.limitMB * 1e6));
+        const TilePlan plan = automaticTiles(extent, c.side, c.side, c.halo, c.bytes, tileMemoryBytes(c.limitMB * 1e6));
+        const TileShape tile = plan.shape;
         const std::string what = std::to_string(c.side) + "^2, halo " + std::to_string(c.halo) + ", " +
-                                 std::to_string(c.limitMB) + " MB: tile " + std::to_string(tile);
-        ASSERT_GT(tile, 0u) << what;
-        ASSERT_LT(tile, c.side) << what << " (the case is meant to need tiles)";
+                                 std::to_string(c.limitMB) + " MB: tile " + std::to_string(tile.cols) + " x " +
+                                 std::to_string(tile.rows);
+        ASSERT_GT(tile.cols, 0u) << what;
+        ASSERT_GT(tile.rows, 0u) << what;
+        ASSERT_LT(tile.cols * tile.rows, c.side * c.side) << what << " (the case is meant to need tiles)";
         EXPECT_LE(plannedBytes(c, tile), c.limitMB * 1e6) << what;
-        // Equal tiles: the extent is cut into `count` tiles of (nearly) the same size.
-        const std::size_t count = (c.side + tile - 1) / tile;
-        EXPECT_GT(c.side - (count - 1) * tile + count, tile) << what << ": a thin last tile";
-        // One tile fewer, of equal size, would not fit.
-        const std::size_t fewer = (c.side + count - 2) / (count - 1);
-        EXPECT_GT(plannedBytes(c, fewer), c.limitMB * 1e6) << what << ": " << count - 1 << " tiles of " << fewer;
+        EXPECT_LE(plan.smallestTileBytes, plannedBytes(c, tile)) << what;
+        // Equal tiles along each cut axis: no thin last tile (it would read a whole halo for a
+        // few cells), and one tile fewer, of equal size, would not fit.
+        for (const bool alongCols : {true, false}) {
+            const std::size_t size = alongCols ? tile.cols : tile.rows;
+            if (size == c.side) continue;
+            const std::size_t count = (c.side + size - 1) / size;
+            EXPECT_GT(c.side - (count - 1) * size + count, size) << what << ": a thin last tile";
+            const std::size_t fewer = (c.side + count - 2) / (count - 1);
+            TileShape bigger = tile;
+            (alongCols ? bigger.cols : bigger.rows) = fewer;
+            if (tile.cols == tile.rows) bigger = {fewer, fewer};  // squares grow on both axes
+            EXPECT_GT(plannedBytes(c, bigger), c.limitMB * 1e6) << what << ": " << count - 1 << " tiles of " << fewer;
+        }
     }
 }
 
 TEST(TilePlan, AWholeExtentThatFitsIsOnePiece) {
     const CellWindow extent{0, 0, 1000, 800};
-    EXPECT_EQ(automaticTileCells(extent, 100, skyTileBytes(SkyRequest{}), tileMemoryBytes(4000e6)), 1000u);
+    const TilePlan plan = automaticTiles(extent, 1000, 800, 100, skyTileBytes(SkyRequest{}), tileMemoryBytes(4000e6));
+    EXPECT_EQ(plan.shape, (TileShape{1000, 800}));
+}
+
+// A halo cannot read past the DEM: on a 100 000 x 1 DEM whose search reaches across it, a tile
+// reads the whole DEM, so the whole DEM in one piece holds no more (it was 391 tiles of 256
+// cells, each reading and sweeping all 100 000).
+TEST(TilePlan, ALongThinDemWhoseHaloSpansItIsOnePiece) {
+    for (const TileBytes& bytes : {productTileBytes(2), skyTileBytes(SkyRequest{})}) {
+        const TilePlan plan = automaticTiles({0, 0, 100000, 1}, 100000, 1, 100000, bytes, tileMemoryBytes(200e6));
+        EXPECT_EQ(plan.shape, (TileShape{100000, 1}));
+    }
+}
+
+// A thin DEM too large for one piece is cut across its length only: strips its full height,
+// whose halo reaches the DEM's edges on the short side anyway.
+TEST(TilePlan, AThinDemTooLargeForOnePieceIsCutAcrossItsLength) {
+    const CellWindow extent{0, 0, 100000, 300};
+    const TileBytes bytes = productTileBytes(2);
+    const double memory = tileMemoryBytes(1000e6);
+    const TilePlan plan = automaticTiles(extent, 100000, 300, 2000, bytes, memory);
+    EXPECT_EQ(plan.shape.rows, 300u);
+    ASSERT_GT(plan.shape.cols, 0u);
+    EXPECT_LT(plan.shape.cols, 100000u);
+    EXPECT_LE(tileBytes(plan.shape, 2000, 100000, 300, bytes), memory);
+    // The read window of a strip: its columns and halo by the DEM's 300 rows.
+    EXPECT_DOUBLE_EQ(tileBytes(plan.shape, 2000, 100000, 300, bytes),
+                     static_cast<double>(plan.shape.cols + 4000) * 300 * bytes.perReadCell);
+    const std::vector<CellWindow> tiles = tilesOf(extent, plan.shape);
+    EXPECT_EQ(tiles.size(), (100000 + plan.shape.cols - 1) / plan.shape.cols);
+}
+
+// When not even the smallest tile fits, the plan says so and what the smallest tile needs.
+TEST(TilePlan, NoTileFittingIsReportedWithWhatTheSmallestNeeds) {
+    const TileBytes bytes = productTileBytes(2);
+    const TilePlan plan = automaticTiles({0, 0, 2400, 2400}, 2400, 2400, 200, bytes, tileMemoryBytes(100e6));
+    EXPECT_EQ(plan.shape, (TileShape{0, 0}));
+    // The smallest tile: 256 cells a side with its halo, 656^2 cells read.
+    EXPECT_DOUBLE_EQ(plan.smallestTileBytes, 656.0 * 656.0 * bytes.perReadCell);
+    EXPECT_GE(tileMemoryBytes(memoryBudgetFor(plan.smallestTileBytes)), plan.smallestTileBytes * (1 - 1e-12));
+    EXPECT_LT(tileMemoryBytes(memoryBudgetFor(plan.smallestTileBytes) - 1e6), plan.smallestTileBytes);
 }
 
 // ---- A run, measured --------------------------------------------------------------------------
@@ -86,9 +139,9 @@ const char* const kUtm10Wkt =
     R"(PROJCS["WGS 84 / UTM zone 10N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",-123],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1],AUTHORITY["EPSG","32610"]])";
 
 /// Runs the demlight binary with `args` (no shell, so the child is the process measured) and
-/// returns its peak resident set (bytes), or -1 when it did not exit 0; its stderr goes to
-/// `errPath`.
-double peakRssOfRun(const std::vector<std::string>& args, const std::string& errPath) {
+/// returns its peak resident set (bytes), or -1 when it did not exit 0 (its exit status in
+/// `exitCode` when given); its stderr goes to `errPath`.
+double peakRssOfRun(const std::vector<std::string>& args, const std::string& errPath, int* exitCode = nullptr) {
     std::vector<char*> argv;
     std::string program = DEMLIGHT_CLI_PATH;
     argv.push_back(program.data());
@@ -106,6 +159,7 @@ double peakRssOfRun(const std::vector<std::string>& args, const std::string& err
     int status = 0;
     struct rusage usage {};
     if (::wait4(pid, &status, 0, &usage) != pid) return -1;
+    if (exitCode) *exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1;
     return static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux reports kilobytes
 }
@@ -167,6 +221,38 @@ TEST_F(MeasuredMemory, SkyAndSunInTilesStayUnderTheMemoryLimit) {
         ASSERT_GT(peak, 0) << args[0] << " failed: " << err;
         EXPECT_NE(err.find("tiles of up to"), std::string::npos) << args[0] << " ran in one piece: " << err;
         EXPECT_LE(peak, kLimitMB * 1e6) << args[0] << " peaked at " << peak / 1e6 << " MB";
+    }
+}
+
+// A limit below what the run needs is refused, naming the smallest that works; that one is
+// held (the whole process's peak, the pass over the DEM's heights included), in tiles. Before,
+// 16 MB ran anyway and peaked at several times that.
+TEST_F(MeasuredMemory, ALimitTooSmallIsRefusedNamingOneThatIsHeld) {
+    const std::vector<std::vector<std::string>> runs = {
+        {"sky", path("dem.tif"), "--max-distance", "2000", "--sky-directions", "4", "-o", path("sky.tif")},
+        {"sun", path("dem.tif"), "--time", "2024-06-21T15:30:00Z", "--max-distance", "2000", "-o", path("sun.tif")},
+    };
+    for (const auto& run : runs) {
+        std::vector<std::string> args = run;
+        args.insert(args.end(), {"--memory-limit", "16"});
+        int exitCode = 0;
+        peakRssOfRun(args, path("err.txt"), &exitCode);
+        const std::string err = readText(path("err.txt"));
+        EXPECT_EQ(exitCode, 1) << run[0] << ": " << err;
+        const std::string give = "give --memory-limit ";
+        const std::size_t at = err.find(give);
+        ASSERT_NE(at, std::string::npos) << run[0] << ": " << err;
+        EXPECT_NE(err.find("2400 x 2400 DEM"), std::string::npos) << err;
+        const double needMB = std::atof(err.c_str() + at + give.size());
+        ASSERT_GT(needMB, 16) << err;
+        EXPECT_LT(needMB, kLimitMB) << err;  // the smallest tile, not the one piece
+        args = run;
+        args.insert(args.end(), {"--memory-limit", std::to_string(static_cast<int>(needMB))});
+        const double peak = peakRssOfRun(args, path("err.txt"));
+        const std::string err2 = readText(path("err.txt"));
+        ASSERT_GT(peak, 0) << run[0] << " at the limit it named, " << needMB << " MB: " << err2;
+        EXPECT_NE(err2.find("tiles of up to"), std::string::npos) << run[0] << " ran in one piece: " << err2;
+        EXPECT_LE(peak, needMB * 1e6) << run[0] << " peaked at " << peak / 1e6 << " MB under --memory-limit " << needMB;
     }
 }
 
