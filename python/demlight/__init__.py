@@ -21,7 +21,46 @@ import json as _json
 import numbers as _numbers
 import textwrap as _textwrap
 
-from . import _demlight
+
+def _module_mismatch(error):
+    """Why the module _demlight did not import, in words: a module built for another Python
+    fails as a 'partially initialized module (circular import)', which names neither."""
+    import pathlib
+    import re
+    import sys
+    import sysconfig
+
+    here = pathlib.Path(__file__).resolve().parent
+    this = "Python %d.%d" % sys.version_info[:2]
+    built = sorted(p.name for p in here.glob("_demlight.*") if p.suffix in (".so", ".pyd"))
+    wanted = "_demlight" + (sysconfig.get_config_var("EXT_SUFFIX") or "")
+    if wanted in built:  # built for this Python, but it did not load (a missing library, ...)
+        return "demlight's module %s did not load: %s" % (here / wanted, error)
+    rebuild = ("build it for this one: `%s -m pip install .` in demlight's source tree (docs/python.md)"
+               % (sys.executable or "python3"))
+    if not built:
+        return "demlight's module _demlight is not in %s (%s); %s" % (here, error, rebuild)
+    versions = []
+    for name in built:
+        m = re.search(r"\.cpython-3(\d+)", name)
+        versions.append("Python 3.%s (%s)" % (m.group(1), name) if m else name)
+    return "demlight's module in %s was built for %s, and this is %s (%s): %s" % (
+        here, " and ".join(versions), this, sys.executable, rebuild)
+
+
+try:
+    from . import _demlight
+except ImportError as _error:
+    raise ImportError(_module_mismatch(_error)) from None
+
+try:
+    import numpy as _numpy  # bands are numpy arrays, and arrays are DEMs
+except ImportError as _error:
+    import sys as _sys
+
+    raise ImportError("demlight needs numpy, which this Python (%s, %s) cannot import: install it "
+                      "(`%s -m pip install numpy`, or Debian's python3-numpy for /usr/bin/python3)"
+                      % (_sys.executable, _sys.version.split()[0], _sys.executable)) from None
 
 __version__ = _demlight.version
 __all__ = ["Error", "Cancelled", "Dem", "Result", "open", "from_array", "COMMANDS"]
@@ -86,20 +125,80 @@ def open(path, z_unit=None, z_factor=None, progress=None):  # noqa: A001 (as ras
     return Dem(_demlight.open(str(path), z_unit or "", float(z_factor or 0), progress))
 
 
-def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None, z_factor=None):
+def from_array(heights, transform=None, crs=None, nodata=None, name=None, z_unit=None, z_factor=None):
     """A DEM from a 2-D numpy array of heights (rows, columns), as a file holding them reads.
 
-    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0); crs: WKT, a
-    definition GDAL reads such as "EPSG:32610", an EPSG code (32610) or a pyproj/rasterio CRS; nodata: the value marking no data (NaN always
-    does); name: how outputs' DEMLIGHT_INPUT and messages name it. The values are converted to
-    Float32, as demlight reads every DEM.
+    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0), or an
+    affine.Affine (rasterio's, rioxarray's rio.transform()); crs: WKT, a definition GDAL reads
+    such as "EPSG:32610", an EPSG code (32610) or a pyproj/rasterio CRS; nodata: the value
+    marking no data (NaN always does); name: how outputs' DEMLIGHT_INPUT and messages name it
+    (default "<array>"). The values are converted to Float32, as demlight reads every DEM.
+
+    heights may also be an xarray.DataArray with rioxarray's georeference (rioxarray.open_rasterio,
+    one band): its transform, CRS, nodata and unit ('units', as z_unit) are used, those given
+    here take precedence, and name defaults to the file it was read from.
     """
+    if _is_data_array(heights):
+        heights, transform, crs, nodata, name, z_unit = _from_data_array(heights, transform, crs, nodata, name,
+                                                                         z_unit, z_factor)
+    if transform is None or crs is None:
+        raise Error("a numpy array needs transform= (GDAL geotransform or affine.Affine) and crs=")
     if isinstance(crs, _numbers.Integral) and not isinstance(crs, bool):
         crs = "EPSG:%d" % crs  # a bare EPSG code, as rasterio and pyproj take it
     elif hasattr(crs, "to_wkt"):
         crs = crs.to_wkt()  # a pyproj or rasterio CRS object
-    return Dem(_demlight.from_array(heights, [float(v) for v in transform], str(crs), nodata, name,
+    return Dem(_demlight.from_array(heights, _gdal_transform(transform), str(crs), nodata, name or "<array>",
                                     z_unit or "", float(z_factor or 0)))
+
+
+def _gdal_transform(transform):
+    """GDAL's 6 numbers of a geotransform given as those numbers or as an affine.Affine, whose
+    own order (a, b, c, d, e, f, and 0, 0, 1: 9 numbers) is not GDAL's."""
+    if hasattr(transform, "to_gdal"):
+        transform = transform.to_gdal()
+    return [float(v) for v in transform]
+
+
+def _is_data_array(obj):
+    return type(obj).__name__ == "DataArray" and type(obj).__module__.split(".")[0] == "xarray"
+
+
+def _from_data_array(da, transform, crs, nodata, name, z_unit, z_factor):
+    """heights, transform, crs, nodata, name and z_unit of a DataArray DEM (rioxarray's
+    georeference; the arguments given take precedence)."""
+    if da.ndim == 3 and da.shape[0] == 1:  # open_rasterio's (band, y, x) of a one-band raster
+        da = da[0]
+    if da.ndim != 2:
+        raise Error("a DataArray DEM: expected (y, x) or one band, got dimensions %s" % (da.dims,))
+    scale, offset = da.attrs.get("scale_factor", 1.0), da.attrs.get("add_offset", 0.0)
+    if scale != 1 or offset != 0:
+        raise Error("a DataArray DEM with scale_factor %r and add_offset %r not applied: open it with "
+                    "rioxarray.open_rasterio(path, mask_and_scale=True)" % (scale, offset))
+    if transform is None or crs is None:
+        try:
+            import rioxarray  # noqa: F401 (registers .rio)
+        except ImportError:
+            raise Error("a DataArray DEM: its georeference is read with rioxarray (python3-rioxarray), "
+                        "which is not installed; give transform= and crs=") from None
+        if transform is None:
+            transform = da.rio.transform()
+        if crs is None:
+            crs = da.rio.crs
+            if crs is None:
+                raise Error("a DataArray DEM without a CRS: give crs= or set one with da.rio.write_crs(...)")
+    if nodata is None:
+        try:
+            import rioxarray  # noqa: F401
+            value = da.rio.nodata  # NaN when the cells hold NaN for it (masked=True): NaN is nodata
+        except ImportError:
+            value = da.attrs.get("_FillValue")
+        if value is not None and value == value:
+            nodata = float(value)
+    if name is None:
+        name = da.encoding.get("source")
+    if z_unit is None and z_factor is None and da.attrs.get("units"):
+        z_unit = str(da.attrs["units"])  # the band's vertical unit, as opening the file reads it
+    return _numpy.asarray(da.values), transform, crs, nodata, name, z_unit
 
 
 def _creation_options(options):
@@ -108,8 +207,8 @@ def _creation_options(options):
 
 
 def _as_dem(dem, transform, crs, nodata, options):
-    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array, with
-    the options that apply when a DEM is opened (z_unit, z_factor)."""
+    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array or a
+    DataArray, with the options that apply when a DEM is opened (z_unit, z_factor)."""
     opening = {k: options.pop(k) for k in _OPEN_KEYWORDS if k in options}
     if isinstance(dem, Dem):
         if opening:
@@ -122,8 +221,8 @@ def _as_dem(dem, transform, crs, nodata, options):
         if transform is not None or crs is not None:
             raise Error("transform and crs are for numpy arrays; a file has its own")
         return open(dem, **opening)
-    if transform is None or crs is None:
-        raise Error("a numpy array needs transform= (GDAL geotransform) and crs=")
+    if not _is_data_array(dem) and (transform is None or crs is None):
+        raise Error("a numpy array needs transform= (GDAL geotransform or affine.Affine) and crs=")
     return from_array(dem, transform, crs, nodata=nodata, **opening)
 
 
@@ -143,10 +242,10 @@ def _option_text(name, value):
 def _arguments(command, dem_label, options):
     """The command line of `command` with these keyword options (None = the option's default)."""
     spec = _options(command)
-    args = [command, dem_label, "-o", "python-result.tif"]
+    args = [command, dem_label, "-o", "python-result.tif"] if dem_label else [command]
     for name, value in options.items():
         if name not in spec:
-            raise Error("demlight.%s: unknown option '%s' (options: %s)" % (command, name, ", ".join(sorted(spec))))
+            raise _unknown_keyword(command, name, spec)
         if value is None:
             continue
         flag = "--" + name.replace("_", "-")
@@ -161,6 +260,43 @@ def _arguments(command, dem_label, options):
         else:
             args.append("%s=%s" % (flag, _option_text(name, value)))
     return args
+
+
+def _unknown_keyword(command, name, known):
+    """The TypeError Python raises for an unexpected keyword, with the nearest known name."""
+    import difflib
+
+    close = difflib.get_close_matches(name, sorted(known), n=1)
+    hint = " (did you mean %s?)" % close[0] if close else ""
+    return TypeError("demlight.%s() got an unexpected keyword argument '%s'%s; its keywords: %s"
+                     % (command, name, hint, ", ".join(sorted(set(known)))))
+
+
+def _output_format(command, value):
+    """`value` spelt as the command's output format choice it names in any case ('cog' is
+    'COG'); anything else as given, for the writer to refuse."""
+    for o in _command_options(command):
+        if "of" in o["names"]:
+            for choice in o["choices"]:
+                if str(value).lower() == choice.lower():
+                    return choice
+    return str(value)
+
+
+# The command line's output flags, as the keywords of Result.write and demlight.dask.run.
+_OUTPUT_FLAGS = (("-o", None), ("--output", None), ("--of", "format"), ("-of", "format"),
+                 ("--co", "creation_options"), ("-co", "creation_options"))
+
+
+def _output_error(error, path_keyword):
+    """`error` (a demlight.Error of writing) with the output flags its message names spelt as
+    keywords: 'choose another -o' is 'choose another path'."""
+    import re
+
+    text = str(error)
+    for flag, keyword in _OUTPUT_FLAGS:
+        text = re.sub(r"(^|[\s'\"(])%s(?![\w-])" % re.escape(flag), lambda m: m.group(1) + (keyword or path_keyword), text)
+    return type(error)(text)
 
 
 def _command_line(command, dem, options):
@@ -212,16 +348,27 @@ class Result:
     def write(self, path, format="GTiff", creation_options=()):  # noqa: A002 (the command line's name)
         """Writes the result as `demlight <command> ... -o path` does and returns the paths written.
 
-        format: "GTiff" (tiled, ZSTD) or "COG"; creation_options: GDAL KEY=VALUE items (-co).
+        format: "GTiff" (tiled, ZSTD) or "COG", in any case; creation_options: GDAL KEY=VALUE items (-co).
         Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
         DEMLIGHT_COMMAND records the Python call.
         """
-        return self._call.write(self.rasters, str(path), format, _creation_options(creation_options),
-                                _command_line(self.command, self._dem, self._options), self._dem._dem.path)
+        try:
+            return self._call.write(self.rasters, str(path), _output_format(self.command, format),
+                                    _creation_options(creation_options),
+                                    _command_line(self.command, self._dem, self._options), self._dem._dem.path)
+        except Error as e:
+            raise _output_error(e, "path") from None
 
     def to_xarray(self):
-        """The bands as an xarray.Dataset on x/y cell-centre coordinates; with rioxarray
-        installed, the CRS, transform and nodata are attached (ds.rio)."""
+        """The bands as an xarray.Dataset on x/y cell-centre coordinates, each variable's unit
+        in attrs["units"]; with rioxarray installed, the CRS, transform and nodata are attached
+        (ds.rio), so ds.rio.to_raster(path) writes every band into one GeoTIFF, and
+        ds[band].rio.to_raster(path) one band.
+
+        A GeoTIFF has one nodata value for all its bands, so the bands of the rasters that
+        Result.write puts in files of their own (horizon's uint8 truncation masks) are float32
+        here, NaN at their nodata cells (0 and 1 elsewhere), encoded with the first raster's
+        nodata value as its own bands are; r.bands keeps them uint8."""
         import numpy as np
         import xarray as xr
 
@@ -233,6 +380,8 @@ class Result:
         variables = {}
         for raster in self.rasters:
             for name, values in raster.bands.items():
+                if values.dtype.kind != "f":
+                    values = np.where(values == raster.nodata, np.float32(np.nan), values.astype(np.float32))
                 attrs = {"units": raster.units[name]}
                 variables[name] = xr.DataArray(values, dims=("y", "x"), coords={"y": y, "x": x}, attrs=attrs)
         ds = xr.Dataset(variables, attrs=self.metadata)
@@ -242,18 +391,16 @@ class Result:
         except ImportError:
             ds.attrs["crs_wkt"] = self.crs
             ds.attrs["transform"] = tuple(gt)
-            for raster in self.rasters:
-                for name in raster.bands:
-                    ds[name].attrs["nodata"] = raster.nodata
+            for name in ds.data_vars:
+                ds[name].attrs["nodata"] = self.nodata
             return ds
         ds = ds.rio.write_crs(self.crs)
         ds = ds.rio.write_transform(Affine.from_gdal(*gt))
         # The cells hold NaN where the file holds the nodata value: the value is the encoding
         # (rio.encoded_nodata; rio.nodata is NaN), so rio.to_raster writes it where NaN is, as
         # Result.write does.
-        for raster in self.rasters:
-            for name in raster.bands:
-                ds[name] = ds[name].rio.write_nodata(raster.nodata, encoded=True)
+        for name in ds.data_vars:
+            ds[name] = ds[name].rio.write_nodata(self.nodata, encoded=True)
         return ds
 
     def __repr__(self):
@@ -273,6 +420,7 @@ def _command_options(command):
                      "type": o["type_name"],
                      "flag": o["flag"],
                      "expected": o["max_values"],
+                     "choices": o["choices"],
                      "required": o["required"]} for o in c["options"]]
     raise Error("no command '%s'" % command)
 
