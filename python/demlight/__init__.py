@@ -77,7 +77,8 @@ COMMANDS = tuple(_demlight.raster_commands())
 # takes the path, format and creation options; it writes Float32), the
 # notes of a terminal, and the DEM argument.
 # Point queries (at, at_xy, point_format) print values; the module returns rasters.
-_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format"}
+_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format",
+                 "json"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 
@@ -189,7 +190,9 @@ def _from_data_array(da, transform, crs, nodata, name, z_unit, z_factor):
     if nodata is None:
         try:
             import rioxarray  # noqa: F401
-            value = da.rio.nodata  # NaN when the cells hold NaN for it (masked=True): NaN is nodata
+            value = da.rio.nodata
+            if value is not None and value != value:  # masked=True: NaN cells for the file's value,
+                value = da.rio.encoded_nodata         # which outputs carry as a file's DEM's do
         except ImportError:
             value = da.attrs.get("_FillValue")
         if value is not None and value == value:
@@ -448,6 +451,57 @@ def _run(command, dem, transform=None, crs=None, nodata=None, progress=None, **o
     return Result(command, rasters, call, opened, {k: v for k, v in options.items() if k not in _OPEN_KEYWORDS})
 
 
+#: Each command's bands with their units (Result.units) under its default options, and what
+#: options change; tests/python checks the table against the products.
+BANDS = {
+    "horizon": ([("horizon_azimuth=<deg>", "deg"),
+                 ("truncated_azimuth=<deg>", "")],
+                "One horizon elevation band per azimuth (degrees above the horizontal), and one uint8 "
+                "truncation mask per azimuth: 1 where the "
+                "search reached the DEM edge before max_distance, 0 elsewhere, 255 at DEM voids "
+                "(Result.write puts the masks in OUT.truncated.tif)."),
+    "sun": ([("sun_visibility", "fraction of sun disk (0-1)"),
+             ("sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)")],
+            "model='aperture' or 'aperture-smooth': the same bands, sun_visibility the fraction of "
+            "the sun cap inside the aperture cap (0-1)."),
+    "sky": ([("svf_horizontal", "fraction (cosine-weighted, horizontal plane)"),
+             ("sky_fraction", "fraction of the upper hemisphere"),
+             ("sky_K", "normalised irradiance from a unit-radiance sky"),
+             ("sky_factor", "normalised irradiance with interreflection")],
+            "Other model values write other bands (docs/commands.md, sky)."),
+    "aperture": ([("bent_normal_east", "unit vector component (ENU)"),
+                  ("bent_normal_north", "unit vector component (ENU)"),
+                  ("bent_normal_up", "unit vector component (ENU)"),
+                  ("aperture_radius_deg", "deg"),
+                  ("visible_solid_angle_sr", "sr")], ""),
+    "light": ([("light", "normalised irradiance (1 = unit zenith sun, or unit sky, on open flat ground)")],
+              "sun_color or sky_color: light_r, light_g, light_b; color_raster: reflected_r, "
+              "reflected_g, reflected_b (docs/commands.md, light)."),
+    "irradiance": ([("beam", "W m-2"), ("diffuse", "W m-2"), ("reflected", "W m-2"), ("global", "W m-2")], ""),
+    "insolation": ([("beam", "kWh m-2"), ("diffuse", "kWh m-2"), ("reflected", "kWh m-2"), ("global", "kWh m-2"),
+                    ("sun_hours", "hours")], ""),
+    "sunhours": ([("sun_hours", "hours of direct sun weighted by visibility (h)"),
+                  ("sun_irradiation", "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)"),
+                  ("sky_irradiation", "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the "
+                                      "cell (1 h of unit sky on open flat ground = 1)"),
+                  ("first_lit", "local clock hours (<tz>) when half the sun first shows; -1 = never"),
+                  ("last_lit", "local clock hours (<tz>) when half the sun last shows; -1 = never")], ""),
+}
+
+
+def _bands_doc(command):
+    if command not in BANDS:
+        return []
+    bands, note = BANDS[command]
+    lines = ["Bands (Result.bands, in this order; Result.units holds each unit):"]
+    for name, unit in bands:
+        lines += _textwrap.wrap("%s: %s" % (name, unit or "mask, see below"), 92, initial_indent="    ",
+                                subsequent_indent="        ")
+    if note:
+        lines += _textwrap.wrap(note, 92, initial_indent="    ", subsequent_indent="    ")
+    return lines + [""]
+
+
 _TYPES = {"FLOAT": float, "UINT": int, "INT": int, "NUMBER": float}
 
 
@@ -468,9 +522,10 @@ def _docstring(command):
         "",
         "demlight.%s(dem, *, transform=None, crs=None, nodata=None, progress=None, **options) -> Result" % command,
         "",
-        "dem: a demlight.Dem (demlight.open, demlight.from_array), a path GDAL opens, or a 2-D",
-        "numpy array of heights in metres with transform= (GDAL geotransform), crs= (WKT or",
-        "'EPSG:n') and nodata=. progress: callback(fraction, stage), called from the work's",
+        "dem: a demlight.Dem (demlight.open, demlight.from_array), a path GDAL opens, a 2-D",
+        "numpy array of heights in metres with transform= (GDAL geotransform or affine.Affine),",
+        "crs= (WKT, 'EPSG:n', n or a CRS object) and nodata=, or an xarray.DataArray with",
+        "rioxarray's georeference. progress: callback(fraction, stage), called from the work's",
         "threads with the GIL held; returning False raises demlight.Cancelled. Ctrl-C stops the",
         "work (KeyboardInterrupt). The GIL is released while demlight computes.",
         "",
@@ -479,7 +534,7 @@ def _docstring(command):
         "tz=, or timezone-aware datetime objects; days: 'YYYY-MM-DD' or datetime.date; steps:",
         "'10m', '90s' or datetime.timedelta. Lists (azimuth, srcwin) as Python sequences.",
         "",
-    ]
+    ] + _bands_doc(command)
     seen = set()
     for o in _command_options(command):
         if o["positional"]:
@@ -533,4 +588,49 @@ for _command in COMMANDS:
     globals()[_command] = _make_command(_command)
     __all__.append(_command)
 del _command
+
+
+def sunpos(time, lat, lon, **options):
+    return _json.loads(_demlight.sunpos_json(_arguments("sunpos", None, dict(time=time, lat=lat, lon=lon, **options))))
+
+
+def _sunpos_signature():
+    params, seen = [], set()
+    for o in _command_options("sunpos"):
+        keyword = o["names"][0].replace("-", "_") if o["names"] else None
+        if not keyword or keyword in _NOT_KEYWORDS or keyword in seen:
+            continue
+        seen.add(keyword)
+        if o["required"]:
+            params.append(_inspect.Parameter(keyword, _inspect.Parameter.POSITIONAL_OR_KEYWORD))
+        else:
+            params.append(_inspect.Parameter(keyword, _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
+    return _inspect.Signature(sorted(params, key=lambda p: p.kind))
+
+
+def _sunpos_doc():
+    lines = ["%s (demlight sunpos)." % _demlight.command_description("sunpos"), "",
+             "demlight.sunpos%s -> dict" % _sunpos_signature(), ""]
+    for o in _command_options("sunpos"):
+        keyword = o["names"][0].replace("-", "_") if o["names"] else None
+        if not keyword or keyword in _NOT_KEYWORDS:
+            continue
+        head = keyword + (", required" if o["required"] else "") + (", default %s" % o["default"] if o["default"] else "")
+        lines.append(head)
+        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
+                                subsequent_indent="    ")
+    lines += ["", "time also as a timezone-aware datetime. Returns what `demlight sunpos --json` prints, as a dict:",
+              "utc, local, zone (the instant and its zone); latitude_deg, longitude_deg, elevation_m,",
+              "pressure_hpa, temperature_c (the site); zenith_deg and elevation_deg (topocentric,",
+              "refracted), azimuth_deg (clockwise from true north), geometric_elevation_deg,",
+              "refraction_deg, declination_deg, equation_of_time_min, delta_t_s and delta_t_source;",
+              "day (the local day), sunrise, transit, sunset (ISO 8601 on the zone's clocks, whole",
+              "seconds; sunrise and sunset None on a polar day or night), polar ('day', 'night' or",
+              "None). Raises demlight.Error with the command's message (options named as keywords)."]
+    return "\n".join(lines)
+
+
+sunpos.__signature__ = _sunpos_signature()
+sunpos.__doc__ = _sunpos_doc()
+__all__ += ["sunpos", "BANDS"]
 
