@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
   nlohmann-json3-dev libdeflate-dev libtiff-dev libzstd-dev tzdata gnuplot-nox ffmpeg python3 help2man
   pybind11-dev python3-dev python3-numpy python3-dask python3-distributed python3-rioxarray python3-pytest
+  python3-venv python3-pip
   clang libclang-rt-dev
   qgis python3-qgis
 )

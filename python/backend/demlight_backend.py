@@ -14,7 +14,7 @@ Where it builds:
   interpreter with this one's headers and module suffix (scripts/build.sh makes it so for
   /usr/bin/python3, and a venv made from it qualifies): the set-up's build is the wheel's, and
   nothing is compiled again;
-- otherwise in `build/python/<tag>-<digest>` (one folder per interpreter installation, which
+- otherwise in `build/python-<tag>-<digest>` (one folder per interpreter installation, which
   its virtual environments share), configured on first use.
 Config setting `native=OFF` builds for any x86-64 CPU rather than this machine's (the CMake
 option DEMLIGHT_NATIVE, on by default as in every build of the project).
@@ -178,12 +178,16 @@ def _build_dir(config_settings):
         return release
     installation = "%s\n%s" % (_include_dir(), os.path.realpath(sys.base_prefix))
     digest = hashlib.sha256(installation.encode()).hexdigest()[:10]
-    return SOURCE / "build" / "python" / ("%s-%s" % (_tag(), digest))
+    # Beside build/release, at the same depth: with ccache's base directory the source tree,
+    # the compile commands are the same and the set-up's objects are reused.
+    return SOURCE / "build" / ("python-%s-%s" % (_tag(), digest))
 
 
 def _run(command):
     print("demlight_backend: " + " ".join(command), file=sys.stderr, flush=True)
-    if subprocess.run(command, stdout=sys.stderr).returncode != 0:
+    env = dict(os.environ)
+    env.setdefault("CCACHE_BASEDIR", str(SOURCE))  # compile commands relative to the tree (ccache)
+    if subprocess.run(command, stdout=sys.stderr, env=env).returncode != 0:
         raise BuildError("failed: " + " ".join(command))
 
 
