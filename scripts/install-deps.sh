@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages demlight needs, only those that are missing (clang and its
 # runtime libraries: the asan preset and the libFuzzer targets; help2man: the man page; ffmpeg:
 # timelapse --formats mp4 and its tests; qgis,
-# python3-qgis and python3-pytest: the QGIS provider's tests, qgis/tests).
+# python3-qgis and python3-pytest: the QGIS provider's tests, qgis/tests; python3-venv and
+# python3-pip: the tests that pip-install demlight into fresh virtual environments).
 # Runs apt-get as root, or through sudo when not root.
 set -euo pipefail
 
