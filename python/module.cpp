@@ -2,7 +2,8 @@
 // files or made from numpy arrays; a raster command's keyword options parsed by the command
 // line's own parser (cli/) into a product call, so names, defaults, checks and messages are the
 // command's; results as numpy views; the command line's writers (one piece, or window by window
-// for demlight.dask). Work runs without the GIL; progress callbacks take it back.
+// for demlight.dask); `sunpos --json` run as the command. Work runs without the GIL; progress
+// callbacks take it back.
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "geo/dem.h"

@@ -8,10 +8,12 @@
 
 One function per raster command of the command line (horizon, sun, sky, aperture, light,
 irradiance, insolation, sunhours), taking a DEM (from demlight.open or demlight.from_array), a
-path, or a numpy array with transform= and crs=, and the command's options as keyword arguments:
-the same names (underscores for dashes), defaults, units and checks, parsed by the command
-line's own parser. Errors raise demlight.Error with the library's message. Full documentation:
-docs/python.md.
+path, a numpy array with transform= (GDAL's 6 numbers or an affine.Affine) and crs=, or a
+rioxarray DataArray, and the command's options as keyword arguments: the same names
+(underscores for dashes), defaults, units and checks, parsed by the command line's own parser.
+demlight.sunpos(time, lat, lon, ...) is `demlight sunpos --json` as a dict. Errors raise
+demlight.Error with the library's message; an unknown keyword raises TypeError. Full
+documentation: docs/python.md.
 """
 
 import datetime as _datetime
