@@ -2,7 +2,8 @@
 // files or made from numpy arrays; a raster command's keyword options parsed by the command
 // line's own parser (cli/) into a product call, so names, defaults, checks and messages are the
 // command's; results as numpy views; the command line's writers (one piece, or window by window
-// for demlight.dask). Work runs without the GIL; progress callbacks take it back.
+// for demlight.dask); `sunpos --json` run as the command. Work runs without the GIL; progress
+// callbacks take it back.
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "geo/dem.h"
@@ -16,9 +17,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -428,6 +431,32 @@ std::string optionsJson() {
     return cli::optionsJson(app, ctx);
 }
 
+/// What `demlight sunpos ... --json` prints for these arguments ([sunpos, options...]): the
+/// command itself, parsed and run by the command line's parser, its standard output captured.
+std::string sunposJson(std::vector<std::string> arguments) {
+    if (arguments.empty() || arguments.front() != "sunpos") throw Error("sunpos: expected its arguments");
+    arguments.push_back("--json");
+    cli::CliContext ctx;
+    ctx.quiet = true;
+    CLI::App app;
+    cli::registerCommands(app, ctx);
+    std::ostringstream captured;
+    struct Restore {
+        std::streambuf* saved;
+        ~Restore() { std::cout.rdbuf(saved); }
+    } restore{std::cout.rdbuf(captured.rdbuf())};
+    try {
+        app.parse(cli::parserArguments(arguments));
+    } catch (const CLI::ParseError& e) {
+        throw Error(keywordsForFlags(e.what()));
+    } catch (const FieldError& e) {
+        throw Error(fieldMessage(e));
+    } catch (const Error& e) {
+        throw Error(keywordsForFlags(e.what()));
+    }
+    return captured.str();
+}
+
 std::vector<std::string> rasterCommands() {
     cli::CliContext ctx;
     std::vector<std::string> out;
@@ -543,6 +572,7 @@ PYBIND11_MODULE(_demlight, m) {
     m.def("parse", &parseCall, py::arg("arguments"));
     m.def("keywords_for_flags", &keywordsForFlags, py::arg("text"));
     m.def("options_json", &optionsJson);
+    m.def("sunpos_json", &sunposJson, py::arg("arguments"));
     m.def("command_description", &commandDescription, py::arg("command"));
     m.def("raster_commands", &rasterCommands);
     m.def("tiles", [](const std::vector<std::size_t>& extent, std::size_t cells) {

@@ -8,10 +8,12 @@
 
 One function per raster command of the command line (horizon, sun, sky, aperture, light,
 irradiance, insolation, sunhours), taking a DEM (from demlight.open or demlight.from_array), a
-path, or a numpy array with transform= and crs=, and the command's options as keyword arguments:
-the same names (underscores for dashes), defaults, units and checks, parsed by the command
-line's own parser. Errors raise demlight.Error with the library's message. Full documentation:
-docs/python.md.
+path, a numpy array with transform= (GDAL's 6 numbers or an affine.Affine) and crs=, or a
+rioxarray DataArray, and the command's options as keyword arguments: the same names
+(underscores for dashes), defaults, units and checks, parsed by the command line's own parser.
+demlight.sunpos(time, lat, lon, ...) is `demlight sunpos --json` as a dict. Errors raise
+demlight.Error with the library's message; an unknown keyword raises TypeError. Full
+documentation: docs/python.md.
 """
 
 import datetime as _datetime
@@ -21,7 +23,46 @@ import json as _json
 import numbers as _numbers
 import textwrap as _textwrap
 
-from . import _demlight
+
+def _module_mismatch(error):
+    """Why the module _demlight did not import, in words: a module built for another Python
+    fails as a 'partially initialized module (circular import)', which names neither."""
+    import pathlib
+    import re
+    import sys
+    import sysconfig
+
+    here = pathlib.Path(__file__).resolve().parent
+    this = "Python %d.%d" % sys.version_info[:2]
+    built = sorted(p.name for p in here.glob("_demlight.*") if p.suffix in (".so", ".pyd"))
+    wanted = "_demlight" + (sysconfig.get_config_var("EXT_SUFFIX") or "")
+    if wanted in built:  # built for this Python, but it did not load (a missing library, ...)
+        return "demlight's module %s did not load: %s" % (here / wanted, error)
+    rebuild = ("build it for this one: `%s -m pip install .` in demlight's source tree (docs/python.md)"
+               % (sys.executable or "python3"))
+    if not built:
+        return "demlight's module _demlight is not in %s (%s); %s" % (here, error, rebuild)
+    versions = []
+    for name in built:
+        m = re.search(r"\.cpython-3(\d+)", name)
+        versions.append("Python 3.%s (%s)" % (m.group(1), name) if m else name)
+    return "demlight's module in %s was built for %s, and this is %s (%s): %s" % (
+        here, " and ".join(versions), this, sys.executable, rebuild)
+
+
+try:
+    from . import _demlight
+except ImportError as _error:
+    raise ImportError(_module_mismatch(_error)) from None
+
+try:
+    import numpy as _numpy  # bands are numpy arrays, and arrays are DEMs
+except ImportError as _error:
+    import sys as _sys
+
+    raise ImportError("demlight needs numpy, which this Python (%s, %s) cannot import: install it "
+                      "(`%s -m pip install numpy`, or Debian's python3-numpy for /usr/bin/python3)"
+                      % (_sys.executable, _sys.version.split()[0], _sys.executable)) from None
 
 __version__ = _demlight.version
 __all__ = ["Error", "Cancelled", "Dem", "Result", "open", "from_array", "COMMANDS"]
@@ -38,7 +79,8 @@ COMMANDS = tuple(_demlight.raster_commands())
 # takes the path, format and creation options; it writes Float32), the
 # notes of a terminal, and the DEM argument.
 # Point queries (at, at_xy, point_format) print values; the module returns rasters.
-_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format"}
+_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format",
+                 "json"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 
@@ -86,20 +128,82 @@ def open(path, z_unit=None, z_factor=None, progress=None):  # noqa: A001 (as ras
     return Dem(_demlight.open(str(path), z_unit or "", float(z_factor or 0), progress))
 
 
-def from_array(heights, transform, crs, nodata=None, name="<array>", z_unit=None, z_factor=None):
+def from_array(heights, transform=None, crs=None, nodata=None, name=None, z_unit=None, z_factor=None):
     """A DEM from a 2-D numpy array of heights (rows, columns), as a file holding them reads.
 
-    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0); crs: WKT, a
-    definition GDAL reads such as "EPSG:32610", an EPSG code (32610) or a pyproj/rasterio CRS; nodata: the value marking no data (NaN always
-    does); name: how outputs' DEMLIGHT_INPUT and messages name it. The values are converted to
-    Float32, as demlight reads every DEM.
+    transform: GDAL geotransform (x0, dx, 0, y0, 0, dy), north-up (dy < 0), or an
+    affine.Affine (rasterio's, rioxarray's rio.transform()); crs: WKT, a definition GDAL reads
+    such as "EPSG:32610", an EPSG code (32610) or a pyproj/rasterio CRS; nodata: the value
+    marking no data (NaN always does); name: how outputs' DEMLIGHT_INPUT and messages name it
+    (default "<array>"). The values are converted to Float32, as demlight reads every DEM.
+
+    heights may also be an xarray.DataArray with rioxarray's georeference (rioxarray.open_rasterio,
+    one band): its transform, CRS, nodata and unit ('units', as z_unit) are used, those given
+    here take precedence, and name defaults to the file it was read from.
     """
+    if _is_data_array(heights):
+        heights, transform, crs, nodata, name, z_unit = _from_data_array(heights, transform, crs, nodata, name,
+                                                                         z_unit, z_factor)
+    if transform is None or crs is None:
+        raise Error("a numpy array needs transform= (GDAL geotransform or affine.Affine) and crs=")
     if isinstance(crs, _numbers.Integral) and not isinstance(crs, bool):
         crs = "EPSG:%d" % crs  # a bare EPSG code, as rasterio and pyproj take it
     elif hasattr(crs, "to_wkt"):
         crs = crs.to_wkt()  # a pyproj or rasterio CRS object
-    return Dem(_demlight.from_array(heights, [float(v) for v in transform], str(crs), nodata, name,
+    return Dem(_demlight.from_array(heights, _gdal_transform(transform), str(crs), nodata, name or "<array>",
                                     z_unit or "", float(z_factor or 0)))
+
+
+def _gdal_transform(transform):
+    """GDAL's 6 numbers of a geotransform given as those numbers or as an affine.Affine, whose
+    own order (a, b, c, d, e, f, and 0, 0, 1: 9 numbers) is not GDAL's."""
+    if hasattr(transform, "to_gdal"):
+        transform = transform.to_gdal()
+    return [float(v) for v in transform]
+
+
+def _is_data_array(obj):
+    return type(obj).__name__ == "DataArray" and type(obj).__module__.split(".")[0] == "xarray"
+
+
+def _from_data_array(da, transform, crs, nodata, name, z_unit, z_factor):
+    """heights, transform, crs, nodata, name and z_unit of a DataArray DEM (rioxarray's
+    georeference; the arguments given take precedence)."""
+    if da.ndim == 3 and da.shape[0] == 1:  # open_rasterio's (band, y, x) of a one-band raster
+        da = da[0]
+    if da.ndim != 2:
+        raise Error("a DataArray DEM: expected (y, x) or one band, got dimensions %s" % (da.dims,))
+    scale, offset = da.attrs.get("scale_factor", 1.0), da.attrs.get("add_offset", 0.0)
+    if scale != 1 or offset != 0:
+        raise Error("a DataArray DEM with scale_factor %r and add_offset %r not applied: open it with "
+                    "rioxarray.open_rasterio(path, mask_and_scale=True)" % (scale, offset))
+    if transform is None or crs is None:
+        try:
+            import rioxarray  # noqa: F401 (registers .rio)
+        except ImportError:
+            raise Error("a DataArray DEM: its georeference is read with rioxarray (python3-rioxarray), "
+                        "which is not installed; give transform= and crs=") from None
+        if transform is None:
+            transform = da.rio.transform()
+        if crs is None:
+            crs = da.rio.crs
+            if crs is None:
+                raise Error("a DataArray DEM without a CRS: give crs= or set one with da.rio.write_crs(...)")
+    if nodata is None:
+        try:
+            import rioxarray  # noqa: F401
+            value = da.rio.nodata
+            if value is not None and value != value:  # masked=True: NaN cells for the file's value,
+                value = da.rio.encoded_nodata         # which outputs carry as a file's DEM's do
+        except ImportError:
+            value = da.attrs.get("_FillValue")
+        if value is not None and value == value:
+            nodata = float(value)
+    if name is None:
+        name = da.encoding.get("source")
+    if z_unit is None and z_factor is None and da.attrs.get("units"):
+        z_unit = str(da.attrs["units"])  # the band's vertical unit, as opening the file reads it
+    return _numpy.asarray(da.values), transform, crs, nodata, name, z_unit
 
 
 def _creation_options(options):
@@ -108,8 +212,8 @@ def _creation_options(options):
 
 
 def _as_dem(dem, transform, crs, nodata, options):
-    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array, with
-    the options that apply when a DEM is opened (z_unit, z_factor)."""
+    """The DEM a product runs on: `dem` itself, opened from a path, or made from an array or a
+    DataArray, with the options that apply when a DEM is opened (z_unit, z_factor)."""
     opening = {k: options.pop(k) for k in _OPEN_KEYWORDS if k in options}
     if isinstance(dem, Dem):
         if opening:
@@ -122,8 +226,8 @@ def _as_dem(dem, transform, crs, nodata, options):
         if transform is not None or crs is not None:
             raise Error("transform and crs are for numpy arrays; a file has its own")
         return open(dem, **opening)
-    if transform is None or crs is None:
-        raise Error("a numpy array needs transform= (GDAL geotransform) and crs=")
+    if not _is_data_array(dem) and (transform is None or crs is None):
+        raise Error("a numpy array needs transform= (GDAL geotransform or affine.Affine) and crs=")
     return from_array(dem, transform, crs, nodata=nodata, **opening)
 
 
@@ -143,10 +247,10 @@ def _option_text(name, value):
 def _arguments(command, dem_label, options):
     """The command line of `command` with these keyword options (None = the option's default)."""
     spec = _options(command)
-    args = [command, dem_label, "-o", "python-result.tif"]
+    args = [command, dem_label, "-o", "python-result.tif"] if dem_label else [command]
     for name, value in options.items():
         if name not in spec:
-            raise Error("demlight.%s: unknown option '%s' (options: %s)" % (command, name, ", ".join(sorted(spec))))
+            raise _unknown_keyword(command, name, spec)
         if value is None:
             continue
         flag = "--" + name.replace("_", "-")
@@ -161,6 +265,43 @@ def _arguments(command, dem_label, options):
         else:
             args.append("%s=%s" % (flag, _option_text(name, value)))
     return args
+
+
+def _unknown_keyword(command, name, known):
+    """The TypeError Python raises for an unexpected keyword, with the nearest known name."""
+    import difflib
+
+    close = difflib.get_close_matches(name, sorted(known), n=1)
+    hint = " (did you mean %s?)" % close[0] if close else ""
+    return TypeError("demlight.%s() got an unexpected keyword argument '%s'%s; its keywords: %s"
+                     % (command, name, hint, ", ".join(sorted(set(known)))))
+
+
+def _output_format(command, value):
+    """`value` spelt as the command's output format choice it names in any case ('cog' is
+    'COG'); anything else as given, for the writer to refuse."""
+    for o in _command_options(command):
+        if "of" in o["names"]:
+            for choice in o["choices"]:
+                if str(value).lower() == choice.lower():
+                    return choice
+    return str(value)
+
+
+# The command line's output flags, as the keywords of Result.write and demlight.dask.run.
+_OUTPUT_FLAGS = (("-o", None), ("--output", None), ("--of", "format"), ("-of", "format"),
+                 ("--co", "creation_options"), ("-co", "creation_options"))
+
+
+def _output_error(error, path_keyword):
+    """`error` (a demlight.Error of writing) with the output flags its message names spelt as
+    keywords: 'choose another -o' is 'choose another path'."""
+    import re
+
+    text = str(error)
+    for flag, keyword in _OUTPUT_FLAGS:
+        text = re.sub(r"(^|[\s'\"(])%s(?![\w-])" % re.escape(flag), lambda m: m.group(1) + (keyword or path_keyword), text)
+    return type(error)(text)
 
 
 def _command_line(command, dem, options):
@@ -212,16 +353,27 @@ class Result:
     def write(self, path, format="GTiff", creation_options=()):  # noqa: A002 (the command line's name)
         """Writes the result as `demlight <command> ... -o path` does and returns the paths written.
 
-        format: "GTiff" (tiled, ZSTD) or "COG"; creation_options: GDAL KEY=VALUE items (-co).
+        format: "GTiff" (tiled, ZSTD) or "COG", in any case; creation_options: GDAL KEY=VALUE items (-co).
         Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
         DEMLIGHT_COMMAND records the Python call.
         """
-        return self._call.write(self.rasters, str(path), format, _creation_options(creation_options),
-                                _command_line(self.command, self._dem, self._options), self._dem._dem.path)
+        try:
+            return self._call.write(self.rasters, str(path), _output_format(self.command, format),
+                                    _creation_options(creation_options),
+                                    _command_line(self.command, self._dem, self._options), self._dem._dem.path)
+        except Error as e:
+            raise _output_error(e, "path") from None
 
     def to_xarray(self):
-        """The bands as an xarray.Dataset on x/y cell-centre coordinates; with rioxarray
-        installed, the CRS, transform and nodata are attached (ds.rio)."""
+        """The bands as an xarray.Dataset on x/y cell-centre coordinates, each variable's unit
+        in attrs["units"]; with rioxarray installed, the CRS, transform and nodata are attached
+        (ds.rio), so ds.rio.to_raster(path) writes every band into one GeoTIFF, and
+        ds[band].rio.to_raster(path) one band.
+
+        A GeoTIFF has one nodata value for all its bands, so the bands of the rasters that
+        Result.write puts in files of their own (horizon's uint8 truncation masks) are float32
+        here, NaN at their nodata cells (0 and 1 elsewhere), encoded with the first raster's
+        nodata value as its own bands are; r.bands keeps them uint8."""
         import numpy as np
         import xarray as xr
 
@@ -233,6 +385,8 @@ class Result:
         variables = {}
         for raster in self.rasters:
             for name, values in raster.bands.items():
+                if values.dtype.kind != "f":
+                    values = np.where(values == raster.nodata, np.float32(np.nan), values.astype(np.float32))
                 attrs = {"units": raster.units[name]}
                 variables[name] = xr.DataArray(values, dims=("y", "x"), coords={"y": y, "x": x}, attrs=attrs)
         ds = xr.Dataset(variables, attrs=self.metadata)
@@ -242,18 +396,16 @@ class Result:
         except ImportError:
             ds.attrs["crs_wkt"] = self.crs
             ds.attrs["transform"] = tuple(gt)
-            for raster in self.rasters:
-                for name in raster.bands:
-                    ds[name].attrs["nodata"] = raster.nodata
+            for name in ds.data_vars:
+                ds[name].attrs["nodata"] = self.nodata
             return ds
         ds = ds.rio.write_crs(self.crs)
         ds = ds.rio.write_transform(Affine.from_gdal(*gt))
         # The cells hold NaN where the file holds the nodata value: the value is the encoding
         # (rio.encoded_nodata; rio.nodata is NaN), so rio.to_raster writes it where NaN is, as
         # Result.write does.
-        for raster in self.rasters:
-            for name in raster.bands:
-                ds[name] = ds[name].rio.write_nodata(raster.nodata, encoded=True)
+        for name in ds.data_vars:
+            ds[name] = ds[name].rio.write_nodata(self.nodata, encoded=True)
         return ds
 
     def __repr__(self):
@@ -273,6 +425,7 @@ def _command_options(command):
                      "type": o["type_name"],
                      "flag": o["flag"],
                      "expected": o["max_values"],
+                     "choices": o["choices"],
                      "required": o["required"]} for o in c["options"]]
     raise Error("no command '%s'" % command)
 
@@ -300,6 +453,57 @@ def _run(command, dem, transform=None, crs=None, nodata=None, progress=None, **o
     return Result(command, rasters, call, opened, {k: v for k, v in options.items() if k not in _OPEN_KEYWORDS})
 
 
+#: Each command's bands with their units (Result.units) under its default options, and what
+#: options change; tests/python checks the table against the products.
+BANDS = {
+    "horizon": ([("horizon_azimuth=<deg>", "deg"),
+                 ("truncated_azimuth=<deg>", "")],
+                "One horizon elevation band per azimuth (degrees above the horizontal), and one uint8 "
+                "truncation mask per azimuth: 1 where the "
+                "search reached the DEM edge before max_distance, 0 elsewhere, 255 at DEM voids "
+                "(Result.write puts the masks in OUT.truncated.tif)."),
+    "sun": ([("sun_visibility", "fraction of sun disk (0-1)"),
+             ("sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)")],
+            "model='aperture' or 'aperture-smooth': the same bands, sun_visibility the fraction of "
+            "the sun cap inside the aperture cap (0-1)."),
+    "sky": ([("svf_horizontal", "fraction (cosine-weighted, horizontal plane)"),
+             ("sky_fraction", "fraction of the upper hemisphere"),
+             ("sky_K", "normalised irradiance from a unit-radiance sky"),
+             ("sky_factor", "normalised irradiance with interreflection")],
+            "Other model values write other bands (docs/commands.md, sky)."),
+    "aperture": ([("bent_normal_east", "unit vector component (ENU)"),
+                  ("bent_normal_north", "unit vector component (ENU)"),
+                  ("bent_normal_up", "unit vector component (ENU)"),
+                  ("aperture_radius_deg", "deg"),
+                  ("visible_solid_angle_sr", "sr")], ""),
+    "light": ([("light", "normalised irradiance (1 = unit zenith sun, or unit sky, on open flat ground)")],
+              "sun_color or sky_color: light_r, light_g, light_b; color_raster: reflected_r, "
+              "reflected_g, reflected_b (docs/commands.md, light)."),
+    "irradiance": ([("beam", "W m-2"), ("diffuse", "W m-2"), ("reflected", "W m-2"), ("global", "W m-2")], ""),
+    "insolation": ([("beam", "kWh m-2"), ("diffuse", "kWh m-2"), ("reflected", "kWh m-2"), ("global", "kWh m-2"),
+                    ("sun_hours", "hours")], ""),
+    "sunhours": ([("sun_hours", "hours of direct sun weighted by visibility (h)"),
+                  ("sun_irradiation", "normalised irradiance x hours (1 h of unit zenith sun on flat ground = 1)"),
+                  ("sky_irradiation", "f_sky x daylight hours: a unit uniform sky from sunrise to sunset at the "
+                                      "cell (1 h of unit sky on open flat ground = 1)"),
+                  ("first_lit", "local clock hours (<tz>) when half the sun first shows; -1 = never"),
+                  ("last_lit", "local clock hours (<tz>) when half the sun last shows; -1 = never")], ""),
+}
+
+
+def _bands_doc(command):
+    if command not in BANDS:
+        return []
+    bands, note = BANDS[command]
+    lines = ["Bands (Result.bands, in this order; Result.units holds each unit):"]
+    for name, unit in bands:
+        lines += _textwrap.wrap("%s: %s" % (name, unit or "mask, see below"), 92, initial_indent="    ",
+                                subsequent_indent="        ")
+    if note:
+        lines += _textwrap.wrap(note, 92, initial_indent="    ", subsequent_indent="    ")
+    return lines + [""]
+
+
 _TYPES = {"FLOAT": float, "UINT": int, "INT": int, "NUMBER": float}
 
 
@@ -320,9 +524,10 @@ def _docstring(command):
         "",
         "demlight.%s(dem, *, transform=None, crs=None, nodata=None, progress=None, **options) -> Result" % command,
         "",
-        "dem: a demlight.Dem (demlight.open, demlight.from_array), a path GDAL opens, or a 2-D",
-        "numpy array of heights in metres with transform= (GDAL geotransform), crs= (WKT or",
-        "'EPSG:n') and nodata=. progress: callback(fraction, stage), called from the work's",
+        "dem: a demlight.Dem (demlight.open, demlight.from_array), a path GDAL opens, a 2-D",
+        "numpy array of heights in metres with transform= (GDAL geotransform or affine.Affine),",
+        "crs= (WKT, 'EPSG:n', n or a CRS object) and nodata=, or an xarray.DataArray with",
+        "rioxarray's georeference. progress: callback(fraction, stage), called from the work's",
         "threads with the GIL held; returning False raises demlight.Cancelled. Ctrl-C stops the",
         "work (KeyboardInterrupt). The GIL is released while demlight computes.",
         "",
@@ -331,7 +536,7 @@ def _docstring(command):
         "tz=, or timezone-aware datetime objects; days: 'YYYY-MM-DD' or datetime.date; steps:",
         "'10m', '90s' or datetime.timedelta. Lists (azimuth, srcwin) as Python sequences.",
         "",
-    ]
+    ] + _bands_doc(command)
     seen = set()
     for o in _command_options(command):
         if o["positional"]:
@@ -385,4 +590,49 @@ for _command in COMMANDS:
     globals()[_command] = _make_command(_command)
     __all__.append(_command)
 del _command
+
+
+def sunpos(time, lat, lon, **options):
+    return _json.loads(_demlight.sunpos_json(_arguments("sunpos", None, dict(time=time, lat=lat, lon=lon, **options))))
+
+
+def _sunpos_signature():
+    params, seen = [], set()
+    for o in _command_options("sunpos"):
+        keyword = o["names"][0].replace("-", "_") if o["names"] else None
+        if not keyword or keyword in _NOT_KEYWORDS or keyword in seen:
+            continue
+        seen.add(keyword)
+        if o["required"]:
+            params.append(_inspect.Parameter(keyword, _inspect.Parameter.POSITIONAL_OR_KEYWORD))
+        else:
+            params.append(_inspect.Parameter(keyword, _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
+    return _inspect.Signature(sorted(params, key=lambda p: p.kind))
+
+
+def _sunpos_doc():
+    lines = ["%s (demlight sunpos)." % _demlight.command_description("sunpos"), "",
+             "demlight.sunpos%s -> dict" % _sunpos_signature(), ""]
+    for o in _command_options("sunpos"):
+        keyword = o["names"][0].replace("-", "_") if o["names"] else None
+        if not keyword or keyword in _NOT_KEYWORDS:
+            continue
+        head = keyword + (", required" if o["required"] else "") + (", default %s" % o["default"] if o["default"] else "")
+        lines.append(head)
+        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
+                                subsequent_indent="    ")
+    lines += ["", "time also as a timezone-aware datetime. Returns what `demlight sunpos --json` prints, as a dict:",
+              "utc, local, zone (the instant and its zone); latitude_deg, longitude_deg, elevation_m,",
+              "pressure_hpa, temperature_c (the site); zenith_deg and elevation_deg (topocentric,",
+              "refracted), azimuth_deg (clockwise from true north), geometric_elevation_deg,",
+              "refraction_deg, declination_deg, equation_of_time_min, delta_t_s and delta_t_source;",
+              "day (the local day), sunrise, transit, sunset (ISO 8601 on the zone's clocks, whole",
+              "seconds; sunrise and sunset None on a polar day or night), polar ('day', 'night' or",
+              "None). Raises demlight.Error with the command's message (options named as keywords)."]
+    return "\n".join(lines)
+
+
+sunpos.__signature__ = _sunpos_signature()
+sunpos.__doc__ = _sunpos_doc()
+__all__ += ["sunpos", "BANDS"]
 

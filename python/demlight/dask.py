@@ -72,7 +72,7 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
     """Runs the raster command `product` (a command name: "sun", "sky", ...) over the DEM at
     `dem_path` in windows of `chunks` cells (an int, or (rows, columns)) on a dask.distributed
     client (default: the current one), and writes `out_path` as `demlight <product> dem_path -o
-    out_path` does (format "GTiff" or "COG", creation_options as -co). options: the keyword
+    out_path` does (format "GTiff" or "COG" in any case, creation_options as -co). options: the keyword
     options of demlight.<product> (srcwin included; tile_size and memory_limit are not used:
     chunks sets the windows). progress: callback(fraction, stage) on the client as windows
     arrive. Returns the paths written (horizon: the horizons and the truncation mask).
@@ -99,8 +99,11 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
         return _arrays(client, product, dem_path, arguments, parts)
     command_line = "demlight.dask.run(%r, %r, %r, chunks=%r%s)" % (
         product, dem_path, out_path, chunks, "".join(", %s=%r" % kv for kv in options.items()))
-    writer = _core.Writer(call, dem._dem, str(out_path), format, _demlight._creation_options(creation_options),
-                          command_line)
+    try:
+        writer = _core.Writer(call, dem._dem, str(out_path), _demlight._output_format(product, format),
+                              _demlight._creation_options(creation_options), command_line)
+    except _demlight.Error as e:
+        raise _demlight._output_error(e, "out_path") from None
     futures = client.map(_compute, [product] * len(parts), [dem_path] * len(parts), [arguments] * len(parts), parts,
                          pure=False)
     index = {f.key: i for i, f in enumerate(futures)}
@@ -117,7 +120,10 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
             done += 1
             if progress is not None and progress(done / len(parts), "windows") is False:
                 raise _demlight.Cancelled("cancelled")
-        return writer.commit()
+        try:
+            return writer.commit()
+        except _demlight.Error as e:
+            raise _demlight._output_error(e, "out_path") from None
     except BaseException:
         writer.abandon()
         client.cancel(futures)

@@ -101,12 +101,38 @@ def test_error_in_a_window_leaves_no_file(tmp_path, client):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_readme_dask_example_runs(tmp_path, client):
-    readme = (REPO / "README.md").read_text()
-    blocks = re.findall(r"```python\n(.*?)```", readme, re.S)
-    example = [b for b in blocks if "demlight.dask" in b]
+def dask_examples(path):
+    blocks = re.findall(r"```python\n(.*?)```", (REPO / path).read_text(), re.S)
+    return [b for b in blocks if "Client(" in b]
+
+
+def test_readme_dask_example_runs_as_a_saved_script(tmp_path, cli):
+    # Saved as a script, the example hung: Client() starts worker processes that import the
+    # script again, and without the __main__ guard each started a cluster of its own.
+    import os
+    import subprocess
+    import sys
+
+    example = dask_examples("README.md")
     assert example, "README.md has no demlight.dask example"
     code = example[0].replace("sun_dask.tif", str(tmp_path / "sun_dask.tif")).replace("samples/", str(REPO / "samples") + "/")
-    code = re.sub(r"client = .*\n", "", code)  # the test's LocalCluster stands for the user's
-    exec(compile(code, "README.md", "exec"), {"client": client, "__name__": "readme"})
-    assert (tmp_path / "sun_dask.tif").exists()
+    code = code.replace("Client()", "Client(n_workers=2, threads_per_worker=1, dashboard_address=None)")
+    script = tmp_path / "readme_dask.py"
+    script.write_text(code)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["PYTHONPATH"] = os.path.dirname(os.path.dirname(demlight.__file__))  # this package, as the tests import it
+    out = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    cli("sun", HELENS, "-o", tmp_path / "cli.tif", "--time", "2024-06-21T07:30", "--tz", "America/Los_Angeles")
+    facts = raster_facts(tmp_path / "sun_dask.tif")
+    assert facts == raster_facts(tmp_path / "cli.tif")
+
+
+@pytest.mark.parametrize("path", ["README.md", "docs/python.md"])
+def test_dask_examples_guard_their_work(path):
+    examples = dask_examples(path)
+    assert examples, path
+    for code in examples:
+        guard = code.index('if __name__ == "__main__":')
+        assert guard < code.index("Client("), code

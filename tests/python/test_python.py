@@ -179,7 +179,6 @@ def test_signature_and_help_name_every_cli_option(cli):
     (lambda: demlight.sun(str(HELENS), time="2024-06-21T07:30"), ["tz"]),
     (lambda: demlight.sun(str(HELENS), time="2024-06-21T07:30", tz="Mars/Olympus"), ["Mars/Olympus"]),
     (lambda: demlight.sky(str(HELENS), max_distance=-5.0), ["max_distance"]),
-    (lambda: demlight.sky(str(HELENS), bogus=1), ["bogus", "max_distance"]),
     (lambda: demlight.sky(str(HELENS), quality="best"), ["quality", "best"]),
     (lambda: demlight.irradiance(str(HELENS), time="2024-06-21T12:00:00Z", linke="20"), ["linke", "20"]),
     (lambda: demlight.horizon(str(HELENS)), ["azimuth", "directions"]),
@@ -320,3 +319,143 @@ def test_to_xarray_nodata_is_the_encoding_of_its_nan_cells(tmp_path):
     for name in ("xr.tif", "cli.tif"):
         with rasterio.open(tmp_path / name) as f:
             assert np.array_equal(f.read_masks(1) == 0, voids), name
+
+
+# ---- Keywords, formats and messages ------------------------------------------------------------
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: demlight.sky(str(HELENS), max_dist=5000.0), ["max_dist", "did you mean max_distance?"]),
+    (lambda: demlight.sun(str(HELENS), tiem="2024-06-21T07:30"), ["tiem", "did you mean time?"]),
+    (lambda: demlight.sky(str(HELENS), bogus=1), ["bogus", "max_distance"]),
+    (lambda: demlight.sunpos("2024-06-21T12:00Z", lat=46, lon=7, elevaton=500), ["did you mean elevation?"]),
+])
+def test_unknown_keywords_raise_type_error_with_the_nearest_name(call, words):
+    # A misspelt keyword raised demlight.Error, as a bad value does; Python raises TypeError.
+    with pytest.raises(TypeError) as e:
+        call()
+    for word in words:
+        assert word in str(e.value), str(e.value)
+
+
+def test_format_names_in_any_case(tmp_path):
+    r = demlight.sun(str(HELENS), srcwin=(0, 0, 100, 80), **SUN_TIME)
+    r.write(tmp_path / "upper.tif", format="COG")
+    r.write(tmp_path / "lower.tif", format="cog")  # refused before
+    assert raster_facts(tmp_path / "upper.tif") == raster_facts(tmp_path / "lower.tif")
+    info = subprocess.run(["gdalinfo", str(tmp_path / "lower.tif")], check=True, capture_output=True, text=True).stdout
+    assert "LAYOUT=COG" in info
+    with pytest.raises(demlight.Error) as e:
+        r.write(tmp_path / "bad.tif", format="png")
+    assert "--" not in str(e.value), str(e.value)
+
+
+def test_write_messages_name_keywords_not_flags(tmp_path):
+    dem_path = tmp_path / "dem.tif"
+    dem_path.write_bytes(LUXEMBOURG.read_bytes())
+    r = demlight.sky(str(dem_path), srcwin=(0, 0, 40, 30))
+    with pytest.raises(demlight.Error) as e:
+        r.write(dem_path)
+    message = str(e.value)
+    assert "choose another path" in message, message  # "choose another -o" before
+    assert not re.search(r"(^|\s)-o\b", message), message
+
+
+def test_sunpos_is_the_commands(cli):
+    import json
+
+    got = demlight.sunpos("2024-06-21T12:00", lat=46.5, lon=7.5, tz="Europe/Zurich", elevation=500)
+    printed = json.loads(cli("sunpos", "--time", "2024-06-21T12:00", "--lat", "46.5", "--lon", "7.5",
+                             "--tz", "Europe/Zurich", "--elevation", "500", "--json").stdout)
+    assert got == printed
+    assert 60 < got["elevation_deg"] < 61 and got["sunrise"].startswith("2024-06-21T05:3")
+    aware = datetime.datetime(2024, 6, 21, 10, tzinfo=datetime.timezone.utc)
+    assert demlight.sunpos(aware, 46.5, 7.5)["azimuth_deg"] == got["azimuth_deg"]
+    with pytest.raises(demlight.Error) as e:
+        demlight.sunpos("2024-06-21T12:00Z", lat=91, lon=7)
+    assert "lat" in str(e.value) and "--" not in str(e.value)
+    assert "elevation_deg" in demlight.sunpos.__doc__ and "lat, required" in demlight.sunpos.__doc__
+
+
+def test_docstrings_list_each_band_with_its_unit():
+    # The table help() shows is what each command computes under its default options.
+    runs = {"horizon": {"directions": 2}, "sun": dict(SUN_TIME), "sky": {}, "aperture": {}, "light": dict(SUN_TIME),
+            "irradiance": {"time": "2024-06-21T12:00:00-07:00"},
+            "insolation": {"date": "2024-06-21", "tz": "America/Los_Angeles", "step": "2h"},
+            "sunhours": {"date": "2024-06-21", "tz": "America/Los_Angeles", "step": "2h"}}
+    assert set(runs) == set(demlight.COMMANDS) == set(demlight.BANDS)
+    for command, options in runs.items():
+        r = getattr(demlight, command)(str(HELENS), srcwin=(100, 100, 24, 20), **options)
+        listed, _ = demlight.BANDS[command]
+        if command == "horizon":  # one band of each kind per azimuth
+            listed = [(n.replace("<deg>", az), u) for n, u in listed for az in ("0", "180")]
+            listed.sort(key=lambda b: not b[0].startswith("horizon"))
+        listed = [(n, u.replace("<tz>", options.get("tz", ""))) for n, u in listed]
+        assert list(r.units.items()) == listed, command
+        doc = getattr(demlight, command).__doc__
+        for name, unit in demlight.BANDS[command][0]:
+            assert name in doc, (command, name)
+
+
+# ---- rasterio and xarray -----------------------------------------------------------------------
+
+def test_a_rasterio_affine_is_a_transform():
+    affine = pytest.importorskip("affine")
+    dem = demlight.open(str(HELENS))
+    # Affine has 9 numbers in its own order; GDAL's 6 were required ("got 9").
+    a = demlight.sun(dem.heights, transform=affine.Affine.from_gdal(*dem.transform), crs=dem.crs, nodata=dem.nodata,
+                     **SUN_TIME)
+    b = demlight.sun(dem.heights, transform=dem.transform, crs=dem.crs, nodata=dem.nodata, **SUN_TIME)
+    assert a.transform == b.transform == dem.transform
+    assert same_cells(a.bands["sun_visibility"], b.bands["sun_visibility"])
+
+
+@pytest.mark.parametrize("path, masked", [(HELENS, False), (HELENS, True), (LUXEMBOURG, False)])
+def test_a_data_array_in_gives_the_file_bytes(tmp_path, cli, path, masked):
+    # Float32 with nodata -32767, the same read as NaN (masked), and Int16 with nodata -32768.
+    rioxarray = pytest.importorskip("rioxarray")
+    da = rioxarray.open_rasterio(path, masked=masked)
+    r = demlight.sun(da, **SUN_TIME)
+    r.write(tmp_path / "da.tif")
+    cli("sun", path, "-o", tmp_path / "cli.tif", "--time", SUN_TIME["time"], "--tz", SUN_TIME["tz"])
+    assert raster_facts(tmp_path / "da.tif") == raster_facts(tmp_path / "cli.tif")
+    assert r.metadata["DEMLIGHT_INPUT"] == str(path)  # the file the DataArray was read from
+    dem = demlight.from_array(da)
+    assert dem.transform == demlight.open(str(path)).transform
+
+
+def test_a_data_array_without_a_crs_is_an_error():
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("rioxarray")
+    da = xr.DataArray(np.zeros((10, 10), np.float32), dims=("y", "x"),
+                      coords={"y": 4000000 - 30 * (np.arange(10) + 0.5), "x": 500000 + 30 * (np.arange(10) + 0.5)})
+    with pytest.raises(demlight.Error, match="without a CRS"):
+        demlight.sky(da)
+    r = demlight.sky(da, crs="EPSG:32610")
+    assert r.transform == (500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0)
+
+
+def test_to_xarray_rio_to_raster_round_trips_every_product(tmp_path):
+    # horizon's uint8 masks carried a fill value rioxarray read as NaN ("cannot convert float NaN
+    # to integer"), and one nodata for the file's bands must fit both rasters.
+    pytest.importorskip("rioxarray")
+    import rasterio
+
+    runs = {"horizon": {"directions": 4}, "sun": dict(SUN_TIME), "sky": {}, "aperture": {},
+            "light": dict(SUN_TIME), "irradiance": {"time": "2024-06-21T12:00:00-07:00"},
+            "insolation": {"date": "2024-06-21", "tz": "America/Los_Angeles", "step": "2h"},
+            "sunhours": {"date": "2024-06-21", "tz": "America/Los_Angeles", "step": "2h"}}
+    assert set(runs) == set(demlight.COMMANDS)
+    for command, options in runs.items():
+        r = getattr(demlight, command)(str(HELENS), srcwin=(0, 0, 60, 50), **options)
+        ds = r.to_xarray()
+        ds.rio.to_raster(tmp_path / (command + ".tif"))
+        with rasterio.open(tmp_path / (command + ".tif")) as f:
+            assert list(f.descriptions) == list(r.bands), command
+            for i, (name, values) in enumerate(r.bands.items()):
+                cells = f.read(i + 1, masked=True).filled(np.nan)
+                if values.dtype.kind != "f":  # a mask: 0 and 1, NaN at its nodata
+                    values = np.where(values == r.rasters[1].nodata, np.nan, values).astype(np.float32)
+                assert same_cells(cells, values), (command, name)
+            assert f.transform.to_gdal() == r.transform
+        for name in ds.data_vars:  # one band alone too
+            ds[name].rio.to_raster(tmp_path / "one.tif")
