@@ -8,6 +8,8 @@
 #include "geo/sun_field.h"
 #include "geo/time.h"
 #include "lighting/lighting_models.h"
+#include "lighting/sun_frame.h"
+#include "products/canopy.h"
 #include "products/product.h"
 
 #include <optional>
@@ -29,6 +31,8 @@ struct SunRequest {
     Atmosphere atmosphere;
     /// Aperture models: horizon directions of the aperture; none = the scene plan's.
     std::optional<std::size_t> directions;
+    /// Vegetation over the DEM (a DSM) that passes a share of the beam; horizon model only.
+    CanopyRequest canopy;
     SearchRequest search;
 };
 
@@ -46,6 +50,11 @@ SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere&
 /// The whole DEM's field as a window of it (read from `source`) sees it: SunField::onTile at the
 /// window's corner, so the window's cells get the whole DEM's sun bit for bit.
 SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source);
+
+/// A sun frame of the full surface blended with the ground's under a canopy (lighting/canopy.h):
+/// visibility and irradiance of `surface` become tau ground + (1 - tau) surface, the surface's
+/// hidden under a crown. Both frames must use the ground's normals.
+void blendCanopySun(SunFrame& surface, SunFrame ground, const CanopyTerrain& canopy, double transmissivity);
 
 /// Bands: sun_visibility (fraction of the disk, 0-1), sun_irradiance (normalised).
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
