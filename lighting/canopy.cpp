@@ -31,4 +31,14 @@ void hideUnderCrown(Grid<float>& values, const Grid<std::uint8_t>& underCrown, f
         if (underCrown.data()[k] && !std::isnan(values.data()[k])) values.data()[k] = hidden;
 }
 
+void blendCanopySun(SunFrame& surface, const SunFrame& ground, const Grid<std::uint8_t>& underCrown,
+                    double transmissivity) {
+    // Under a crown its own crown hides the sun: O = 0 on the full surface.
+    hideUnderCrown(surface.light.visibility, underCrown, 0.0f);
+    hideUnderCrown(surface.light.irradiance, underCrown, 0.0f);
+    blendCanopy(surface.light.visibility, ground.light.visibility, transmissivity);
+    blendCanopy(surface.light.irradiance, ground.light.irradiance, transmissivity);
+    surface.sweepRegions += ground.sweepRegions;
+}
+
 }  // namespace demlight

@@ -16,6 +16,7 @@
 // down to the ground (no trunk zone); a line through two crowns passes tau once, as in SOLWEIG.
 #pragma once
 
+#include "lighting/sun_frame.h"
 #include "src/grid.h"
 
 #include <cstdint>
@@ -40,5 +41,11 @@ void blendCanopy(Grid<float>& surface, const Grid<float>& ground, double transmi
 /// `hidden` at the valid cells under a crown: 90 degrees in the full surface's horizons (then
 /// everything is hidden from them), or the value of a quantity with everything hidden (0 for O).
 void hideUnderCrown(Grid<float>& values, const Grid<std::uint8_t>& underCrown, float hidden);
+
+/// A sun frame of the full surface blended with the ground's: visibility and irradiance of
+/// `surface` become tau ground + (1 - tau) surface, the surface's hidden (0) under a crown. Both
+/// frames must use the ground's normals.
+void blendCanopySun(SunFrame& surface, const SunFrame& ground, const Grid<std::uint8_t>& underCrown,
+                    double transmissivity);
 
 }  // namespace demlight

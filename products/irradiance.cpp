@@ -72,7 +72,9 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     }
     const SunFrameParams sp = sunFrameParams(r.search, r.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
-    if (canopy) blendCanopySun(frame, computeSunFrame(lit, normals, field, sp, &counter), *canopy, r.canopy.transmissivity);
+    if (canopy)
+        blendCanopySun(frame, computeSunFrame(lit, normals, field, sp, &counter), canopy->underCrown,
+                       r.canopy.transmissivity);
 
     IrradianceParams params;
     params.model = r.diffuseModel;

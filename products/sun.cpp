@@ -8,15 +8,6 @@
 
 namespace demlight {
 
-void blendCanopySun(SunFrame& surface, SunFrame ground, const CanopyTerrain& canopy, double transmissivity) {
-    // Under a crown its own crown hides the sun: O = 0 on the full surface.
-    hideUnderCrown(surface.light.visibility, canopy.underCrown, 0.0f);
-    hideUnderCrown(surface.light.irradiance, canopy.underCrown, 0.0f);
-    blendCanopy(surface.light.visibility, ground.light.visibility, transmissivity);
-    blendCanopy(surface.light.irradiance, ground.light.irradiance, transmissivity);
-    surface.sweepRegions += ground.sweepRegions;
-}
-
 namespace {
 
 /// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1).
@@ -29,8 +20,9 @@ SunResult horizonSun(const Dem& dem, const Normals& normals, const SunField& fie
     // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
     const SunFrameParams params = sunFrameParams(request.search, request.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(dem.terrain, normals, field, params, &counter);
-    if (canopy) blendCanopySun(frame, computeSunFrame(canopy->ground, normals, field, params, &counter), *canopy,
-                               request.canopy.transmissivity);
+    if (canopy)
+        blendCanopySun(frame, computeSunFrame(canopy->ground, normals, field, params, &counter), canopy->underCrown,
+                       request.canopy.transmissivity);
     SunResult out;
     out.bands = movedBands(ProductBand{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
                  ProductBand{"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",

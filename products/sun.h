@@ -51,11 +51,6 @@ SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere&
 /// window's corner, so the window's cells get the whole DEM's sun bit for bit.
 SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source);
 
-/// A sun frame of the full surface blended with the ground's under a canopy (lighting/canopy.h):
-/// visibility and irradiance of `surface` become tau ground + (1 - tau) surface, the surface's
-/// hidden under a crown. Both frames must use the ground's normals.
-void blendCanopySun(SunFrame& surface, SunFrame ground, const CanopyTerrain& canopy, double transmissivity);
-
 /// Bands: sun_visibility (fraction of the disk, 0-1), sun_irradiance (normalised).
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
                      const ProgressFn& progress = {});

@@ -12,6 +12,7 @@
 #include "products/irradiance.h"
 #include "products/point.h"
 #include "products/sun.h"
+#include "products/sunhours.h"
 #include "shared_dem.h"
 #include "src/angles.h"
 #include "src/error.h"
@@ -196,6 +197,41 @@ TEST(Canopy, GroundUnderTheCrownGetsTauOfOpenGroundInIrradianceAndInsolation) {
                     1e-4 * std::max(1.0f, d.band(band).values(col, row)))
             << band;
     EXPECT_GT(d.band("sun_hours").values(col, row), 10.0f);
+}
+
+// Sun hours: the ground under the crown gets tau of the ground's sun hours and sun irradiation
+// without the tree, and tau = 1 gives the ground alone.
+TEST(Canopy, SunhoursUnderTheCrownAreTauOfOpenGround) {
+    const Scene scene;
+    const DemSource dsm(demFromArray(scene.dsm, sceneRef(), std::nullopt, "box tree"));
+    const DemSource ground(demFromArray(scene.ground, sceneRef(), std::nullopt, "ground"));
+    const MemoryRaster canopy(scene.canopy, sceneRef(), std::nullopt);
+    SunhoursRequest r;
+    r.zone = TimeZoneSpec::iana("America/Los_Angeles");
+    r.firstDay = r.lastDay = std::chrono::sys_days{std::chrono::year{2024} / 6 / 21};
+    r.step = std::chrono::minutes(30);
+    r.search.threads = 2;
+    r.search.maxDistanceM = 60;
+    SunhoursRequest withCanopy = r;
+    withCanopy.canopy = {canopy.path(), kTau};
+    const SunhoursResult a = sunhoursProduct(dsm, dsm.whole(), withCanopy);
+    const SunhoursResult b = sunhoursProduct(ground, ground.whole(), r);
+    for (const char* band : {"sun_hours", "sun_irradiation"})
+        EXPECT_NEAR(a.band(band).values(40, 40), kTau * b.band(band).values(40, 40),
+                    1e-4 * b.band(band).values(40, 40))
+            << band;
+    EXPECT_GT(b.band("sun_hours").values(40, 40), 12.0f);
+    EXPECT_EQ(a.band("first_lit").values(40, 40), kNeverLitClock);  // tau < the lit threshold
+    withCanopy.canopy.transmissivity = 1;
+    const SunhoursResult clear = sunhoursProduct(dsm, dsm.whole(), withCanopy);
+    for (const char* band : {"sun_hours", "sun_irradiation", "sky_irradiation"}) {
+        const Grid<float>& x = clear.band(band).values;
+        const Grid<float>& y = b.band(band).values;
+        for (std::size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(x.data()[k], y.data()[k], 1e-5) << band << " " << k;
+    }
+    SunhoursRequest stacked = withCanopy;
+    stacked.stackDirections = 64;
+    EXPECT_THROW(sunhoursProduct(dsm, dsm.whole(), stacked), FieldError);
 }
 
 TEST(Canopy, OutOfRangeValuesAndPointQueriesAreRefused) {
