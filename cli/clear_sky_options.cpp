@@ -28,7 +28,11 @@ void addClearSkyOptions(CLI::App* cmd, ClearSkyOptions& o, const std::string& mo
     // r.sun's linke, albedo, coeff_bh and coeff_dh maps: one raster each, resampled bilinearly.
     const std::string resampled = " (band 1, any raster GDAL opens; resampled bilinearly onto the DEM's grid; "
                                   "nodata where it has none)";
-    cmd->add_option("--linke-raster", o.linkeRaster, "Linke turbidity per cell, 1-10, instead of --linke" + resampled)
+    cmd->add_option("--linke-raster", o.linkeRaster,
+                    "Linke turbidity per cell, 1-10, instead of --linke: a raster of one band, or of 12 monthly bands "
+                    "(band m = month m, January first) of which the month of " + monthOf +
+                        " is used; or the option given 12 times, one one-band raster per month, January first (any "
+                        "raster GDAL opens; resampled bilinearly onto the DEM's grid; nodata where it has none)")
         ->excludes(linke)
         ->type_name("PATH");
     cmd->add_option("--albedo-raster", o.albedoRaster, "Ground albedo per cell, 0-1, instead of --albedo" + resampled)

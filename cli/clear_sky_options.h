@@ -18,7 +18,8 @@ struct ClearSkyOptions {
     std::string linke = formatNumber(kDefaultLinke);
     double albedo = kDefaultAlbedo;
     double coeffBh = 1, coeffDh = 1;
-    std::string linkeRaster, albedoRaster, coeffBhRaster, coeffDhRaster;
+    std::vector<std::string> linkeRaster;  ///< one path, or twelve (one per use)
+    std::string albedoRaster, coeffBhRaster, coeffDhRaster;
     std::string diffuseModel = "visible-sky";
     double solarConstantWm2 = kSolarConstantWm2;
 };

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 namespace demlight::cli {
 namespace {
@@ -85,13 +86,49 @@ RasterCall horizonCall(const HorizonOptions& o) {
     return call;
 }
 
+/// The point formats a horizon profile adds to json and csv: solar tools' horizon files.
+constexpr const char* kPvgisFormat = "pvgis";
+constexpr const char* kPvlibFormat = "pvlib";
+
+/// PVGIS's user horizon file (the `userhorizon` upload of PVGIS 5): one horizon height (degrees)
+/// per line at equidistant azimuths, the first due north, then clockwise (east, south, west).
+std::string pvgisUserHorizon(const PointHorizon& h) {
+    std::string text;
+    for (const HorizonSample& s : h.samples) text += formatNumber(s.angleDeg) + "\n";
+    return text;
+}
+
+/// pvlib's horizon profile (as pvlib.iotools.get_pvgis_horizon returns it): azimuth in degrees
+/// clockwise from north (0 = N, 90 = E), horizon elevation in degrees; a CSV of two columns.
+std::string pvlibHorizonTable(const PointHorizon& h) {
+    std::string text = "azimuth,elevation\n";
+    for (std::size_t i = 0; i < h.samples.size(); ++i)
+        text += formatNumber(h.azimuthsDeg[i]) + "," + formatNumber(h.samples[i].angleDeg) + "\n";
+    return text;
+}
+
 /// --at / --at-xy: the reference horizon of one cell in each azimuth, printed.
 void printHorizonAt(const HorizonOptions& o, const PointSpec& spec, const CliContext& ctx) {
     refuseRasterOptions(o.tiling);
+    const bool solarFile = o.point.format == kPvgisFormat || o.point.format == kPvlibFormat;
+    if (solarFile && !o.azimuthsDeg.empty())
+        throw Error("--point-format " + o.point.format +
+                    " writes a profile at equidistant azimuths from north: give --directions N (default 48), not "
+                    "--azimuth");
     const HorizonRequest request = horizonRequest(o);
     const DemSource dem = openPointDem(o.dem, o.search.request, ctx);
     const PointCell cell = locatePoint(dem, spec);
     const PointHorizon h = pointHorizon(dem, cell, request.azimuthsDeg, request.search);
+    if (solarFile) {
+        std::size_t truncated = 0;
+        for (const HorizonSample& s : h.samples) truncated += s.truncated != 0;
+        if (truncated > 0)
+            note(ctx, std::to_string(truncated) + " of " + std::to_string(h.samples.size()) +
+                          " directions reached the DEM's edge within the search distance: what lies beyond is "
+                          "missing from their horizon");
+        std::cout << (o.point.format == kPvgisFormat ? pvgisUserHorizon(h) : pvlibHorizonTable(h));
+        return;
+    }
     nlohmann::ordered_json j;
     j["point"] = pointJson(cell);
     j["method"] = "reference ray march";
@@ -142,7 +179,11 @@ void registerHorizon(CLI::App& app, CliContext& ctx) {
     ctx.outputs[cmd->get_name()].companionKeys = {kTruncationMaskKey};
     addDemArgument(cmd, o->dem);
     addOutputOptions(cmd, o->out);
-    addPointOptions(cmd, o->point, cmd->get_option("-o"));
+    addPointOptions(cmd, o->point, cmd->get_option("-o"),
+                    {{kPvgisFormat, "PVGIS's user horizon file: one height per line, the first due north, then "
+                                    "clockwise at equal steps"},
+                     {kPvlibFormat, "CSV azimuth,elevation, azimuth clockwise from north, as pvlib's horizon "
+                                    "profiles"}});
     auto* az = cmd->add_option("--azimuth", o->azimuthsDeg, "True azimuth(s), degrees clockwise from north (repeatable)")
                    ->expected(1, -1);
     auto* dirs = cmd->add_option("--directions", o->directions, "N azimuths evenly spaced from 0 (0, 360/N, ...); a point query without --azimuth: 48")

@@ -20,6 +20,7 @@ struct InsolationOptions {
     TilingOptions tiling;
     SearchOptions search;
     ClearSkyOptions sky;
+    CanopyRequest canopy;
     PointOptions point;
     DayOptions days;
     std::string step = "10m";
@@ -41,6 +42,7 @@ InsolationRequest insolationRequest(const InsolationOptions& o) {
     r.coeffBh = o.sky.coeffBh;
     r.coeffDh = o.sky.coeffDh;
     r.rasters = clearSkyRasters(o.sky);
+    r.canopy = o.canopy;
     r.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
     r.solarConstantWm2 = o.sky.solarConstantWm2;
     r.directions = o.directions;
@@ -131,6 +133,7 @@ void registerInsolation(CLI::App& app, CliContext& ctx) {
                     "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
                     "minutes); they are binned, so a finer step costs little")
         ->capture_default_str();
+    addCanopyOptions(cmd, o->canopy);
     addClearSkyOptions(cmd, o->sky, "each instant in --tz");
     cmd->add_option("--sky-directions", o->directions,
                     "Azimuth sectors of the sun bins and of the visible sky: one horizon sweep each (default 64)")

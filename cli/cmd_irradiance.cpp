@@ -20,6 +20,7 @@ struct IrradianceOptions {
     TilingOptions tiling;
     SearchOptions search;
     ClearSkyOptions sky;
+    CanopyRequest canopy;
     PointOptions point;
     std::string time, tz;
     std::optional<std::size_t> skyDirections;
@@ -37,6 +38,7 @@ IrradianceRequest irradianceRequest(const IrradianceOptions& o) {
     request.coeffBh = o.sky.coeffBh;
     request.coeffDh = o.sky.coeffDh;
     request.rasters = clearSkyRasters(o.sky);
+    request.canopy = o.canopy;
     request.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
     request.solarConstantWm2 = o.sky.solarConstantWm2;
     request.skyDirections = o.skyDirections;
@@ -124,6 +126,7 @@ void registerIrradiance(CLI::App& app, CliContext& ctx) {
     addOutputOptions(cmd, o->out);
     addPointOptions(cmd, o->point, cmd->get_option("-o"));
     addTimeOptions(cmd, o->time, o->tz);
+    addCanopyOptions(cmd, o->canopy);
     addClearSkyOptions(cmd, o->sky, "--time in its zone");
     cmd->add_option("--sky-directions", o->skyDirections,
                     "Horizon directions of the visible sky (default: 16 with --quality auto, 64 with full)")

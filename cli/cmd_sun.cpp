@@ -19,6 +19,7 @@ struct SunOptions {
     Atmosphere atmosphere;
     std::string model = "horizon";
     std::optional<std::size_t> directions;
+    CanopyRequest canopy;
 };
 
 /// Bands of the output: sun_visibility, sun_irradiance.
@@ -31,6 +32,7 @@ SunRequest sunRequest(const SunOptions& o) {
     request.sunDiameterDeg = o.sunDiameterDeg;
     request.atmosphere = o.atmosphere;
     request.directions = o.directions;
+    request.canopy = o.canopy;
     request.search = o.search.request;
     return request;
 }
@@ -76,6 +78,7 @@ void registerSun(CLI::App& app, CliContext& ctx) {
     addOutputOptions(cmd, o->out);
     addTimeOptions(cmd, o->time, o->tz);
     addSunDiameterOption(cmd, o->sunDiameterDeg);
+    addCanopyOptions(cmd, o->canopy);
     cmd->add_option("--pressure", o->atmosphere.pressureHpa, "Air pressure for solar refraction (hPa)")
         ->check(finiteRange(0, kMaxPressureHpa))
         ->capture_default_str();

@@ -16,6 +16,7 @@ struct SunhoursOptions {
     DemOptions dem;
     OutputOptions out;
     TilingOptions tiling;
+    CanopyRequest canopy;
     SearchOptions search;
     DayOptions days;
     std::string step = "10m";
@@ -38,6 +39,7 @@ SunhoursRequest sunhoursRequest(const SunhoursOptions& o) {
     r.albedo = o.albedo;
     r.skyDirections = o.skyDirections;
     if (o.horizonMode != "auto") r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
+    r.canopy = o.canopy;
     r.search = o.search.request;
     return r;
 }
@@ -94,6 +96,7 @@ void registerSunhours(CLI::App& app, CliContext& ctx) {
                     "Integration step (trapezoid rule), 6 s to 2 h: 10m, 90s, 1h (a bare number = minutes)")
         ->capture_default_str();
     addSunDiameterOption(cmd, o->sunDiameterDeg);
+    addCanopyOptions(cmd, o->canopy);
     cmd->add_option("--albedo", o->albedo, "Ground albedo C of the sky term f_sky = K / (1 - C(1 - K)) (0-1)")
         ->check(finiteRange(0.0, 1.0))
         ->capture_default_str();

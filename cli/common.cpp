@@ -326,7 +326,8 @@ std::string flagForField(const std::string& field) {
         {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
         {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
         {"time", "--time"},               {"toleranceDeg", "--tolerance"},       {"overwrite", "--overwrite"},
-        {"zone", "--tz"},
+        {"zone", "--tz"},                 {"canopy", "--canopy"},                {"canopyRaster", "--canopy"},
+        {"transmissivity", "--transmissivity"},
     };
     const auto it = flags.find(field);
     return it == flags.end() ? field : it->second;
@@ -451,6 +452,19 @@ LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg) {
     cmd->add_option("--sun-diameter", diameterDeg, "Angular diameter of the sun disk (degrees); larger = softer shadows")
         ->check(finiteRange(0.0, 20.0))
+        ->capture_default_str();
+}
+
+void addCanopyOptions(CLI::App* cmd, CanopyRequest& canopy) {
+    cmd->add_option("--canopy", canopy.raster,
+                    "Vegetation height above ground (metres, 0-150) on the DEM, a surface model with the trees on "
+                    "it: where the sun's line passes only through crowns, --transmissivity of the beam gets "
+                    "through (and of the sky they hide); cells under a crown are lit on the ground below it (any "
+                    "raster GDAL opens, band 1, resampled bilinearly; nodata = no vegetation)")
+        ->type_name("PATH");
+    cmd->add_option("--transmissivity", canopy.transmissivity,
+                    "Share of the light that passes through the crowns of --canopy (0-1; SOLWEIG's default)")
+        ->check(finiteRange(0.0, 1.0))
         ->capture_default_str();
 }
 

@@ -9,6 +9,7 @@
 #include "geo/dem_source.h"
 #include "geo/time.h"
 #include "geo/raster.h"
+#include "products/canopy.h"
 #include "products/product.h"
 #include "products/render.h"
 #include "products/tiles.h"
@@ -213,6 +214,8 @@ LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
 
 /// --sun-diameter (degrees).
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg);
+/// --canopy RASTER and --transmissivity (products/canopy.h).
+void addCanopyOptions(CLI::App* cmd, CanopyRequest& canopy);
 
 /// --color-raster, --color-encoding, --albedo, --exposure and --pixels of pictures.
 struct PictureOptions {

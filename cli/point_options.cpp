@@ -24,7 +24,8 @@ std::pair<double, double> parsePair(const std::string& text, const std::string& 
 
 }  // namespace
 
-void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output) {
+void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output,
+                     const std::vector<std::pair<std::string, std::string>>& moreFormats) {
     output->required(false);
     auto* at = cmd->add_option("--at", o.at,
                                "Point query: print the values at WGS84 LAT,LON (degrees; --at=-33.9,18.4 when the "
@@ -34,9 +35,13 @@ void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output) {
     at->excludes(xy);
     at->excludes(output);
     xy->excludes(output);
-    cmd->add_option("--point-format", o.format, "What a point query prints: json (one object) or csv (a header and rows)")
-        ->check(CLI::IsMember({"json", "csv"}))
-        ->capture_default_str();
+    std::vector<std::string> formats{"json", "csv"};
+    std::string help = "What a point query prints: json (one object), csv (a header and rows)";
+    for (const auto& [name, what] : moreFormats) {
+        formats.push_back(name);
+        help += ", " + name + " (" + what + ")";
+    }
+    cmd->add_option("--point-format", o.format, help)->check(CLI::IsMember(formats))->capture_default_str();
 }
 
 std::optional<PointSpec> pointOf(const PointOptions& o) {

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace demlight::cli {
@@ -19,8 +20,10 @@ struct PointOptions {
     std::string format = "json";
 };
 /// Adds the options; -o (`output`) stops being required, and one of -o or a point is checked by
-/// requireOutputOrPoint.
-void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output);
+/// requireOutputOrPoint. `moreFormats` are --point-format choices besides json and csv, with what
+/// they print, for the help text.
+void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output,
+                     const std::vector<std::pair<std::string, std::string>>& moreFormats = {});
 /// The point of --at or --at-xy, or none.
 std::optional<PointSpec> pointOf(const PointOptions& o);
 /// Throws Error unless -o or a point was given.

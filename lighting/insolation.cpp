@@ -21,7 +21,7 @@ std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t di
     struct Sum {
         double hours = 0, azimuthOffset = 0, elevation = 0, g0 = 0;
     };
-    std::map<std::tuple<std::size_t, long, double>, Sum> sums;  // ordered: by direction first
+    std::map<std::tuple<std::size_t, long, double, int>, Sum> sums;  // ordered: by direction first
     for (const WeightedSun& s : suns) {
         if (!(s.elevationDeg > 0) || !(s.hours > 0)) continue;
         const double az = wrapAzimuthDeg(s.azimuthDeg);
@@ -29,7 +29,8 @@ std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t di
         double offset = az - directionAzimuthDeg(direction, directions);  // within the sector, unwrapped
         if (offset > 180) offset -= 360;
         if (offset < -180) offset += 360;
-        Sum& b = sums[{direction, static_cast<long>(std::floor(s.elevationDeg / elevationBandDeg)), s.linke}];
+        Sum& b = sums[{direction, static_cast<long>(std::floor(s.elevationDeg / elevationBandDeg)), s.linke,
+                       s.month}];
         b.hours += s.hours;
         b.azimuthOffset += s.hours * offset;
         b.elevation += s.hours * s.elevationDeg;
@@ -39,7 +40,7 @@ std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t di
     for (const auto& [key, b] : sums) {
         const std::size_t direction = std::get<0>(key);
         bins.push_back({direction, b.hours, directionAzimuthDeg(direction, directions) + b.azimuthOffset / b.hours,
-                        b.elevation / b.hours, b.g0 / b.hours, std::get<2>(key)});
+                        b.elevation / b.hours, b.g0 / b.hours, std::get<2>(key), std::get<3>(key)});
     }
     return bins;
 }
@@ -67,6 +68,12 @@ InsolationAccumulator::InsolationAccumulator(const Grid<float>& heightsM, const 
 void InsolationAccumulator::setGrids(const ClearSkyGrids& grids) {
     for (const Grid<float>* g : {grids.linke, grids.albedo, grids.coeffBh, grids.coeffDh})
         if (g && !g->sameShape(heights_)) throw Error("InsolationAccumulator: a clear-sky grid of another shape");
+    for (const Grid<float>* g : grids.linkeByMonth)
+        if (grids.monthlyLinke() && (!g || !g->sameShape(heights_)))
+            throw Error("InsolationAccumulator: monthly Linke grids must be twelve of the DEM's shape");
+    for (const SunBin& b : bins_)
+        if (b.month >= 12 || (b.month >= 0) != grids.monthlyLinke())
+            throw Error("InsolationAccumulator: bins with a month need the twelve monthly Linke grids, and only they");
     grids_ = grids;
 }
 
@@ -184,8 +191,11 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
                 const SunBin& b = *bins[k];
                 const SunAngles& sun = angles[k];
                 // A per-cell Linke or index: the bin's sky at this cell from the formulas (E2-E9).
-                const ClearSky sky = skyGrid ? clearSky(b.extraterrestrialWm2, grids_.linke ? cell->linke : b.linke,
-                                                        b.elevationDeg, z, cell->coeffBh, cell->coeffDh)
+                const double linke = b.month >= 0 ? (*grids_.linkeByMonth[static_cast<std::size_t>(b.month)])(col, row)
+                                     : grids_.linke ? cell->linke
+                                                    : b.linke;
+                const ClearSky sky = skyGrid ? clearSky(b.extraterrestrialWm2, linke, b.elevationDeg, z, cell->coeffBh,
+                                                        cell->coeffDh)
                                              : clearSkyWithBeam(skies[k], beams[k].at(node, z));
                 const double toward = n.east * sun.sinAzimuth + n.north * sun.cosAzimuth;
                 const double cosine = toward * sun.cosElevation + n.up * sun.sinElevation;

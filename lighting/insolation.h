@@ -29,16 +29,20 @@ struct SunBin {
     double elevationDeg = 0;      ///< time-weighted mean apparent elevation (> 0)
     double extraterrestrialWm2 = 0;  ///< time-weighted mean G0
     double linke = 0;             ///< the Linke factor of the bin's instants
+    /// The calendar month (0 = January) of the bin's instants whose Linke grid applies
+    /// (ClearSkyGrids::linkeByMonth), or -1 when the Linke does not vary by month.
+    int month = -1;
 };
 
 /// One sun position of the period with its integration weight.
 struct WeightedSun {
     double hours = 0;  ///< weight (hours)
     double azimuthDeg = 0, elevationDeg = 0, extraterrestrialWm2 = 0, linke = 0;
+    int month = -1;  ///< as SunBin::month
 };
 
 /// Bins of `suns` (those with elevation > 0) for `directions` azimuth sectors and elevation
-/// bands `elevationBandDeg` wide; a bin per (sector, band, Linke factor). Sorted by direction.
+/// bands `elevationBandDeg` wide; a bin per (sector, band, Linke factor, month). Sorted by direction.
 std::vector<SunBin> binSuns(const std::vector<WeightedSun>& suns, std::size_t directions, double elevationBandDeg);
 
 /// Irradiation totals (Wh m-2) and hours of direct sun (the time of each bin times the sun's

@@ -35,6 +35,9 @@ bool ClearSkyGrids::at(std::size_t col, std::size_t row, IrradianceParams& param
         if (std::isnan(v)) return false;
         *value = v;
     }
+    if (monthlyLinke())
+        for (const Grid<float>* grid : linkeByMonth)
+            if (std::isnan((*grid)(col, row))) return false;
     return true;
 }
 

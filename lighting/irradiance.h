@@ -22,6 +22,7 @@
 #include "src/grid.h"
 #include "src/sun_field.h"
 
+#include <array>
 #include <string_view>
 
 namespace demlight {
@@ -63,12 +64,17 @@ struct CellIrradiance {
 /// IrradianceParams. A NaN value (the raster has no data there) makes the cell's outputs NaN.
 struct ClearSkyGrids {
     const Grid<float>* linke = nullptr;
+    /// Linke turbidity per calendar month (January first), all twelve or none, in place of
+    /// `linke` over a period: a sun's month picks its grid (SunBin::month in lighting/insolation.h).
+    std::array<const Grid<float>*, 12> linkeByMonth{};
     const Grid<float>* albedo = nullptr;
     const Grid<float>* coeffBh = nullptr;
     const Grid<float>* coeffDh = nullptr;
+    bool monthlyLinke() const { return linkeByMonth[0] != nullptr; }
     /// A grid that changes the clear sky itself (not only the albedo) is given.
-    bool changesSky() const { return linke || coeffBh || coeffDh; }
-    /// `params` with the grids' values at (col, row); false where a grid holds NaN.
+    bool changesSky() const { return linke || monthlyLinke() || coeffBh || coeffDh; }
+    /// `params` with the grids' values at (col, row); false where a grid (a monthly Linke grid
+    /// included) holds NaN. A monthly Linke leaves params.linke as it is.
     bool at(std::size_t col, std::size_t row, IrradianceParams& params) const;
 };
 

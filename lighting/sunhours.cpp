@@ -1,6 +1,7 @@
 // Sun-hour integrals; see sunhours.h.
 #include "lighting/sunhours.h"
 
+#include "lighting/canopy.h"
 #include "src/angles.h"
 #include "src/error.h"
 #include "src/parallel.h"
@@ -105,6 +106,9 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
     out.lastLitClock = Grid<float>(w, h, nan);
 
     SweepBuffers buffers;  // the instants' sweeps' scratch and valid-cell bitmap
+    SweepBuffers groundBuffers;  // the same for the ground under a canopy
+    if (params.canopyGround && (params.stack || !params.underCrown))
+        throw Error("integrateSunHours: a canopy needs exact sweeps and its cells under a crown");
     for (std::size_t i = 0; i < instants.size(); ++i) {
         // Trapezoid weights (hours): half the neighbouring intervals.
         const double before = i > 0 ? instants[i].hours - instants[i - 1].hours : 0.0;
@@ -119,6 +123,11 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
                                                 params.frame.threads);
             else
                 frame = computeSunFrame(t, normals, field, params.frame, nullptr, &buffers);
+            if (params.canopyGround)
+                blendCanopySun(frame,
+                               computeSunFrame(*params.canopyGround, normals, field, params.frame, nullptr,
+                                               &groundBuffers),
+                               *params.underCrown, params.transmissivity);
             ++out.instantsSwept;
         }
         const double clock = instants[i].clockHours;

@@ -60,6 +60,11 @@ struct SunHoursParams {
     /// Set: each instant's sun horizons are interpolated from this stack (sunLightFromStack, the
     /// `interpolated:N` horizon mode) instead of an exact sweep along its azimuth.
     const HorizonStack* stack = nullptr;
+    /// Set (exact sweeps only, no stack): vegetation over the terrain (lighting/canopy.h); each
+    /// instant's frame is blended with the frame of this ground-and-buildings terrain.
+    const Terrain* canopyGround = nullptr;
+    const Grid<std::uint8_t>* underCrown = nullptr;  ///< with canopyGround: the cells under a crown
+    double transmissivity = 0;                       ///< with canopyGround: tau
 };
 
 struct SunHoursMaps {

@@ -15,8 +15,10 @@ namespace {
 constexpr double kWhPerKWh = 1000;
 constexpr std::chrono::milliseconds kMinStep = std::chrono::seconds(6), kMaxStep = std::chrono::hours(2);
 
-/// The sun at the DEM centre every `step` over the period, with trapezoid weights (hours).
-std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationRequest& r, std::size_t& instants) {
+/// The sun at the DEM centre every `step` over the period, with trapezoid weights (hours); each
+/// with its month when the Linke maps are monthly.
+std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationRequest& r, bool monthlyLinke,
+                                      std::size_t& instants) {
     const std::vector<UtcInstant> times = periodInstants(r);
     instants = times.size();
     SolarSite site;
@@ -35,39 +37,72 @@ std::vector<WeightedSun> sunsOfPeriod(const DemSource& source, const InsolationR
         if (!(p.elevationDeg > 0)) continue;
         suns.push_back({0.5 * (before + after), p.azimuthDeg, p.elevationDeg,
                         extraterrestrialIrradiance(trace.earthSunDistanceAu, r.solarConstantWm2),
-                        linkeAt(r.linke, times[i], r.zone)});
+                        linkeAt(r.linke, times[i], r.zone),
+                        monthlyLinke ? static_cast<int>(monthAt(times[i], r.zone)) : -1});
     }
     return suns;
 }
 
-InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const InsolationRequest& r,
-                              const std::vector<SunBin>& bins, std::size_t directions, std::size_t instants,
-                              const ClearSkyRasterGrids& rasters, const ProgressFn& progress) {
-    const Terrain& t = dem.terrain;
+/// The binned totals of one surface's horizons (`horizonsOf`, the DEM's terrain or the ground
+/// under a canopy), the visible-sky K0 of the same horizons included; the cells of `hidden` see
+/// nothing (under a crown, on the full surface).
+InsolationMaps insolationTotals(const Terrain& horizonsOf, const Grid<float>& litHeightsM, const Normals& normals,
+                                const InsolationRequest& r, const HorizonParams& hp, const std::vector<SunBin>& bins,
+                                std::size_t directions, const ClearSkyGrids& grids, const Grid<std::uint8_t>* hidden,
+                                ProgressCounter& counter) {
     const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
-    const Normals normals = computeNormals(t, r.search.threads);
-    const HorizonParams hp = horizonParams(r.search, plan);
-    ProgressCounter counter(progress, "insolation", t.heightsM.size() * directions);
     IrradianceParams params;
     params.model = r.diffuseModel;
     params.albedo = r.albedo;
     params.coeffBh = r.coeffBh;
     params.coeffDh = r.coeffDh;
     params.threads = r.search.threads;
-    InsolationAccumulator totals(t.heightsM, normals, bins, directions, params, r.sunDiameterDeg);
-    ClearSkyRasterGrids cut;
-    totals.setGrids(rasters.on(t, cut));
+    InsolationAccumulator totals(litHeightsM, normals, bins, directions, params, r.sunDiameterDeg);
+    totals.setGrids(grids);
     std::optional<SkyAccumulator> sky;
     if (visibleSky) sky.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, r.search.threads);
-    Grid<float> raised;
-    sweepDirections(t, hp, directions, [&](std::size_t i, const HorizonMap& h) {
-        totals.addDirection(i, h.angleDeg);
+    Grid<float> own, raised;
+    sweepDirections(horizonsOf, hp, directions, [&](std::size_t i, const HorizonMap& h) {
+        const Grid<float>* horizons = &h.angleDeg;
+        if (hidden) {
+            own = h.angleDeg;
+            hideUnderCrown(own, *hidden, 90.0f);
+            horizons = &own;
+        }
+        totals.addDirection(i, *horizons);
         if (!sky) return;
-        raiseToHorizontal(h.angleDeg, raised);
+        raiseToHorizontal(*horizons, raised);
         sky->addDirection(i, raised);
     }, &counter);
     const Grid<float> k0 = sky ? std::move(*sky).finish(0.0).skyK : Grid<float>();
-    InsolationMaps totalMaps = totals.finish(visibleSky ? &k0 : nullptr);
+    return totals.finish(visibleSky ? &k0 : nullptr);
+}
+
+InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const InsolationRequest& r,
+                              const std::vector<SunBin>& bins, std::size_t directions, std::size_t instants,
+                              const ClearSkyRasterGrids& rasters, const Grid<float>& wholeCanopy,
+                              const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    std::optional<CanopyTerrain> canopy;
+    if (r.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
+    // With a canopy the lit surface is the ground and buildings under it (lighting/canopy.h).
+    const Terrain& lit = canopy ? canopy->ground : t;
+    const Normals normals = computeNormals(lit, r.search.threads);
+    const HorizonParams hp = horizonParams(r.search, plan);
+    ProgressCounter counter(progress, "insolation", t.heightsM.size() * directions * (canopy ? 2 : 1));
+    ClearSkyRasterGrids cut;
+    const ClearSkyGrids grids = rasters.on(t, cut);
+    InsolationMaps totalMaps = insolationTotals(t, lit.heightsM, normals, r, hp, bins, directions, grids,
+                                                canopy ? &canopy->underCrown : nullptr, counter);
+    if (canopy) {
+        InsolationMaps ground = insolationTotals(lit, lit.heightsM, normals, r, hp, bins, directions, grids, nullptr, counter);
+        IrradianceMaps& a = totalMaps.irradiation;
+        IrradianceMaps& b = ground.irradiation;
+        for (auto [full, under] : {std::pair{&a.beam, &b.beam}, std::pair{&a.diffuse, &b.diffuse},
+                                   std::pair{&a.reflected, &b.reflected}, std::pair{&a.global, &b.global},
+                                   std::pair{&totalMaps.sunHours, &ground.sunHours}})
+            blendCanopy(*full, *under, r.canopy.transmissivity);
+    }
     IrradianceMaps& maps = totalMaps.irradiation;
     for (Grid<float>* g : {&maps.beam, &maps.diffuse, &maps.reflected, &maps.global})
         for (float& v : g->values()) v = static_cast<float>(v / kWhPerKWh);
@@ -92,6 +127,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
         {"DEMLIGHT_UNITS", "kWh m-2"},
     });
     meta.merge(clearSkyInputMetadata(formatNumberList(r.linke), r.albedo, r.coeffBh, r.coeffDh, r.rasters));
+    meta.merge(canopyMetadata(r.canopy));
     InsolationResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "insolation", meta);
     out.instants = instants;
@@ -107,6 +143,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
 void validateInsolation(const InsolationRequest& r) {
     validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
     linkeAt(r.linke, localDay(r.firstDay, r.zone).startUtc, r.zone);
+    validateCanopy(r.canopy);
     if (r.interval && !(r.interval->first < r.interval->second))
         throw FieldError("interval", " " + formatInstant(r.interval->second, r.zone) + ": is not after its start " +
                                          formatInstant(r.interval->first, r.zone));
@@ -142,14 +179,16 @@ InsolationResult insolationProduct(const DemSource& source, const CellWindow& wi
     const Dem& whole = source.geometry();
     const ScenePlan plan = planFor(request.search, whole.terrain);
     const std::size_t directions = request.directions.value_or(kDefaultInsolationDirections);
-    // The whole DEM's bins for every window: the same bits on its cells.
-    std::size_t instants = 0;
-    const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, instants), directions, request.elevationBandDeg);
-    const std::size_t halo = haloCellsFor(whole.terrain, horizonParams(request.search, plan).maxDistanceM);
     // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
     const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
+    // The whole DEM's bins for every window: the same bits on its cells.
+    std::size_t instants = 0;
+    const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, rasters.monthlyLinke(), instants),
+                                             directions, request.elevationBandDeg);
+    const std::size_t halo = haloCellsFor(whole.terrain, horizonParams(request.search, plan).maxDistanceM);
     return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
-        return insolationOn(dem, plan, request, bins, directions, instants, rasters, progress);
+        return insolationOn(dem, plan, request, bins, directions, instants, rasters, canopy, progress);
     });
 }
 

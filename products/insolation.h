@@ -42,6 +42,8 @@ struct InsolationRequest {
     double elevationBandDeg = kDefaultInsolationBandDeg;  ///< in (0, 90]
     double sunDiameterDeg = kSunDiameterDeg;
     Atmosphere atmosphere;
+    /// Vegetation over the DEM (a DSM) that passes a share of the beam and of the sky it hides.
+    CanopyRequest canopy;
     SearchRequest search;
 };
 

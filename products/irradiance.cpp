@@ -25,19 +25,23 @@ constexpr double kMinSolarConstantWm2 = 1000, kMaxSolarConstantWm2 = 1500;
 void validateIrradiance(const IrradianceRequest& r) {
     validateClearSky(r.albedo, r.coeffBh, r.coeffDh, r.solarConstantWm2, r.sunDiameterDeg, r.atmosphere);
     linkeFor(r);
+    validateCanopy(r.canopy);
     if (r.skyDirections && *r.skyDirections < 1)
         throw FieldError("skyDirections", " " + std::to_string(*r.skyDirections) + ": must be >= 1");
 }
 
 namespace {
 
-/// K0: the sky K of the horizons raised to the horizontal (lighting/irradiance.h).
+/// K0: the sky K of the horizons raised to the horizontal (lighting/irradiance.h); the cells of
+/// `hidden` (under a crown, on the full surface of a canopy) see none of it.
 Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::size_t directions,
-                               const HorizonParams& params, int threads, ProgressCounter& counter) {
+                               const HorizonParams& params, int threads, ProgressCounter& counter,
+                               const Grid<std::uint8_t>* hidden = nullptr) {
     SkyAccumulator sky(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
     Grid<float> raised;
     sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) {
         raiseToHorizontal(h.angleDeg, raised);
+        if (hidden) hideUnderCrown(raised, *hidden, 90.0f);
         sky.addDirection(i, raised);
     }, &counter);
     return std::move(sky).finish(0.0).skyK;
@@ -45,17 +49,32 @@ Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::si
 
 IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const IrradianceRequest& r,
                              const SunField& field, double g0, double linke, const ClearSkyRasterGrids& rasters,
-                             const ProgressFn& progress) {
+                             const Grid<float>& wholeCanopy, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const bool visibleSky = r.diffuseModel == DiffuseModel::VisibleSky;
-    const Normals normals = computeNormals(t, r.search.threads);
+    std::optional<CanopyTerrain> canopy;
+    if (r.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
+    // With a canopy the lit surface is the ground and buildings under it (lighting/canopy.h).
+    const Terrain& lit = canopy ? canopy->ground : t;
+    const Normals normals = computeNormals(lit, r.search.threads);
     const std::size_t directions = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const HorizonParams hp = integralParams(r.search, plan, t, directions);
-    ProgressCounter counter(progress, "irradiance", t.heightsM.size() * ((visibleSky ? directions : 0) + 1));
+    ProgressCounter counter(progress, "irradiance",
+                            t.heightsM.size() * ((visibleSky ? directions : 0) + 1) * (canopy ? 2 : 1));
 
-    const Grid<float> k0 =
-        visibleSky ? skyAboveHorizontal(t, normals, directions, hp, r.search.threads, counter) : Grid<float>();
-    const SunFrame frame = computeSunFrame(t, normals, field, sunFrameParams(r.search, r.sunDiameterDeg, plan), &counter);
+    Grid<float> k0;
+    if (visibleSky) {
+        k0 = skyAboveHorizontal(t, normals, directions, hp, r.search.threads, counter,
+                                canopy ? &canopy->underCrown : nullptr);
+        if (canopy)
+            blendCanopy(k0, skyAboveHorizontal(lit, normals, directions, hp, r.search.threads, counter),
+                        r.canopy.transmissivity);
+    }
+    const SunFrameParams sp = sunFrameParams(r.search, r.sunDiameterDeg, plan);
+    SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
+    if (canopy)
+        blendCanopySun(frame, computeSunFrame(lit, normals, field, sp, &counter), canopy->underCrown,
+                       r.canopy.transmissivity);
 
     IrradianceParams params;
     params.model = r.diffuseModel;
@@ -66,14 +85,14 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     params.extraterrestrialWm2 = g0;
     params.threads = r.search.threads;
     IrradianceInputs inputs;
-    inputs.heightsM = &t.heightsM;
+    inputs.heightsM = &lit.heightsM;
     inputs.normals = &normals;
     inputs.sun = &field;
     inputs.sunVisibility = &frame.light.visibility;
     inputs.sunIrradiance = &frame.light.irradiance;
     inputs.skyK0 = visibleSky ? &k0 : nullptr;
     ClearSkyRasterGrids cut;
-    inputs.grids = rasters.on(t, cut);
+    inputs.grids = rasters.on(t, cut, monthAt(r.time.utc, r.time.zone));
     IrradianceMaps maps = computeIrradiance(inputs, params);
 
     std::map<std::string, std::string> meta = planMetadata(plan);
@@ -89,7 +108,7 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
         {"DEMLIGHT_MODEL", "esra"},
         {"DEMLIGHT_DIFFUSE_MODEL", std::string(diffuseModelName(r.diffuseModel))},
         {"DEMLIGHT_LINKE_MONTHLY",
-         r.linke.size() == 12 && r.rasters.linke.empty() ? formatNumberList(r.linke) : std::string()},
+         r.linke.size() == kMonths && r.rasters.linke.empty() ? formatNumberList(r.linke) : std::string()},
         {"DEMLIGHT_SOLAR_CONSTANT_WM2", formatNumber(r.solarConstantWm2)},
         {"DEMLIGHT_EXTRATERRESTRIAL_WM2", formatNumber(g0)},
         {"DEMLIGHT_UNITS", "W m-2"},
@@ -97,6 +116,7 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
         {"DEMLIGHT_SKY_MAX_DISTANCE_M", visibleSky ? metadataDistanceM(t, hp.maxDistanceM) : std::string()},
     });
     meta.merge(clearSkyInputMetadata(formatNumber(linke), r.albedo, r.coeffBh, r.coeffDh, r.rasters));
+    meta.merge(canopyMetadata(r.canopy));
     IrradianceResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "irradiance", meta);
     out.centreAzimuthDeg = field.centreAzimuthDeg;
@@ -109,19 +129,32 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
 
 }  // namespace
 
-ClearSkyGrids ClearSkyRasterGrids::on(const Terrain& terrain, ClearSkyRasterGrids& cut) const {
+ClearSkyGrids ClearSkyRasterGrids::on(const Terrain& terrain, ClearSkyRasterGrids& cut,
+                                      std::optional<std::size_t> month) const {
     const auto one = [&](const Grid<float>& whole, Grid<float>& part) -> const Grid<float>* {
         if (whole.empty()) return nullptr;
         if (!terrain.frame) return &whole;
         part = cropGrid(whole, cellsOnFullGrid(terrain));
         return &part;
     };
-    return {one(linke, cut.linke), one(albedo, cut.albedo), one(coeffBh, cut.coeffBh), one(coeffDh, cut.coeffDh)};
+    ClearSkyGrids out{nullptr, {}, one(albedo, cut.albedo), one(coeffBh, cut.coeffBh), one(coeffDh, cut.coeffDh)};
+    cut.linke.resize(linke.size());
+    if (linke.size() == 1) {
+        out.linke = one(linke[0], cut.linke[0]);
+    } else if (monthlyLinke() && month) {
+        out.linke = one(linke.at(*month), cut.linke[*month]);
+    } else if (monthlyLinke()) {
+        for (std::size_t m = 0; m < kMonths; ++m) out.linkeByMonth[m] = one(linke[m], cut.linke[m]);
+    }
+    return out;
 }
 
 namespace {
 
-/// The auxiliary-raster specs of the clear-sky rasters: request field and valid range.
+/// Linke factors accepted in rasters: as the constants.
+const AuxiliarySpec kLinkeRasterSpec{"linkeRaster", 1, false, kMinLinke, kMaxLinke, false, {}};
+
+/// The one-band auxiliary rasters of the clear sky: request field and valid range.
 struct ClearSkyRasterSpec {
     const std::string ClearSkyRasters::*path;
     Grid<float> ClearSkyRasterGrids::*grid;
@@ -129,8 +162,6 @@ struct ClearSkyRasterSpec {
     AuxiliarySpec spec;
 };
 const ClearSkyRasterSpec kClearSkyRasterSpecs[] = {
-    {&ClearSkyRasters::linke, &ClearSkyRasterGrids::linke, &IrradianceParams::linke,
-     {"linkeRaster", 1, false, kMinLinke, kMaxLinke, false, {}}},
     {&ClearSkyRasters::albedo, &ClearSkyRasterGrids::albedo, &IrradianceParams::albedo,
      {"albedoRaster", 1, false, 0, 1, false, {}}},
     {&ClearSkyRasters::coeffBh, &ClearSkyRasterGrids::coeffBh, &IrradianceParams::coeffBh,
@@ -139,35 +170,92 @@ const ClearSkyRasterSpec kClearSkyRasterSpecs[] = {
      {"coeffDhRaster", 1, false, 0, 1, false, {}}},
 };
 
+/// The band count of a raster, or a FieldError naming `field` when GDAL cannot open it.
+std::size_t bandsOf(const std::string& path, const std::string& field) {
+    try {
+        return inspectRaster(path).dataTypes.size();
+    } catch (const Error& e) {
+        throw FieldError(field, " " + path + ": " + e.what());
+    }
+}
+
+/// The Linke maps of `paths`: one of one band; one of twelve bands (monthly); or twelve of one band.
+/// `read(path, bands)` reads `bands` bands of a path.
+template <class Read>
+std::vector<Grid<float>> linkeMaps(const std::vector<std::string>& paths, const Read& read) {
+    const std::string& field = kLinkeRasterSpec.field;
+    if (paths.empty()) return {};
+    if (paths.size() == kMonths) {
+        std::vector<Grid<float>> maps;
+        for (const std::string& path : paths) {
+            if (const std::size_t n = bandsOf(path, field); n != 1)
+                throw FieldError(field, " " + path + ": has " + std::to_string(n) +
+                                            " bands; twelve monthly Linke rasters must have one band each");
+            maps.push_back(std::move(read(path, 1)[0]));
+        }
+        return maps;
+    }
+    if (paths.size() != 1)
+        throw FieldError(field, ": " + std::to_string(paths.size()) +
+                                    " paths; expected one raster (of one band, or of 12 monthly bands) or 12 one-band "
+                                    "rasters, January first");
+    const std::size_t n = bandsOf(paths[0], field);
+    if (n != 1 && n != kMonths)
+        throw FieldError(field, " " + paths[0] + ": has " + std::to_string(n) +
+                                    " bands; expected 1 (the whole period) or 12 (band m = month m, January first)");
+    return read(paths[0], n);
+}
+
 }  // namespace
 
 ClearSkyRasterGrids loadClearSkyRasters(const ClearSkyRasters& rasters, const DemSource& source) {
     ClearSkyRasterGrids out;
+    out.linke = linkeMaps(rasters.linke, [&](const std::string& path, std::size_t bands) {
+        AuxiliarySpec spec = kLinkeRasterSpec;
+        spec.bands = bands;
+        return loadAuxiliaryRaster(path, source, spec);
+    });
     for (const ClearSkyRasterSpec& r : kClearSkyRasterSpecs)
         if (!(rasters.*r.path).empty()) out.*r.grid = std::move(loadAuxiliaryRaster(rasters.*r.path, source, r.spec)[0]);
     return out;
 }
 
 IrradianceParams clearSkyAtCell(const ClearSkyRasters& rasters, const DemSource& source, CellIndex cell,
-                                IrradianceParams constants) {
+                                IrradianceParams constants, std::vector<double>* linkeByMonth) {
     GeoReference ref = source.geometry().band.ref;
     ref.geoTransform[0] += static_cast<double>(cell.col) * ref.geoTransform[1];
     ref.geoTransform[3] += static_cast<double>(cell.row) * ref.geoTransform[5];
-    for (const ClearSkyRasterSpec& r : kClearSkyRasterSpecs) {
-        const std::string& path = rasters.*r.path;
-        if (path.empty()) continue;
+    // The bands of a raster at the cell, each checked against the spec's range.
+    const auto atCell = [&](const std::string& path, const AuxiliarySpec& spec, std::size_t count) {
         std::vector<Grid<float>> bands;
         try {
             bands = readRasterResampled(path, ref, 1, 1);
         } catch (const Error& e) {
-            throw FieldError(r.spec.field, " " + path + ": " + e.what());
+            throw FieldError(spec.field, " " + path + ": " + e.what());
         }
-        if (bands.empty()) throw FieldError(r.spec.field, " " + path + ": the raster has no bands");
-        const float v = bands[0](0, 0);
-        if (!std::isnan(v) && !(v >= r.spec.minValue && v <= r.spec.maxValue))
-            throw FieldError(r.spec.field, " " + path + ": holds " + formatNumber(v) + " at the point; expected values " +
-                                               formatNumber(r.spec.minValue) + "-" + formatNumber(r.spec.maxValue));
-        constants.*r.value = v;
+        if (bands.size() < count) throw FieldError(spec.field, " " + path + ": the raster has too few bands");
+        std::vector<double> values;
+        for (std::size_t b = 0; b < count; ++b) {
+            const float v = bands[b](0, 0);
+            if (!std::isnan(v) && !(v >= spec.minValue && v <= spec.maxValue))
+                throw FieldError(spec.field, " " + path + ": holds " + formatNumber(v) + " at the point; expected values " +
+                                                 formatNumber(spec.minValue) + "-" + formatNumber(spec.maxValue));
+            values.push_back(v);
+        }
+        return values;
+    };
+    std::vector<double> linke;
+    for (const Grid<float>& g : linkeMaps(rasters.linke, [&](const std::string& path, std::size_t bands) {
+             std::vector<Grid<float>> out;
+             for (double v : atCell(path, kLinkeRasterSpec, bands)) out.emplace_back(1, 1, static_cast<float>(v));
+             return out;
+         }))
+        linke.push_back(g(0, 0));
+    if (!linke.empty()) constants.linke = linke[0];
+    if (linkeByMonth) *linkeByMonth = linke.size() == kMonths ? linke : std::vector<double>{};
+    for (const ClearSkyRasterSpec& r : kClearSkyRasterSpecs) {
+        const std::string& path = rasters.*r.path;
+        if (!path.empty()) constants.*r.value = atCell(path, r.spec, 1)[0];
     }
     return constants;
 }
@@ -175,7 +263,9 @@ IrradianceParams clearSkyAtCell(const ClearSkyRasters& rasters, const DemSource&
 std::map<std::string, std::string> clearSkyInputMetadata(const std::string& linke, double albedo, double coeffBh,
                                                          double coeffDh, const ClearSkyRasters& rasters) {
     const auto valueOr = [](const std::string& path, const std::string& value) { return path.empty() ? value : path; };
-    return {{"DEMLIGHT_LINKE", valueOr(rasters.linke, linke)},
+    std::string linkePaths;
+    for (const std::string& path : rasters.linke) linkePaths += (linkePaths.empty() ? "" : ",") + path;
+    return {{"DEMLIGHT_LINKE", valueOr(linkePaths, linke)},
             {"DEMLIGHT_ALBEDO", valueOr(rasters.albedo, formatNumber(albedo))},
             {"DEMLIGHT_COEFF_BH", valueOr(rasters.coeffBh, formatNumber(coeffBh))},
             {"DEMLIGHT_COEFF_DH", valueOr(rasters.coeffDh, formatNumber(coeffDh))}};
@@ -213,8 +303,12 @@ double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpe
     for (double v : linke)
         if (!(v >= kMinLinke && v <= kMaxLinke)) throw FieldError("linke", " " + formatNumber(v) + ": must be in [1, 10]");
     if (linke.size() == 1) return linke[0];
+    return linke[monthAt(t, zone)];
+}
+
+std::size_t monthAt(UtcInstant t, const TimeZoneSpec& zone) {
     const std::chrono::year_month_day date{localDayOf(t, zone).date};
-    return linke[static_cast<unsigned>(date.month()) - 1];
+    return static_cast<unsigned>(date.month()) - 1;
 }
 
 double linkeFor(const IrradianceRequest& r) { return linkeAt(r.linke, r.time.utc, r.time.zone); }
@@ -243,9 +337,11 @@ IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& wi
     }
     // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
     const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
     return onWindow<IrradianceResult>(source, window, halo, [&](const Dem& dem) {
-        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, rasters, progress);
-        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, rasters, progress);
+        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, rasters, canopy, progress);
+        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, rasters, canopy,
+                            progress);
     });
 }
 

@@ -15,32 +15,45 @@
 
 namespace demlight {
 
-/// Rasters (paths GDAL opens, band 1) of the clear-sky inputs that vary over the DEM, as r.sun's
-/// linke, albedo, coeff_bh and coeff_dh maps: resampled bilinearly onto the DEM's grid once
+/// Rasters (paths GDAL opens) of the clear-sky inputs that vary over the DEM, as r.sun's linke,
+/// albedo, coeff_bh and coeff_dh maps: resampled bilinearly onto the DEM's grid once
 /// (loadAuxiliaryRaster) and cut per window, so tiles give the one-piece bits. Empty = the
 /// request's constant. Where a raster has no data the outputs are nodata.
 struct ClearSkyRasters {
-    std::string linke;    ///< Linke turbidity, 1-10, constant over the period
-    std::string albedo;   ///< ground albedo, 0-1
-    std::string coeffBh;  ///< real-sky beam index, 0-1
-    std::string coeffDh;  ///< real-sky diffuse index, 0-1
+    /// Linke turbidity, 1-10: none; one path, of one band (the whole period) or of twelve (band m
+    /// = month m, January first, as the SoDa monthly climatology); or twelve one-band paths,
+    /// January first. Monthly maps give each instant its month's map (the month on the clocks of
+    /// the request's zone).
+    std::vector<std::string> linke;
+    std::string albedo;   ///< ground albedo, 0-1 (band 1)
+    std::string coeffBh;  ///< real-sky beam index, 0-1 (band 1)
+    std::string coeffDh;  ///< real-sky diffuse index, 0-1 (band 1)
     bool any() const { return !linke.empty() || !albedo.empty() || !coeffBh.empty() || !coeffDh.empty(); }
 };
 
+/// Months of a year: the count of monthly Linke values and maps.
+inline constexpr std::size_t kMonths = 12;
+
 /// The rasters on the whole DEM's grid (empty grids for those not given).
 struct ClearSkyRasterGrids {
-    Grid<float> linke, albedo, coeffBh, coeffDh;
+    std::vector<Grid<float>> linke;  ///< none, one (the whole period) or twelve (January first)
+    Grid<float> albedo, coeffBh, coeffDh;
+    bool monthlyLinke() const { return linke.size() == kMonths; }
     /// The grids of a window's terrain (cut from these when it is a tile) as ClearSkyGrids;
-    /// `cut` holds the cut grids while the result is used.
-    ClearSkyGrids on(const Terrain& terrain, ClearSkyRasterGrids& cut) const;
+    /// `cut` holds the cut grids while the result is used. Monthly Linke maps: `month` (0 =
+    /// January) picks one as ClearSkyGrids::linke (an instant's); without it all twelve go to
+    /// ClearSkyGrids::linkeByMonth (a period's).
+    ClearSkyGrids on(const Terrain& terrain, ClearSkyRasterGrids& cut, std::optional<std::size_t> month = {}) const;
 };
 /// Loads the rasters of `rasters` for `source`; throws FieldError naming linkeRaster, albedoRaster,
-/// coeffBhRaster or coeffDhRaster (unreadable, out of range, covering no cell).
+/// coeffBhRaster or coeffDhRaster (unreadable, out of range, covering no cell; a Linke raster of
+/// neither 1 nor 12 bands, or a count of Linke paths other than 1 and 12).
 ClearSkyRasterGrids loadClearSkyRasters(const ClearSkyRasters& rasters, const DemSource& source);
 /// The values of the rasters at one cell of `source` (NaN where a raster has no data), for point
-/// queries: each raster resampled bilinearly onto that cell alone.
+/// queries: each raster resampled bilinearly onto that cell alone. `linkeByMonth` receives the
+/// twelve Linke values of monthly maps (empty otherwise; `linke` is then January's).
 IrradianceParams clearSkyAtCell(const ClearSkyRasters& rasters, const DemSource& source, CellIndex cell,
-                                IrradianceParams constants);
+                                IrradianceParams constants, std::vector<double>* linkeByMonth = nullptr);
 /// The metadata of the clear-sky inputs: DEMLIGHT_LINKE (`linke`, or the raster's path),
 /// DEMLIGHT_ALBEDO, DEMLIGHT_COEFF_BH and DEMLIGHT_COEFF_DH (the constant or the raster's path).
 std::map<std::string, std::string> clearSkyInputMetadata(const std::string& linke, double albedo, double coeffBh,
@@ -66,6 +79,8 @@ struct IrradianceRequest {
     std::optional<std::size_t> skyDirections;
     double sunDiameterDeg = kSunDiameterDeg;
     Atmosphere atmosphere;
+    /// Vegetation over the DEM (a DSM) that passes a share of the beam and of the sky it hides.
+    CanopyRequest canopy;
     SearchRequest search;
 };
 
@@ -79,6 +94,8 @@ struct IrradianceResult : ProductResult {
 /// month on the clocks of `zone`. Throws FieldError "linke" unless there are 1 or 12 values,
 /// each in [1, 10].
 double linkeAt(const std::vector<double>& linke, UtcInstant t, const TimeZoneSpec& zone);
+/// The calendar month (0 = January) of instant `t` on the clocks of `zone`.
+std::size_t monthAt(UtcInstant t, const TimeZoneSpec& zone);
 /// Numbers as formatNumber writes them, comma-separated ("1.5,1.6").
 std::string formatNumberList(const std::vector<double>& values);
 /// Checks the request's fields; throws FieldError naming the first bad one.

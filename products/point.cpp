@@ -93,10 +93,15 @@ CellView viewOf(const Enu& n, double horizonDeg, double azimuthDeg, double eleva
 }
 
 /// The clear-sky inputs at the point: the constants, or the rasters' values at its cell.
+/// `linkeByMonth` receives the twelve values of monthly Linke maps (empty otherwise).
 IrradianceParams inputsAt(const DemSource& source, const PointCell& p, const ClearSkyRasters& rasters,
-                          IrradianceParams constants) {
-    const IrradianceParams q = clearSkyAtCell(rasters, source, p.cell, constants);
-    for (const double v : {q.linke, q.albedo, q.coeffBh, q.coeffDh})
+                          IrradianceParams constants, std::vector<double>* linkeByMonth = nullptr) {
+    std::vector<double> months;
+    const IrradianceParams q = clearSkyAtCell(rasters, source, p.cell, constants, &months);
+    if (linkeByMonth) *linkeByMonth = months;
+    std::vector<double> values{q.linke, q.albedo, q.coeffBh, q.coeffDh};
+    values.insert(values.end(), months.begin(), months.end());
+    for (const double v : values)
         if (std::isnan(v))
             throw FieldError("point", " (column " + std::to_string(p.cell.col) + ", row " + std::to_string(p.cell.row) +
                                           "): a clear-sky raster has no data there");
@@ -113,6 +118,12 @@ IrradianceParams constantInputs(const Request& request) {
     p.coeffBh = request.coeffBh;
     p.coeffDh = request.coeffDh;
     return p;
+}
+
+/// Point queries march the one surface: a canopy is for the rasters.
+void refuseCanopy(const CanopyRequest& canopy) {
+    if (canopy.any())
+        throw FieldError("canopy", ": point queries do not model a canopy; compute the raster and read its cell");
 }
 
 }  // namespace
@@ -183,6 +194,7 @@ PointHorizon pointHorizon(const DemSource& source, const PointCell& point, const
 
 PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point, const IrradianceRequest& request) {
     validateIrradiance(request);
+    refuseCanopy(request.canopy);
     PointIrradiance out;
     out.point = point;
     out.linke = linkeFor(request);
@@ -204,12 +216,13 @@ PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point,
     }
     IrradianceParams constants = constantInputs(request);
     constants.linke = out.linke;
-    const IrradianceParams params = inputsAt(source, point, request.rasters, constants);
-    out.linke = params.linke;
+    std::vector<double> linkeByMonth;
+    const IrradianceParams params = inputsAt(source, point, request.rasters, constants, &linkeByMonth);
+    out.linke = linkeByMonth.empty() ? params.linke : linkeByMonth[monthAt(request.time.utc, request.time.zone)];
     const CellView view =
         viewOf(n, out.horizonAtSunDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
     out.sunVisibility = view.sunVisibility;
-    const ClearSky sky = clearSky(out.extraterrestrialWm2, params.linke, sun.elevationDeg, point.heightM, params.coeffBh,
+    const ClearSky sky = clearSky(out.extraterrestrialWm2, out.linke, sun.elevationDeg, point.heightM, params.coeffBh,
                                   params.coeffDh);
     out.irradiance = cellIrradiance(sky, view, params);
     return out;
@@ -217,6 +230,7 @@ PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point,
 
 PointInsolation pointInsolation(const DemSource& source, const PointCell& point, const InsolationRequest& request) {
     validateInsolation(request);
+    refuseCanopy(request.canopy);
     PointInsolation out;
     out.point = point;
     std::tie(out.start, out.end) = insolationPeriod(request);
@@ -232,7 +246,8 @@ PointInsolation pointInsolation(const DemSource& source, const PointCell& point,
         out.skyDirections = request.directions.value_or(kDefaultInsolationDirections);
         out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n, request.search.threads);
     }
-    const IrradianceParams params = inputsAt(source, point, request.rasters, constantInputs(request));
+    std::vector<double> linkeByMonth;
+    const IrradianceParams params = inputsAt(source, point, request.rasters, constantInputs(request), &linkeByMonth);
 
     // Every instant's own sun and horizon, in parallel; summed below in time order.
     struct Instant {
@@ -255,7 +270,8 @@ PointInsolation pointInsolation(const DemSource& source, const PointCell& point,
         const CellView view = viewOf(n, horizonDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
         const ClearSky sky = clearSky(extraterrestrialIrradiance(distanceAu, request.solarConstantWm2),
                                       request.rasters.linke.empty() ? linkeAt(request.linke, times[i], request.zone)
-                                                                    : params.linke,
+                                      : linkeByMonth.empty()        ? params.linke
+                                                                    : linkeByMonth[monthAt(times[i], request.zone)],
                                       sun.elevationDeg, point.heightM, params.coeffBh, params.coeffDh);
         each[i].up = true;
         each[i].hours = 0.5 * (before + after);

@@ -7,6 +7,7 @@
 #include "src/error.h"
 
 namespace demlight {
+
 namespace {
 
 /// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1).
@@ -15,10 +16,13 @@ constexpr double kMaxPressureHpa = 5000;
 constexpr double kMaxSunDiameterDeg = 20;
 
 SunResult horizonSun(const Dem& dem, const Normals& normals, const SunField& field, const SunRequest& request,
-                     const ScenePlan& plan, ProgressCounter& counter) {
+                     const ScenePlan& plan, const CanopyTerrain* canopy, ProgressCounter& counter) {
     // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
     const SunFrameParams params = sunFrameParams(request.search, request.sunDiameterDeg, plan);
     SunFrame frame = computeSunFrame(dem.terrain, normals, field, params, &counter);
+    if (canopy)
+        blendCanopySun(frame, computeSunFrame(canopy->ground, normals, field, params, &counter), canopy->underCrown,
+                       request.canopy.transmissivity);
     SunResult out;
     out.bands = movedBands(ProductBand{"sun_visibility", "fraction of sun disk (0-1)", std::move(frame.light.visibility), {}},
                  ProductBand{"sun_irradiance", "normalised irradiance (1 = unit-radiance zenith sun on flat ground)",
@@ -55,14 +59,17 @@ SunResult apertureSun(const Dem& dem, const Normals& normals, const SunField& fi
 }
 
 SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& request, const SunField& field,
-                     const ProgressFn& progress) {
+                     const Grid<float>& wholeCanopy, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const auto [lowestSun, highestSun] = field.elevationRange();
     const bool horizon = request.model == SunModel::Horizon;
-    const Normals normals = computeNormals(t, request.search.threads);
+    std::optional<CanopyTerrain> canopy;
+    if (request.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
+    // With a canopy the lit surface is the ground and buildings under it.
+    const Normals normals = computeNormals(canopy ? canopy->ground : t, request.search.threads);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
-    ProgressCounter counter(progress, "sun", t.heightsM.size() * (horizon ? 1 : directions));
-    SunResult out = horizon ? horizonSun(dem, normals, field, request, plan, counter)
+    ProgressCounter counter(progress, "sun", t.heightsM.size() * (horizon ? (canopy ? 2 : 1) : directions));
+    SunResult out = horizon ? horizonSun(dem, normals, field, request, plan, canopy ? &*canopy : nullptr, counter)
                             : apertureSun(dem, normals, field, request, plan, directions, counter);
     std::vector<ProductBand> bands = std::move(out.bands);
     std::map<std::string, std::string> meta = planMetadata(plan);
@@ -80,6 +87,7 @@ SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& re
         {"DEMLIGHT_METHOD", "sweep"},
         {"DEMLIGHT_DIRECTIONS", horizon ? std::string() : std::to_string(directions)},
     });
+    meta.merge(canopyMetadata(request.canopy));
     static_cast<ProductResult&>(out) = makeResult(dem, "sun", meta);
     out.bands = std::move(bands);
     out.centreAzimuthDeg = field.centreAzimuthDeg;
@@ -114,6 +122,10 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
     validateSun(request.sunDiameterDeg, request.atmosphere);
     if (request.directions && *request.directions < 1)
         throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
+    validateCanopy(request.canopy);
+    if (request.canopy.any() && request.model != SunModel::Horizon)
+        throw FieldError("canopy", ": applies to the horizon sun model only");
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
     const Dem& whole = source.geometry();
     const ScenePlan plan = planFor(request.search, whole.terrain);
     // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
@@ -129,7 +141,7 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
         halo = haloCellsFor(whole.terrain, distance);
     }
     return onWindow<SunResult>(source, window, halo, [&](const Dem& dem) {
-        return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), progress);
+        return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), canopy, progress);
     });
 }
 

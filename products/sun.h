@@ -8,6 +8,8 @@
 #include "geo/sun_field.h"
 #include "geo/time.h"
 #include "lighting/lighting_models.h"
+#include "lighting/sun_frame.h"
+#include "products/canopy.h"
 #include "products/product.h"
 
 #include <optional>
@@ -29,6 +31,8 @@ struct SunRequest {
     Atmosphere atmosphere;
     /// Aperture models: horizon directions of the aperture; none = the scene plan's.
     std::optional<std::size_t> directions;
+    /// Vegetation over the DEM (a DSM) that passes a share of the beam; horizon model only.
+    CanopyRequest canopy;
     SearchRequest search;
 };
 

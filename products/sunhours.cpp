@@ -8,6 +8,7 @@
 #include "src/error.h"
 
 #include <cmath>
+#include <optional>
 
 namespace demlight {
 namespace {
@@ -50,8 +51,11 @@ Sequence makeSequence(const LocalDay& first, const LocalDay& last, const TimeZon
 }
 
 SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const ScenePlan& plan,
-                               const SunhoursRequest& r, std::size_t stackDirections, const ProgressFn& progress) {
+                               const SunhoursRequest& r, std::size_t stackDirections, const Grid<float>& wholeCanopy,
+                               const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
+    std::optional<CanopyTerrain> canopy;
+    if (r.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
     // Each instant's sun on the whole DEM, read by this window (the same bits on its cells).
     const auto fieldAt = [&](UtcInstant when, const SolarSite& site) {
         const SunField field = computeSunField(source, when, site, SpaOptions{}, plan.sunLatticeStepCells);
@@ -62,7 +66,13 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     // auto: each instant's sun sets its own distance (sunSearchDistanceM); full: the DEM diagonal.
     params.frame = sunFrameParams(r.search, r.sunDiameterDeg, plan);
     const SolarSite site;  // default pressure and temperature; position from each lattice node
-    const Normals normals = computeNormals(t, r.search.threads);
+    // With a canopy the lit surface is the ground and buildings under it (lighting/canopy.h).
+    const Normals normals = computeNormals(canopy ? canopy->ground : t, r.search.threads);
+    if (canopy) {
+        params.canopyGround = &canopy->ground;
+        params.underCrown = &canopy->underCrown;
+        params.transmissivity = r.canopy.transmissivity;
+    }
 
     // Sky term once: it does not depend on the sun's position. With a stack, from the stack's
     // directions (which also give every instant's sun horizons), as the time-lapse does.
@@ -77,11 +87,29 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         stack = computeHorizonStack(t, stackDirections, hp, &skyCounter);
         for (std::size_t i = 0; i < stackDirections; ++i) skyAcc.addDirection(i, stack.angleDeg[i]);
         params.stack = &stack;
-    } else {
+    } else if (!canopy) {
         sweepDirections(t, hp, skyDirections,
                         [&](std::size_t i, const HorizonMap& h) { skyAcc.addDirection(i, h.angleDeg); }, &skyCounter);
     }
-    const Grid<float> skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
+    Grid<float> skyFactor;
+    if (!canopy) {
+        skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
+    } else {
+        // K of each surface (the full one hidden under the crowns), blended, then f_sky from it.
+        Grid<float> own;
+        sweepDirections(t, hp, skyDirections, [&](std::size_t i, const HorizonMap& h) {
+            own = h.angleDeg;
+            hideUnderCrown(own, canopy->underCrown, 90.0f);
+            skyAcc.addDirection(i, own);
+        }, &skyCounter);
+        SkyAccumulator groundAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
+        sweepDirections(canopy->ground, hp, skyDirections,
+                        [&](std::size_t i, const HorizonMap& h) { groundAcc.addDirection(i, h.angleDeg); }, &skyCounter);
+        skyFactor = std::move(skyAcc).finish(r.albedo).skyK;
+        blendCanopy(skyFactor, std::move(groundAcc).finish(r.albedo).skyK, r.canopy.transmissivity);
+        for (float& k : skyFactor.values())
+            if (!std::isnan(k)) k = static_cast<float>(demlight::skyFactor(k, r.albedo));
+    }
 
     ProgressCounter counter(progress, "sunhours", seq.instants.size());
     SunHoursMaps maps = integrateSunHours(
@@ -133,6 +161,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         {"DEMLIGHT_DAYLIGHT", "SPA sunrise to sunset at the cell, no terrain (geometric elevation of the "
                               "sun's centre > " + formatNumber(kSunriseGeometricElevationDeg) + " deg)"},
     });
+    meta.merge(canopyMetadata(r.canopy));
     SunhoursResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "sunhours", meta);
     out.instants = seq.instants.size();
@@ -169,7 +198,7 @@ std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& r) {
 }
 
 std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& plan) {
-    const bool autoOnTerrain = plan.quality == Quality::Auto && !plan.surfaceModel;
+    const bool autoOnTerrain = plan.quality == Quality::Auto && !plan.surfaceModel && !r.canopy.any();
     return r.stackDirections || autoOnTerrain ? sunhoursStackDirectionsAtMost(r) : 0;
 }
 
@@ -188,6 +217,10 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     if (request.stackDirections && *request.stackDirections != 0 &&
         (*request.stackDirections < 4 || *request.stackDirections > 720))
         throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
+    validateCanopy(request.canopy);
+    if (request.canopy.any() && request.stackDirections && *request.stackDirections != 0)
+        throw FieldError("stackDirections", ": interpolated horizons do not model a canopy; use exact horizons");
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t stackDirections = sunhoursStackDirections(request, plan);
@@ -203,7 +236,10 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
         halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
     }
     return onWindow<SunhoursResult>(source, window, halo,
-                                    [&](const Dem& dem) { return computeSunhours(source, dem, plan, request, stackDirections, progress); });
+                                    [&](const Dem& dem) {
+                                        return computeSunhours(source, dem, plan, request, stackDirections, canopy,
+                                                               progress);
+                                    });
 }
 
 }  // namespace demlight

@@ -36,6 +36,9 @@ struct SunhoursRequest {
     /// `interpolated:N` horizon mode; the stack also gives the sky term, over its N sectors);
     /// none (the default, `auto`) = sunhoursStackDirections' choice.
     std::optional<std::size_t> stackDirections;
+    /// Vegetation over the DEM (a DSM) that passes a share of the beam and of the sky it hides;
+    /// exact horizons only (a stack is refused with it, and `auto` takes exact).
+    CanopyRequest canopy;
     SearchRequest search;
 };
 
@@ -56,7 +59,7 @@ std::size_t sunhoursInstantCount(const SunhoursRequest& request);
 /// The stack directions a request runs with (0 = exact): its own when given; under `auto` (none)
 /// kDefaultStackDirections where the plan's quality is auto, the period has at least
 /// kAutoStackMinInstants instants and the plan finds terrain (on surface models interpolating
-/// across a wall's corner in azimuth errs by ten times as much); otherwise 0.
+/// across a wall's corner in azimuth errs by ten times as much) and no canopy is given; otherwise 0.
 std::size_t sunhoursStackDirections(const SunhoursRequest& request, const ScenePlan& plan);
 
 /// The same before the DEM's plan is known (for sizing tiles), from the request's quality: what

@@ -9,8 +9,11 @@
 #include "geo/dem.h"
 #include "geo/dem_source.h"
 #include "geo/raster.h"
+#include "products/horizon.h"
+#include "products/point.h"
 #include "products/product.h"
 #include "products/tiles.h"
+#include "src/angles.h"
 #include "src/error.h"
 
 #include <pybind11/numpy.h>
@@ -480,6 +483,30 @@ std::string commandDescription(const std::string& command) {
     return app.get_subcommand(command)->get_description();
 }
 
+/// The reference horizon profile at one point of the DEM: `directions` azimuths evenly spaced
+/// from true north, clockwise; (azimuths, elevations) in degrees as float64 arrays, the azimuths
+/// true (from north) or, with `fromSouth`, counted from south as PVGIS counts them.
+py::tuple horizonProfile(const PyDem& d, double first, double second, bool wgs84, std::size_t directions,
+                         std::optional<double> maxDistanceM, double refraction, bool fromSouth) {
+    PointHorizon h;
+    {
+        py::gil_scoped_release release;
+        SearchRequest search;
+        search.maxDistanceM = maxDistanceM;
+        search.refraction = refraction;
+        const PointCell cell = locatePoint(*d.source, PointSpec{first, second, wgs84});
+        h = pointHorizon(*d.source, cell, evenAzimuthsDeg(directions), search);
+    }
+    py::array_t<double> azimuths(static_cast<py::ssize_t>(h.samples.size()));
+    py::array_t<double> elevations(static_cast<py::ssize_t>(h.samples.size()));
+    for (std::size_t i = 0; i < h.samples.size(); ++i) {
+        azimuths.mutable_at(static_cast<py::ssize_t>(i)) =
+            fromSouth ? southBasedAzimuthDeg(h.azimuthsDeg[i]) : h.azimuthsDeg[i];
+        elevations.mutable_at(static_cast<py::ssize_t>(i)) = h.samples[i].angleDeg;
+    }
+    return py::make_tuple(azimuths, elevations);
+}
+
 }  // namespace
 }  // namespace demlight::python
 
@@ -526,6 +553,8 @@ PYBIND11_MODULE(_demlight, m) {
              })
         .def("info_json", [](const PyDem& d) { return cli::infoJson(d.path.empty() ? d.source->path() : d.path, *d.source); });
 
+    m.def("horizon_profile", &horizonProfile, py::arg("dem"), py::arg("first"), py::arg("second"), py::arg("wgs84"),
+          py::arg("directions"), py::arg("max_distance"), py::arg("refraction"), py::arg("from_south"));
     m.def("open", &openPath, py::arg("path"), py::arg("z_unit"), py::arg("z_factor"), py::arg("progress"));
     m.def("from_array", &fromArray, py::arg("heights"), py::arg("transform"), py::arg("crs"), py::arg("nodata"),
           py::arg("name"), py::arg("z_unit"), py::arg("z_factor"));

@@ -38,7 +38,7 @@ PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider 
 # 1068 s of test time, on code that Products.SunhoursAutoInterpolatesOnlyLongPeriodsOnTerrainUnderAuto,
 # CliOutputs.SunhoursInterpolatedHorizonsStayCloseToExact and the other InsolationProduct tests
 # run under the sanitizers.
-asan_skip='^SharedDems/|^RealDems/|OnARealTile$|OnRealTerrain$|^CliOutputs\.SunhoursAutoInterpolatesLongPeriodsOnTerrain$|^ReadmeRecipes$'
+asan_skip='^SharedDems/|^RealDems/|OnARealTile$|OnRealTerrain$|^CliOutputs\.SunhoursAutoInterpolatesLongPeriodsOnTerrain$|^ReadmeRecipes$|^SolarRecipes$'
 
 stage "AddressSanitizer + UBSan: build and tests"
 cmake --preset asan >/dev/null

@@ -9,4 +9,6 @@ double wrapAzimuthDeg(double azimuthDeg) {
     return a;
 }
 
+double southBasedAzimuthDeg(double azimuthDeg) { return wrapAzimuthDeg(azimuthDeg) - 180.0; }
+
 }  // namespace demlight

@@ -68,7 +68,7 @@ TEST(ClearSkyRasters, ConstantRastersGiveTheConstantsBits) {
         constants.coeffBh = 0.75;
         constants.coeffDh = 0.875;
         IrradianceRequest rasters = morning(model);
-        rasters.rasters = {linke->path(), albedo->path(), bh->path(), dh->path()};
+        rasters.rasters = {{linke->path()}, albedo->path(), bh->path(), dh->path()};
         const IrradianceResult a = irradianceProduct(source, source.whole(), constants);
         const IrradianceResult b = irradianceProduct(source, source.whole(), rasters);
         expectSameBits(a, b, 0, source.width(), std::string(diffuseModelName(model)));
@@ -83,7 +83,7 @@ TEST(ClearSkyRasters, EachHalfOfARasterGetsItsConstantsValues) {
     const std::size_t split = source.width() / 2;
     const auto linke = halves(source, 2.0f, 4.5f, split), bh = halves(source, 1.0f, 0.5f, split);
     IrradianceRequest r = morning(DiffuseModel::VisibleSky);
-    r.rasters.linke = linke->path();
+    r.rasters.linke = {linke->path()};
     r.rasters.coeffBh = bh->path();
     const IrradianceResult both = irradianceProduct(source, source.whole(), r);
     IrradianceRequest west = morning(DiffuseModel::VisibleSky), east = west;
@@ -106,7 +106,7 @@ TEST(ClearSkyRasters, InsolationFollowsTheRastersWithinTheBeamTablesBound) {
     base.step = std::chrono::minutes(30);
     base.search.threads = 2;
     InsolationRequest r = base, west = base, east = base;
-    r.rasters = {linke->path(), albedo->path(), "", ""};
+    r.rasters = {{linke->path()}, albedo->path(), "", ""};
     west.linke = {2.0};
     west.albedo = 0.1f;
     east.linke = {4.5};
@@ -142,7 +142,7 @@ TEST(ClearSkyRasters, TilesGiveTheOnePieceBitsAndNoDataGivesNodata) {
     const auto albedo = halves(source, 0.1f, 0.35f, 70);
     IrradianceRequest r = morning(DiffuseModel::VisibleSky);
     r.search.maxDistanceM = 3000;
-    r.rasters.linke = linke.path();
+    r.rasters.linke = {linke.path()};
     r.rasters.albedo = albedo->path();
     const IrradianceResult whole = irradianceProduct(source, source.whole(), r);
     EXPECT_TRUE(std::isnan(whole.band("global").values(20, 30)));
@@ -164,11 +164,139 @@ TEST(ClearSkyRasters, PointQueriesReadTheRasterAtTheirCell) {
     const auto& gt = source.geometry().band.ref.geoTransform;
     const PointCell p = locatePoint(source, {gt[0] + 100.5 * gt[1], gt[3] + 50.5 * gt[5], false});
     IrradianceRequest r = morning(DiffuseModel::RSun), constant = r;
-    r.rasters.linke = linke->path();
+    r.rasters.linke = {linke->path()};
     constant.linke = {4.5};  // column 100 is east of the split
     const PointIrradiance a = pointIrradiance(source, p, r), b = pointIrradiance(source, p, constant);
     EXPECT_EQ(a.linke, 4.5);
     EXPECT_EQ(a.irradiance.global(), b.irradiance.global());
+}
+
+/// A GeoTIFF of `values.size()` constant bands on the DEM's grid (band b holds values[b]), removed
+/// with the object.
+struct ConstantBands {
+    std::string path;
+    ConstantBands(const DemSource& s, const std::vector<float>& values, const std::string& name) {
+        path = (std::filesystem::temp_directory_path() /
+                ("demlight_" + name + "_" + std::to_string(::getpid()) + ".tif")).string();
+        std::vector<Grid<float>> grids;
+        for (float v : values) grids.emplace_back(s.width(), s.height(), v);
+        std::vector<OutputBand> bands(grids.size());
+        for (std::size_t b = 0; b < grids.size(); ++b) bands[b].values = &grids[b];
+        writeRaster(path, bands, s.geometry().band.ref, WriteOptions{});
+    }
+    ConstantBands(const ConstantBands&) = delete;
+    ConstantBands& operator=(const ConstantBands&) = delete;
+    ~ConstantBands() { std::filesystem::remove(path); }
+};
+
+/// Twelve distinct monthly Linke factors, January first.
+std::vector<double> monthlyLinke() {
+    std::vector<double> v;
+    for (int m = 0; m < 12; ++m) v.push_back(2.0 + 0.2 * m);
+    return v;
+}
+
+InsolationRequest yearOf2023() {
+    InsolationRequest r;
+    r.zone = TimeZoneSpec::iana("America/Denver");
+    r.firstDay = std::chrono::sys_days{std::chrono::year{2023} / 1 / 1};
+    r.lastDay = std::chrono::sys_days{std::chrono::year{2023} / 12 / 31};
+    r.step = std::chrono::hours(1);
+    r.directions = 8;
+    r.search.threads = 2;
+    return r;
+}
+
+/// Every valid cell of every band within `tolerance` (relative), NaN where the other is NaN.
+void expectClose(const ProductResult& a, const ProductResult& b, double tolerance, const std::string& what) {
+    for (const char* name : kBands) {
+        const Grid<float>& x = a.band(name).values;
+        const Grid<float>& y = b.band(name).values;
+        double worst = 0;
+        for (std::size_t k = 0; k < x.size(); ++k) {
+            if (std::isnan(x.data()[k]) || std::isnan(y.data()[k])) {
+                EXPECT_EQ(std::isnan(x.data()[k]), std::isnan(y.data()[k])) << what;
+                continue;
+            }
+            worst = std::max(worst, std::abs(static_cast<double>(x.data()[k]) - y.data()[k]) /
+                                        std::max(1e-3, std::abs(static_cast<double>(y.data()[k]))));
+        }
+        EXPECT_LT(worst, tolerance) << what << ", band " << name;
+    }
+}
+
+// A 12-band Linke raster is twelve monthly maps (it was read as its first band, January's, for the
+// whole year: 8 % too much beam on this year): a year with twelve constant monthly maps, as one
+// 12-band file or as twelve files, gives the year of the twelve monthly constants. The constant
+// path reads BeamNormalTable, within 1e-7 of the formulas a raster evaluates (lighting/esra.h).
+TEST(ClearSkyRasters, TwelveMonthlyLinkeMapsGiveTheYearOfTwelveMonthlyConstants) {
+    const DemSource source = DemSource::open(kRocky);
+    const std::vector<double> linke = monthlyLinke();
+    InsolationRequest constants = yearOf2023();
+    constants.linke = linke;
+    const InsolationResult expected = insolationProduct(source, source.whole(), constants);
+
+    const ConstantBands twelveBands(source, std::vector<float>(linke.begin(), linke.end()), "linke12");
+    InsolationRequest oneFile = yearOf2023();
+    oneFile.rasters.linke = {twelveBands.path};
+    expectClose(insolationProduct(source, source.whole(), oneFile), expected, 1e-6, "one 12-band file");
+
+    std::vector<std::unique_ptr<ConstantBands>> files;
+    InsolationRequest twelveFiles = yearOf2023();
+    for (std::size_t m = 0; m < 12; ++m) {
+        files.push_back(std::make_unique<ConstantBands>(source, std::vector<float>{static_cast<float>(linke[m])},
+                                                        "linke_m" + std::to_string(m)));
+        twelveFiles.rasters.linke.push_back(files.back()->path);
+    }
+    expectClose(insolationProduct(source, source.whole(), twelveFiles), expected, 1e-6, "twelve files");
+}
+
+// An instant (irradiance, and the point queries of irradiance and insolation) takes its month's map.
+TEST(ClearSkyRasters, AnInstantAndThePointQueriesTakeTheirMonthsMap) {
+    const DemSource source = DemSource::open(kRocky);
+    const std::vector<double> linke = monthlyLinke();
+    const ConstantBands twelveBands(source, std::vector<float>(linke.begin(), linke.end()), "linke12i");
+    IrradianceRequest r = morning(DiffuseModel::VisibleSky), constant = r;  // June 21st
+    r.rasters.linke = {twelveBands.path};
+    constant.linke = {static_cast<float>(linke[5])};
+    expectSameBits(irradianceProduct(source, source.whole(), r), irradianceProduct(source, source.whole(), constant), 0,
+                   source.width(), "June");
+
+    const auto& gt = source.geometry().band.ref.geoTransform;
+    const PointCell p = locatePoint(source, {gt[0] + 100.5 * gt[1], gt[3] + 50.5 * gt[5], false});
+    EXPECT_EQ(pointIrradiance(source, p, r).linke, static_cast<float>(linke[5]));
+    InsolationRequest year = yearOf2023(), yearConstants = yearOf2023();
+    year.rasters.linke = {twelveBands.path};
+    yearConstants.linke.clear();
+    for (double v : linke) yearConstants.linke.push_back(static_cast<float>(v));
+    const PointInsolation a = pointInsolation(source, p, year), b = pointInsolation(source, p, yearConstants);
+    EXPECT_DOUBLE_EQ(a.irradiation.global(), b.irradiation.global());
+}
+
+// Band counts other than 1 and 12, and path counts other than 1 and 12, are refused by name.
+TEST(ClearSkyRasters, OtherLinkeBandAndFileCountsAreRefused) {
+    const DemSource source = DemSource::open(kRocky);
+    const ConstantBands five(source, std::vector<float>(5, 3.0f), "linke5");
+    const testing::RunResult run = testing::runDemlight(
+        "-q insolation '" + kRocky + "' -o /tmp/never.tif --start 2023-01-01 --end 2023-01-02 --tz UTC --linke-raster '" +
+        five.path + "'");
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.err.find("--linke-raster"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("has 5 bands; expected 1 (the whole period) or 12"), std::string::npos) << run.err;
+
+    const ConstantBands one(source, {3.0f}, "linke1");
+    InsolationRequest three = yearOf2023();
+    three.rasters.linke = {one.path, one.path, one.path};
+    try {
+        insolationProduct(source, source.whole(), three);
+        ADD_FAILURE() << "three Linke files were accepted";
+    } catch (const FieldError& e) {
+        EXPECT_NE(std::string(e.what()).find("3 paths; expected one raster"), std::string::npos) << e.what();
+    }
+    InsolationRequest twelve = yearOf2023();
+    twelve.rasters.linke = std::vector<std::string>(11, one.path);
+    twelve.rasters.linke.push_back(five.path);
+    EXPECT_THROW(insolationProduct(source, source.whole(), twelve), FieldError);
 }
 
 TEST(ClearSkyRasters, OutOfRangeRasterIsRefusedNamingTheOption) {

@@ -290,6 +290,115 @@ TEST(PointCli, HorizonPrintsTheReferenceProfileAsJsonOrCsvWithoutAnOutput) {
     fs::remove_all(dir);
 }
 
+/// Flat ground at 0 m on UTM zone 10N's central meridian (true north = grid north within 0.01
+/// deg), 10 m cells, with a 100 m tower of 3 x 3 cells whose centre lies due south-east of cell
+/// (50, 50): written as a GeoTIFF at `path`.
+void writeSouthEastTower(const std::string& path) {
+    Grid<float> heights(101, 101, 0.0f);
+    for (std::size_t r = 70; r < 73; ++r)
+        for (std::size_t c = 70; c < 73; ++c) heights(c, r) = 100.0f;
+    GeoReference ref;
+    ref.geoTransform = {500000 - 505.0, 10, 0, 4982950 + 505.0, 0, -10};
+    ref.crsWkt = "EPSG:32610";
+    OutputBand band;
+    band.values = &heights;
+    // The CRS as WKT, as a DEM holds it.
+    writeRaster(path, {band}, demFromArray(heights, ref, std::nullopt, "tower").band.ref, WriteOptions{});
+}
+/// The CRS point of cell (50, 50)'s centre in writeSouthEastTower.
+const std::string kTowerObserver = "500000,4982950";
+
+TEST(Point, SouthBasedAzimuthsArePvgisConvention) {
+    // PVGIS: 0 = south, 90 = west, -90 = east; north is -180, the first of its profiles.
+    for (const auto& [north, south] : std::vector<std::pair<double, double>>{
+             {0, -180}, {90, -90}, {135, -45}, {180, 0}, {270, 90}, {352.5, 172.5}, {-45, 135}, {360, -180}})
+        EXPECT_DOUBLE_EQ(southBasedAzimuthDeg(north), south) << north;
+}
+
+// The conventions on an analytic scene: a tower due south-east is at 135 deg in the JSON, in the
+// 19th line of the PVGIS file (every 7.5 deg from north, clockwise) and in the pvlib table's
+// 135 row; every direction that misses it sees the flat ground's 0 deg (within the
+// curvature of 700 m). The PVGIS file read back by its documented convention is --at's JSON.
+TEST(PointCli, HorizonProfilesForPvgisAndPvlibFollowTheirConventions) {
+    const fs::path dir = fs::temp_directory_path() / ("demlight_pvgis_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string dem = (dir / "tower.tif").string();
+    writeSouthEastTower(dem);
+    const std::string at = " --at-xy " + kTowerObserver + " --threads 2";
+
+    const testing::RunResult json = runDemlight("-q horizon '" + dem + "'" + at);
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    const auto j = nlohmann::json::parse(json.out);
+    ASSERT_EQ(j["horizon"].size(), 48u);
+
+    const testing::RunResult pvgis = runDemlight("-q horizon '" + dem + "'" + at + " --point-format pvgis");
+    ASSERT_EQ(pvgis.exitCode, 0) << pvgis.err;
+    std::istringstream lines(pvgis.out);
+    std::vector<double> heights;
+    for (std::string line; std::getline(lines, line);) heights.push_back(std::stod(line));
+    ASSERT_EQ(heights.size(), 48u);
+    for (std::size_t i = 0; i < heights.size(); ++i) {
+        const double azimuth = 360.0 * static_cast<double>(i) / static_cast<double>(heights.size());
+        EXPECT_DOUBLE_EQ(j["horizon"][i]["azimuth_deg"].get<double>(), azimuth);
+        EXPECT_NEAR(heights[i], j["horizon"][i]["elevation_deg"].get<double>(), 1e-8) << azimuth;
+        // The top's nearest corner (cell 70's centre, 20 cells diagonally) is at atan(100 / 282.8 m)
+        // = 19.5 deg; the reference marches quarter-cell steps (2.5 m) from the observer.
+        const double cornerM = 20 * std::sqrt(2.0) * 10;
+        if (i == 18) {
+            EXPECT_LE(heights[i], std::atan(100.0 / cornerM) / kDegToRad + 1e-6);
+            EXPECT_GE(heights[i], std::atan(100.0 / (cornerM + 2.5)) / kDegToRad - 1e-6);
+        } else
+            EXPECT_NEAR(heights[i], 0.0, 0.05) << azimuth;
+    }
+
+    const testing::RunResult pvlib =
+        runDemlight("-q horizon '" + dem + "'" + at + " --point-format pvlib --directions 8");
+    ASSERT_EQ(pvlib.exitCode, 0) << pvlib.err;
+    std::istringstream table(pvlib.out);
+    std::string header, row;
+    std::getline(table, header);
+    EXPECT_EQ(header, "azimuth,elevation");
+    for (int i = 0; i < 8; ++i) {
+        ASSERT_TRUE(std::getline(table, row));
+        const double azimuth = std::stod(row.substr(0, row.find(','))), elevation = std::stod(row.substr(row.find(',') + 1));
+        EXPECT_DOUBLE_EQ(azimuth, 45.0 * i);
+        EXPECT_EQ(elevation > 10, azimuth == 135) << row;
+    }
+    EXPECT_FALSE(std::getline(table, row));
+
+    const testing::RunResult refused =
+        runDemlight("-q horizon '" + dem + "'" + at + " --point-format pvgis --azimuth 90 180");
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.err.find("give --directions N"), std::string::npos) << refused.err;
+    fs::remove_all(dir);
+}
+
+// A point of a real DEM: the PVGIS file read back (heights at 360 i / N from north) is --at's
+// JSON profile, for the default 48 directions and for 36.
+TEST(PointCli, PvgisFileOfARealPointRoundTripsToTheJsonProfile) {
+    const std::string at = " --at 40.35,-105.7 --max-distance 5000 --threads 2";
+    for (const std::string directions : {"", " --directions 36"}) {
+        const testing::RunResult json = runDemlight("-q horizon '" + kRocky + "'" + at + directions);
+        const testing::RunResult pvgis = runDemlight("-q horizon '" + kRocky + "'" + at + directions + " --point-format pvgis");
+        ASSERT_EQ(json.exitCode, 0) << json.err;
+        ASSERT_EQ(pvgis.exitCode, 0) << pvgis.err;
+        const auto j = nlohmann::json::parse(json.out);
+        std::istringstream lines(pvgis.out);
+        std::vector<double> heights;
+        for (std::string line; std::getline(lines, line);) heights.push_back(std::stod(line));
+        ASSERT_EQ(heights.size(), j["horizon"].size());
+        ASSERT_EQ(heights.size(), directions.empty() ? 48u : 36u);
+        double highest = 0;
+        for (std::size_t i = 0; i < heights.size(); ++i) {
+            const double azimuth = 360.0 * static_cast<double>(i) / static_cast<double>(heights.size());
+            EXPECT_NEAR(j["horizon"][i]["azimuth_deg"].get<double>(), azimuth, 1e-12);
+            EXPECT_NEAR(heights[i], j["horizon"][i]["elevation_deg"].get<double>(), 1e-7) << azimuth;
+            highest = std::max(highest, heights[i]);
+        }
+        EXPECT_GT(highest, 1.0);  // a mountain horizon, not a flat one
+    }
+}
+
 TEST(PointCli, IrradianceAndInsolationPrintOneRecord) {
     const std::string args = " --max-distance 5000 --threads 2 --at 40.35,-105.7";
     const testing::RunResult irr =

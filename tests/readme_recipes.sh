@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Runs every recipe of README.md as a newcomer would paste it: each ```sh block of the
-# "## Recipes" section, in a fresh empty folder that has the repository's samples/ beside it,
-# with the built demlight first on PATH. Fails when a recipe fails, when a file it names with
-# -o is not there afterwards, or when the section has fewer than five recipes.
-# Usage: tests/readme_recipes.sh BIN_DIR [REPO_DIR]   (ctest runs it as ReadmeRecipes)
+# Runs every recipe of README.md (or of another page, DOC) as a newcomer would paste it: each
+# ```sh block of the "## Recipes" section, in a fresh empty folder that has the repository's
+# samples/ beside it, with the built demlight first on PATH. Fails when a recipe fails, when a
+# file it names with -o is not there afterwards, or when the section has fewer than MIN recipes
+# (default 5).
+# Usage: tests/readme_recipes.sh BIN_DIR [REPO_DIR [DOC [MIN]]]
+# (ctest runs it as ReadmeRecipes, and on docs/solar.md as SolarRecipes)
 set -euo pipefail
 bin_dir=$(cd "$1" && pwd)
 repo=$(cd "${2:-$(dirname "$0")/..}" && pwd)
-readme="$repo/README.md"
+readme="$repo/${3:-README.md}"
+least=${4:-5}
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/demlight_recipes.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -21,9 +24,9 @@ awk -v dir="$work" '
 ' "$readme"
 
 recipes=("$work"/recipe_*.sh)
-[ -e "${recipes[0]}" ] || { echo "README.md: no \`\`\`sh block under '## Recipes'" >&2; exit 1; }
-if [ ${#recipes[@]} -lt 5 ]; then
-  echo "README.md: ${#recipes[@]} recipes under '## Recipes', expected at least 5" >&2
+[ -e "${recipes[0]}" ] || { echo "$readme: no \`\`\`sh block under '## Recipes'" >&2; exit 1; }
+if [ ${#recipes[@]} -lt "$least" ]; then
+  echo "$readme: ${#recipes[@]} recipes under '## Recipes', expected at least $least" >&2
   exit 1
 fi
 

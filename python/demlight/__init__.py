@@ -65,7 +65,7 @@ except ImportError as _error:
                       % (_sys.executable, _sys.version.split()[0], _sys.executable)) from None
 
 __version__ = _demlight.version
-__all__ = ["Error", "Cancelled", "Dem", "Result", "open", "from_array", "COMMANDS"]
+__all__ = ["Error", "Cancelled", "Dem", "Result", "open", "from_array", "horizon_profile", "COMMANDS"]
 
 Error = _demlight.Error
 Error.__doc__ = "Any failure demlight reports: bad input, bad option, unwritable output (the library's message)."
@@ -204,6 +204,40 @@ def _from_data_array(da, transform, crs, nodata, name, z_unit, z_factor):
     if z_unit is None and z_factor is None and da.attrs.get("units"):
         z_unit = str(da.attrs["units"])  # the band's vertical unit, as opening the file reads it
     return _numpy.asarray(da.values), transform, crs, nodata, name, z_unit
+
+def horizon_profile(dem, at=None, at_xy=None, directions=48, azimuth_origin="north", max_distance=None,
+                    refraction=None, transform=None, crs=None, nodata=None):
+    """The horizon profile at one point, as `demlight horizon DEM --at LAT,LON` computes it (the
+    reference ray march at the point's cell), for solar tools: a pair of numpy float64 arrays
+    (azimuths, elevations), in degrees.
+
+    Azimuths: `directions` of them, evenly spaced, the first due north (48: every 7.5 degrees, as
+    PVGIS and pvlib profiles). azimuth_origin="north": degrees clockwise from true north (0 = N,
+    90 = E, 180 = S), pvlib's convention and that of PVGIS's user horizon upload;
+    azimuth_origin="south": PVGIS's own horizon output convention (0 = S, 90 = W, -90 = E, in
+    [-180, 180); north is -180), the same order. Elevations: the horizon's angle above the
+    local horizontal plane (negative where the point looks down on its surroundings).
+
+    dem: as the raster commands take it (a demlight.Dem, a path, or a numpy array with
+    transform=, crs=, nodata=). at: (latitude, longitude) in WGS84 degrees; or at_xy: (x, y) in
+    the DEM's CRS. max_distance (metres) and refraction: as `demlight horizon` takes them (None =
+    its defaults).
+    """
+    if (at is None) == (at_xy is None):
+        raise Error("horizon_profile: give at=(lat, lon) or at_xy=(x, y)")
+    if azimuth_origin not in ("north", "south"):
+        raise Error("horizon_profile: azimuth_origin %r: expected 'north' or 'south'" % (azimuth_origin,))
+    if isinstance(directions, bool) or not isinstance(directions, _numbers.Integral) or directions < 1:
+        raise Error("horizon_profile: directions %r: expected a whole number >= 1" % (directions,))
+    if refraction is None:
+        refraction = _default(_options("horizon")["refraction"])
+    opened = _as_dem(dem, transform, crs, nodata, {})
+    first, second = at if at is not None else at_xy
+    azimuths, elevations = _demlight.horizon_profile(opened._dem, float(first), float(second), at is not None,
+                                                     int(directions), None if max_distance is None
+                                                     else float(max_distance), float(refraction),
+                                                     azimuth_origin == "south")
+    return azimuths, elevations
 
 
 def _creation_options(options):

@@ -2,6 +2,7 @@
 options and errors as docs/python.md says, progress, cancelling and the GIL."""
 
 import datetime
+import json
 import os
 import re
 import subprocess
@@ -459,3 +460,50 @@ def test_to_xarray_rio_to_raster_round_trips_every_product(tmp_path):
             assert f.transform.to_gdal() == r.transform
         for name in ds.data_vars:  # one band alone too
             ds[name].rio.to_raster(tmp_path / "one.tif")
+
+def south_east_tower():
+    """Flat ground at 0 m on UTM 10N's central meridian (true north = grid north), 10 m cells, a
+    100 m tower of 3 x 3 cells due south-east of cell (50, 50); the observer is that cell's centre."""
+    heights = np.zeros((101, 101), dtype=np.float32)
+    heights[70:73, 70:73] = 100
+    transform = (500000 - 505.0, 10, 0, 4982950 + 505.0, 0, -10)
+    return heights, transform, (500000.0, 4982950.0)
+
+
+def test_horizon_profile_conventions_and_the_cli(tmp_path, cli):
+    heights, transform, observer = south_east_tower()
+    dem = demlight.from_array(heights, transform, "EPSG:32610")
+    az, el = demlight.horizon_profile(dem, at_xy=observer)
+    assert az.dtype == np.float64 and el.dtype == np.float64 and az.shape == el.shape == (48,)
+    np.testing.assert_array_equal(az, np.arange(48) * 7.5)
+    assert az[np.argmax(el)] == 135.0  # the tower, due south-east, north-based clockwise
+    assert el.max() > 15 and np.abs(np.delete(el, 18)).max() < 0.05
+    south, el_south = demlight.horizon_profile(dem, at_xy=observer, azimuth_origin="south")
+    assert south[np.argmax(el_south)] == -45.0  # PVGIS: 0 = south, east negative
+    assert south[0] == -180.0 and south[24] == 0.0 and south[36] == 90.0
+    np.testing.assert_array_equal(el, el_south)
+
+    # The same heights as a file for the command line: an ASCII grid, then a GeoTIFF with the CRS.
+    grid = tmp_path / "tower.asc"
+    with open(grid, "w") as f:
+        f.write("ncols 101\nnrows 101\nxllcorner %r\nyllcorner %r\ncellsize 10\n"
+                % (transform[0], transform[3] - 1010))
+        for row in heights:
+            f.write(" ".join("%g" % v for v in row) + "\n")
+    path = tmp_path / "tower.tif"
+    subprocess.run(["gdal_translate", "-q", "-a_srs", "EPSG:32610", "-ot", "Float32", str(grid), str(path)],
+                   check=True, capture_output=True)
+    printed = cli("horizon", path, "--at-xy", "%r,%r" % observer, "--point-format", "json").stdout
+    profile = json.loads(printed)["horizon"]
+    np.testing.assert_allclose(el, [p["elevation_deg"] for p in profile], atol=0)
+    eight = demlight.horizon_profile(str(path), at_xy=observer, directions=8)
+    np.testing.assert_array_equal(eight[0], np.arange(8) * 45.0)
+
+
+def test_horizon_profile_refuses_bad_arguments():
+    heights, transform, observer = south_east_tower()
+    dem = demlight.from_array(heights, transform, "EPSG:32610")
+    for kwargs in ({}, {"at": (45, -123), "at_xy": observer}, {"at_xy": observer, "azimuth_origin": "east"},
+                   {"at_xy": observer, "directions": 0}):
+        with pytest.raises(demlight.Error):
+            demlight.horizon_profile(dem, **kwargs)
