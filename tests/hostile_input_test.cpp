@@ -175,7 +175,9 @@ std::string readText(const std::string& path) {
 // over the heights) is answered at once: exit 130 after cleanup, and no gigabyte held meanwhile.
 TEST_F(HostileInput, ASignalWhileOpeningAVastDemIsAnsweredAtOnce) {
     const std::string vrt = hugeVrt(1000000, 1000000, 0.01);
-    for (const double delayS : {0.3, 1.5, 4.0}) {
+    // From 1 s: a signal in the first instants, before main() installs its handler, is another
+    // matter (tests/output_safety_test.cpp).
+    for (const double delayS : {1.0, 2.0, 4.0}) {
         SCOPED_TRACE("SIGINT after " + std::to_string(delayS) + " s");
         const pid_t pid = startDemlight({"sun", vrt, "--time", "2024-06-21T20:00Z", "-o", path("out.tif")}, path("err.txt"));
         ASSERT_GT(pid, 0);
