@@ -22,6 +22,7 @@ struct ViewOptions {
     double exaggeration = 1;
     std::string colorRaster, colorEncoding = "auto";
     std::optional<double> albedo;
+    double treeLineM = ViewRequest{}.treeLineM, snowLineM = ViewRequest{}.snowLineM;
     double exposure = 1;
     bool noHaze = false, noSky = false;
     double visibilityKm = ViewAtmosphere{}.visibilityKm;
@@ -76,6 +77,8 @@ ViewRequest viewRequest(const ViewOptions& o) {
     r.colorRaster = o.colorRaster;
     r.colorEncoding = parseColorEncoding(o.colorEncoding, "--color-encoding");
     r.albedo = o.albedo;
+    r.treeLineM = o.treeLineM;
+    r.snowLineM = o.snowLineM;
     r.exposure = o.exposure;
     r.atmosphere.haze = !o.noHaze;
     r.atmosphere.sky = !o.noSky;
@@ -151,6 +154,12 @@ void registerView(CLI::App& app, CliContext& ctx) {
                     "Grey ground albedo (0-1) instead of the default landscape (vegetation, rock, snow by height and slope)")
         ->check(finiteRange(0.0, 1.0))
         ->excludes("--color-raster");
+    cmd->add_option("--tree-line", o->treeLineM, "Default landscape: rock instead of vegetation above this height (m)")
+        ->capture_default_str()
+        ->check(finiteRange(-1e5, 1e5));
+    cmd->add_option("--snow-line", o->snowLineM, "Default landscape: snow above this height (m)")
+        ->capture_default_str()
+        ->check(finiteRange(-1e5, 1e5));
     cmd->add_option("--exposure", o->exposure, "Multiplies linear light before gamma")
         ->capture_default_str()
         ->check(finiteRange(0, 1000));

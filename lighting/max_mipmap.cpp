@@ -87,7 +87,9 @@ std::optional<double> intersectPatch(const Grid<float>& h, std::size_t i, std::s
     const double b = ray.dz - (A * ray.dx + B * ray.dy + C * (u0 * ray.dy + v0 * ray.dx));
     const double a = -C * ray.dx * ray.dy;
     const double len = s1 - s0;
-    if (c <= 0) return s0;
+    // Under the surface where it enters (it came through a hole or the field's side): the ray
+    // meets the surface only from above, so it sees through walls it is behind.
+    if (c <= 0) return std::nullopt;
     const auto f = [&](double s) { return c + s * (b + s * a); };
     double first = std::numeric_limits<double>::infinity();
     const double scale = std::abs(b) + std::abs(a) * len;

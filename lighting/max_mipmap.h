@@ -50,7 +50,9 @@ private:
 };
 
 /// First root s in [s0, s1] of the ray with patch (i, j) of `heights` (the patch's corners must
-/// be finite), or none: Tevs et al. 3.3, the bilinear patch along a line is a quadratic in s.
+/// be finite), or none: Tevs et al. 3.3, the bilinear patch along a line is a quadratic in s. A
+/// ray already under the patch at s0 (come through a hole or the field's side) gets none: the
+/// surface is met from above only, so holes and the field's edges have no walls.
 std::optional<double> intersectPatch(const Grid<float>& heights, std::size_t i, std::size_t j, const GridRay& ray,
                                      double s0, double s1);
 

@@ -47,7 +47,7 @@ struct ViewAtmosphere {
     bool haze = true;  ///< aerial perspective on the terrain
     bool sky = true;   ///< sky and sun disk behind the terrain (else black, alpha 0)
     /// Meteorological visibility at sea level (km, Koschmieder: extinction 3.912 / V at 550 nm).
-    double visibilityKm = 60;
+    double visibilityKm = 120;
     /// Height over which the haze thins by e (metres): aerosol scale height.
     double scaleHeightM = 1500;
 };

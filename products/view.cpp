@@ -22,8 +22,10 @@ constexpr std::size_t kMaxPictureSide = 16384;
 constexpr double kMinFovDeg = 1, kMaxFovDeg = 150;
 constexpr double kMaxExaggeration = 100;
 constexpr double kMaxExposure = 1000;
-/// Tree line and snow line of the default landscape (metres) and the half-width of their blends.
-constexpr double kTreeLineM = 1800, kSnowLineM = 2600, kLineBlendM = 150;
+/// Half-width of the blends at the tree line and the snow line (metres).
+constexpr double kLineBlendM = 150;
+/// Up component of a normal within about 0.25 degrees of vertical: flat ground.
+constexpr double kFlatUp = 0.99999;
 constexpr Rgb kVegetation{0.045, 0.075, 0.030}, kRock{0.20, 0.18, 0.15}, kSnow{0.80, 0.82, 0.85};
 
 double smoothstep(double lo, double hi, double x) {
@@ -60,6 +62,8 @@ void validateView(const ViewRequest& r) {
     if (r.albedo && !(*r.albedo >= 0 && *r.albedo <= 1))
         throw FieldError("albedo", " " + formatNumber(*r.albedo) + ": must be in [0, 1]");
     if (r.albedo && !r.colorRaster.empty()) throw Error("give albedo or colorRaster, not both");
+    for (const auto& [name, v] : {std::pair{"treeLine", r.treeLineM}, std::pair{"snowLine", r.snowLineM}})
+        if (!std::isfinite(v) || std::abs(v) > 1e5) throw FieldError(name, " " + formatNumber(v) + ": must be a height in metres");
 }
 
 /// A camera point in the frame: grid position of its CRS coordinates, height in metres.
@@ -86,11 +90,13 @@ double heightAt(const Grid<float>& h, double col, double row) {
 
 }  // namespace
 
-Rgb landscapeAlbedo(double heightM, double normalUp) {
+Rgb landscapeAlbedo(double heightM, double normalUp, double treeLineM, double snowLineM) {
+    // DEMs such as SRTM hold the sea as flat cells at 0 m.
+    if (heightM <= 0 && normalUp >= kFlatUp) return kSeaAlbedo;
     const double slopeDeg = std::acos(std::clamp(normalUp, -1.0, 1.0)) * kRadToDeg;
-    const double rocky = std::max(smoothstep(kTreeLineM - kLineBlendM, kTreeLineM + kLineBlendM, heightM),
+    const double rocky = std::max(smoothstep(treeLineM - kLineBlendM, treeLineM + kLineBlendM, heightM),
                                   smoothstep(35.0, 45.0, slopeDeg));
-    const double snowy = smoothstep(kSnowLineM - kLineBlendM, kSnowLineM + kLineBlendM, heightM) *
+    const double snowy = smoothstep(snowLineM - kLineBlendM, snowLineM + kLineBlendM, heightM) *
                          (1.0 - smoothstep(45.0, 55.0, slopeDeg));
     return mix(mix(kVegetation, kRock, rocky), kSnow, snowy);
 }
@@ -145,7 +151,7 @@ ViewResult viewProduct(const DemSource& source, const ViewRequest& request, cons
                 }
                 if (!request.colorRaster.empty()) continue;
                 const Rgb a = request.albedo ? Rgb{*request.albedo, *request.albedo, *request.albedo}
-                                             : landscapeAlbedo(h, normals.up(c, r));
+                                             : landscapeAlbedo(h, normals.up(c, r), request.treeLineM, request.snowLineM);
                 radiance[0](c, r) *= static_cast<float>(a.r);
                 radiance[1](c, r) *= static_cast<float>(a.g);
                 radiance[2](c, r) *= static_cast<float>(a.b);

@@ -51,6 +51,8 @@ struct ViewRequest {
     std::string colorRaster;
     ColorEncoding colorEncoding = ColorEncoding::Auto;
     std::optional<double> albedo;
+    /// Tree line and snow line of the default landscape (metres).
+    double treeLineM = 2000, snowLineM = 3000;
     ViewNodata nodata = ViewNodata::Hole;
     ViewAtmosphere atmosphere;
     /// Linear sun and sky radiance of the light (the preview rig's by default).
@@ -61,14 +63,15 @@ struct ViewRequest {
     SearchRequest search;
 };
 
-/// The default landscape's linear albedo of a cell from its height (metres) and the up
-/// component of its normal: vegetation low and on gentle slopes, rock on slopes steeper than
-/// about 40 degrees and above the tree line (1800 m), snow above 2600 m where it can lie
-/// (slopes under about 50 degrees); smooth blends between them.
-Rgb landscapeAlbedo(double heightM, double normalUp);
-/// Linear albedo of the sea (ViewNodata::Sea).
+/// Linear albedo of the sea (ViewNodata::Sea, and flat land at 0 m in the landscape).
 inline constexpr Rgb kSeaAlbedo{0.02, 0.035, 0.05};
 
+/// The default landscape's linear albedo of a cell from its height (metres) and the up
+/// component of its normal: vegetation low and on gentle slopes, rock on slopes steeper than
+/// about 40 degrees and above the tree line, snow above the snow line (metres) where it can lie
+/// (slopes under about 50 degrees); smooth blends between them. Flat cells at or below 0 m are
+/// sea (kSeaAlbedo), as SRTM holds it.
+Rgb landscapeAlbedo(double heightM, double normalUp, double treeLineM, double snowLineM);
 struct ViewResult {
     ViewImage view;
     ViewCamera camera;  ///< in the frame of lighting/terrain_view.h

@@ -34,9 +34,8 @@ DemSource utmDem(const Grid<float>& values) {
 
 ZonedInstant morning() { return parseZonedInstant("2024-06-21T18:00Z", ""); }
 
-// Both find the first point where the ray meets the bilinear surface; with holes (nodata) a ray
-// that fell through one meets the side of the next patch it enters below the surface (the hole's
-// wall), both alike.
+// Both find the first point where the ray meets the bilinear surface from above; with holes
+// (nodata) a ray that fell through one passes under the patches beyond (no walls), both alike.
 TEST(MaxMipmap, MeetsTheSurfaceWhereAWalkThroughEveryPatchDoes) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -50,9 +49,8 @@ TEST(MaxMipmap, MeetsTheSurfaceWhereAWalkThroughEveryPatchDoes) {
         const MaxMipmap mm(*field, 1);
         int hits = 0;
         for (int i = 0; i < 4000; ++i) {
-            // From above every height (<= 50) over the field, so no ray starts inside the terrain or
-            // enters it through the field's side (where it would meet the side wall).
-            GridRay ray{52 * unit(rng), 40 * unit(rng), 60 + 80 * unit(rng), unit(rng) - 0.5,
+            // From above every height (<= 50), most over the field, some from beyond its sides.
+            GridRay ray{-10 + 73 * unit(rng), -10 + 61 * unit(rng), 60 + 80 * unit(rng), unit(rng) - 0.5,
                         unit(rng) - 0.5, -0.05 - 3 * unit(rng)};
             if (i % 7 == 0) ray.dx = 0;  // along a grid axis too
             if (i % 11 == 0) ray.dy = 0;
@@ -63,7 +61,8 @@ TEST(MaxMipmap, MeetsTheSurfaceWhereAWalkThroughEveryPatchDoes) {
             ++hits;
             EXPECT_NEAR(fast->t, walk->t, 1e-9 * (1 + walk->t)) << "ray " << i;
             if (field != &h) continue;
-            // On the bilinear surface.
+            // On the bilinear surface, coming down to it.
+            EXPECT_LT(ray.dz, 0);
             const auto c = static_cast<std::size_t>(std::min(fast->x, 51.0));
             const auto r = static_cast<std::size_t>(std::min(fast->y, 39.0));
             const double u = fast->x - c, v = fast->y - r;
@@ -235,6 +234,22 @@ TEST(View, ACameraUnderTheTerrainIsRefused) {
     r.camera.width = 32;
     r.camera.height = 24;
     EXPECT_THROW(viewProduct(dem, r), FieldError);
+}
+
+TEST(View, LandscapeAlbedoIsVegetationRockSnowAndSea) {
+    const Rgb low = landscapeAlbedo(500, 1.0, 2000, 3000);
+    const Rgb cliff = landscapeAlbedo(500, std::cos(60 * M_PI / 180), 2000, 3000);
+    const Rgb high = landscapeAlbedo(2500, 1.0, 2000, 3000);
+    const Rgb snow = landscapeAlbedo(3500, 1.0, 2000, 3000);
+    const Rgb snowWall = landscapeAlbedo(3500, std::cos(70 * M_PI / 180), 2000, 3000);
+    const Rgb sea = landscapeAlbedo(0, 1.0, 2000, 3000);
+    EXPECT_GT(low.g, low.r);          // green
+    EXPECT_GT(cliff.r, 2 * low.r);    // steep: rock
+    EXPECT_NEAR(cliff.r, high.r, 1e-12);  // above the tree line: rock too
+    EXPECT_GT(snow.b, 0.7);           // snow
+    EXPECT_NEAR(snowWall.r, cliff.r, 1e-12);  // no snow on a wall
+    EXPECT_NEAR(sea.b, kSeaAlbedo.b, 1e-12);
+    EXPECT_GT(landscapeAlbedo(0, 0.99, 2000, 3000).g, sea.g);  // a slope at 0 m is land
 }
 
 // The command on a lat/lon DEM, a UTM DEM with nodata as sea, and a surface model (shared
