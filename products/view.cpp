@@ -1,6 +1,8 @@
 #include "products/view.h"
 
 #include "geo/dem.h"
+#include "lighting/sky.h"
+#include "products/sky.h"
 #include "lighting/surface.h"
 #include "src/angles.h"
 #include "src/error.h"
@@ -101,72 +103,59 @@ Rgb landscapeAlbedo(double heightM, double normalUp, double treeLineM, double sn
     return mix(mix(kVegetation, kRock, rocky), kSnow, snowy);
 }
 
-ViewResult viewProduct(const DemSource& source, const ViewRequest& request, const ProgressFn& progress) {
+struct ViewStage::Impl {
+    std::shared_ptr<const Dem> whole;
+    ViewRequest request;
+    std::array<Grid<float>, 3> albedo;  ///< linear, per cell (NaN where no height)
+    Grid<float> surfaceHeights;
+    std::unique_ptr<MaxMipmap> surface;
+    ViewCamera camera;
+    double cellWidthM = 0, cellHeightM = 0, gammaDeg = 0, effectiveRadiusM = 0;
+    double eyeCol = 0, eyeRow = 0, distanceToTargetM = 0;
+};
+
+ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl_(std::make_unique<Impl>()) {
     validateView(request);
+    Impl& m = *impl_;
+    m.request = request;
     const ViewCameraRequest& cam = request.camera;
-    const std::shared_ptr<const Dem> whole = source.readWhole();
-    const Dem& dem = *whole;
+    m.whole = source.readWhole();
+    const Dem& dem = *m.whole;
     const Terrain& t = dem.terrain;
     const std::size_t W = t.width(), H = t.height();
     if (W < 2 || H < 2) throw Error("a view needs a DEM of at least 2 x 2 cells");
     const int threads = request.search.threads;
-    ViewResult out;
-
-    // The light of every cell, as the light product gives it (colour raster: albedo included).
-    const auto lightStart = std::chrono::steady_clock::now();
-    LightRequest lr;
-    lr.time = request.time;
-    lr.sunColor = request.sunColor;
-    lr.skyColor = request.skyColor;
-    lr.colorRaster = request.colorRaster;
-    lr.colorEncoding = request.colorEncoding;
-    lr.albedo = request.albedo;
-    lr.skyDirections = request.skyDirections;
-    lr.sunDiameterDeg = request.sunDiameterDeg;
-    lr.search = request.search;
-    LightResult light = lightProduct(source, source.whole(), lr, progress);
-    out.sunAzimuthDeg = light.centreAzimuthDeg;
-    out.sunElevationDeg = light.centreElevationDeg;
-    std::array<Grid<float>, 3> radiance{std::move(light.bands.at(0).values), std::move(light.bands.at(1).values),
-                                        std::move(light.bands.at(2).values)};
-    out.quality = planFor(request.search, t).quality;
-    out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(planFor(request.search, t).skyDirections));
-
-    // Ground colour: albedo x light (the colour raster's light has its albedo already).
     const bool sea = request.nodata == ViewNodata::Sea;
-    const double sunUp = std::clamp(0.5 + out.sunElevationDeg / request.sunDiameterDeg, 0.0, 1.0) *
-                         std::max(0.0, std::sin(out.sunElevationDeg * kDegToRad));
-    const Rgb seaLight{kSeaAlbedo.r * (request.sunColor[0] * sunUp + request.skyColor[0]),
-                       kSeaAlbedo.g * (request.sunColor[1] * sunUp + request.skyColor[1]),
-                       kSeaAlbedo.b * (request.sunColor[2] * sunUp + request.skyColor[2])};
-    {
-        const Normals normals = request.colorRaster.empty() && !request.albedo ? computeNormals(t, threads) : Normals{};
+
+    // The ground's albedo: the colour raster's, one grey, or the landscape's.
+    if (!request.colorRaster.empty()) {
+        std::vector<Grid<float>> colour =
+            loadAuxiliaryRaster(request.colorRaster, source, {"colorRaster", 3, true, 0, 1, true, request.colorEncoding});
+        for (std::size_t c = 0; c < 3; ++c) m.albedo[c] = std::move(colour[c]);
+    } else {
+        for (auto& g : m.albedo) g = Grid<float>(W, H);
+        const Normals normals = request.albedo ? Normals{} : computeNormals(t, threads);
         parallelFor(0, H, threads, [&](std::size_t r) {
             for (std::size_t c = 0; c < W; ++c) {
                 const float h = t.heightsM(c, r);
-                if (std::isnan(h)) {
-                    if (sea) radiance[0](c, r) = static_cast<float>(seaLight.r), radiance[1](c, r) = static_cast<float>(seaLight.g),
-                             radiance[2](c, r) = static_cast<float>(seaLight.b);
-                    continue;
-                }
-                if (!request.colorRaster.empty()) continue;
                 const Rgb a = request.albedo ? Rgb{*request.albedo, *request.albedo, *request.albedo}
-                                             : landscapeAlbedo(h, normals.up(c, r), request.treeLineM, request.snowLineM);
-                radiance[0](c, r) *= static_cast<float>(a.r);
-                radiance[1](c, r) *= static_cast<float>(a.g);
-                radiance[2](c, r) *= static_cast<float>(a.b);
+                              : std::isnan(h) ? Rgb{NAN, NAN, NAN}
+                                              : landscapeAlbedo(h, normals.up(c, r), request.treeLineM, request.snowLineM);
+                m.albedo[0](c, r) = static_cast<float>(a.r);
+                m.albedo[1](c, r) = static_cast<float>(a.g);
+                m.albedo[2](c, r) = static_cast<float>(a.b);
             }
         }, 16);
     }
-    out.lightSeconds = secondsSince(lightStart);
 
     // The frame: cell (0, 0)'s centre at the origin, E along columns, N against rows.
-    const auto renderStart = std::chrono::steady_clock::now();
     const double cw = t.cellWidthM[H / 2], ch = t.cellHeightM[H / 2];
-    const double gammaDeg = t.convergence.empty() ? 0.0 : t.convergence.at(0.5 * (W - 1), 0.5 * (H - 1));
+    m.cellWidthM = cw;
+    m.cellHeightM = ch;
+    m.gammaDeg = t.convergence.empty() ? 0.0 : t.convergence.at(0.5 * (W - 1), 0.5 * (H - 1));
     const double exag = cam.exaggeration;
-    const double rEff = kEarthRadiusM / (1.0 - request.search.refraction);
-    const double drop = 0.5 / rEff;
+    m.effectiveRadiusM = kEarthRadiusM / (1.0 - request.search.refraction);
+    const double drop = 0.5 / m.effectiveRadiusM;
     const auto toEnu = [&](double col, double row, double u) { return Enu3{col * cw, -row * ch, u}; };
     const double centreCol = 0.5 * static_cast<double>(W - 1), centreRow = 0.5 * static_cast<double>(H - 1);
     const auto terrainHeight = [&](double col, double row) {
@@ -177,7 +166,7 @@ ViewResult viewProduct(const DemSource& source, const ViewRequest& request, cons
     FramePoint target{centreCol, centreRow, std::nullopt};
     if (cam.target) target = framePoint(dem, *cam.target);
     const double targetHeightM = target.heightM.value_or(terrainHeight(target.col, target.row));
-    ViewCamera camera;
+    ViewCamera& camera = m.camera;
     camera.fieldOfViewDeg = cam.fieldOfViewDeg;
     camera.width = cam.width;
     camera.height = cam.height;
@@ -187,56 +176,133 @@ ViewResult viewProduct(const DemSource& source, const ViewRequest& request, cons
         camera.eye = toEnu(eye.col, eye.row, exag * *eye.heightM);
     } else {
         const double distance = cam.distanceM.value_or(kOrbitDistanceShare * diagonalM(t));
-        const double az = (cam.azimuthDeg - gammaDeg) * kDegToRad, el = cam.elevationDeg * kDegToRad;
+        const double az = (cam.azimuthDeg - m.gammaDeg) * kDegToRad, el = cam.elevationDeg * kDegToRad;
         camera.eye = {camera.target.e + distance * std::cos(el) * std::sin(az),
                       camera.target.n + distance * std::cos(el) * std::cos(az), camera.target.u + distance * std::sin(el)};
     }
     // The target sinks with the earth's curvature as seen from the eye.
     const double targetGround = std::hypot(camera.target.e - camera.eye.e, camera.target.n - camera.eye.n);
     camera.target.u -= drop * targetGround * targetGround;
-    if (std::hypot(targetGround, camera.target.u - camera.eye.u) < 1e-6)
-        throw FieldError("target", ": is where the eye is; the camera needs a direction to look");
+    m.distanceToTargetM = std::hypot(targetGround, camera.target.u - camera.eye.u);
+    if (m.distanceToTargetM < 1e-6) throw FieldError("target", ": is where the eye is; the camera needs a direction to look");
 
     Grid<float> heights = t.heightsM;
     if (sea)
         for (float& h : heights.values())
             if (std::isnan(h)) h = 0.0f;
-    const Grid<float> surfaceHeights = viewHeights(heights, cw, ch, exag, camera.eye, rEff, threads);
-    const double eyeCol = camera.eye.e / cw, eyeRow = -camera.eye.n / ch;
-    const double groundBelow = heightAt(surfaceHeights, eyeCol, eyeRow);
+    m.surfaceHeights = viewHeights(heights, cw, ch, exag, camera.eye, m.effectiveRadiusM, threads);
+    m.eyeCol = camera.eye.e / cw;
+    m.eyeRow = -camera.eye.n / ch;
+    const double groundBelow = heightAt(m.surfaceHeights, m.eyeCol, m.eyeRow);
     if (std::isfinite(groundBelow) && !(camera.eye.u > groundBelow))
         throw FieldError(cam.eye ? "eye" : "camera",
                          ": the camera is under the terrain (at " + formatNumber(camera.eye.u / exag) +
                              " m, the ground below it at " + formatNumber(groundBelow / exag) + " m)");
-    const MaxMipmap surface(surfaceHeights, threads);
+    m.surface = std::make_unique<MaxMipmap>(m.surfaceHeights, threads);
+}
 
+ViewStage::~ViewStage() = default;
+
+std::array<Grid<float>, 3> ViewStage::light(const Grid<float>& sunIrradiance, const Grid<float>& skyK) const {
+    const ViewRequest& r = impl_->request;
+    const double albedo = r.albedo.value_or(kDefaultAlbedo);
+    std::array<Grid<float>, 3> out;
+    for (auto& g : out) g = Grid<float>(skyK.width(), skyK.height());
+    parallelFor(0, skyK.height(), r.search.threads, [&](std::size_t row) {
+        for (std::size_t c = 0; c < skyK.width(); ++c) {
+            const double s = sunIrradiance(c, row), k = skyK(c, row);
+            const double f = std::isnan(k) ? k : skyFactor(k, albedo);
+            for (std::size_t ch = 0; ch < 3; ++ch)
+                out[ch](c, row) = static_cast<float>(r.sunColor[ch] * s + r.skyColor[ch] * f);
+        }
+    }, 16);
+    return out;
+}
+
+ViewImage ViewStage::render(const std::array<const Grid<float>*, 3>& light, double sunAzimuthDeg,
+                            double sunElevationDeg) const {
+    const Impl& m = *impl_;
+    const ViewRequest& request = m.request;
+    const Terrain& t = m.whole->terrain;
+    const std::size_t W = t.width(), H = t.height();
+    const bool sea = request.nodata == ViewNodata::Sea;
+    // The sea: open water under the disk's visible share above the horizontal and the whole sky.
+    const double sunUp = std::clamp(0.5 + sunElevationDeg / request.sunDiameterDeg, 0.0, 1.0) *
+                         std::max(0.0, std::sin(sunElevationDeg * kDegToRad));
+    std::array<Grid<float>, 3> radiance;
+    for (auto& g : radiance) g = Grid<float>(W, H);
+    parallelFor(0, H, request.search.threads, [&](std::size_t r) {
+        for (std::size_t c = 0; c < W; ++c)
+            for (std::size_t k = 0; k < 3; ++k) {
+                const double seaLight = request.sunColor[k] * sunUp + request.skyColor[k];
+                const double seaAlbedo = k == 0 ? kSeaAlbedo.r : k == 1 ? kSeaAlbedo.g : kSeaAlbedo.b;
+                radiance[k](c, r) = std::isnan(t.heightsM(c, r))
+                                        ? (sea ? static_cast<float>(seaAlbedo * seaLight) : NAN)
+                                        : static_cast<float>(m.albedo[k](c, r) * (*light[k])(c, r));
+            }
+    }, 16);
     ViewScene scene;
-    scene.heightsM = &surfaceHeights;
+    scene.heightsM = &m.surfaceHeights;
     scene.radiance = {&radiance[0], &radiance[1], &radiance[2]};
-    scene.cellWidthM = cw;
-    scene.cellHeightM = ch;
-    scene.exaggeration = exag;
-    scene.effectiveRadiusM = rEff;
+    scene.cellWidthM = m.cellWidthM;
+    scene.cellHeightM = m.cellHeightM;
+    scene.exaggeration = request.camera.exaggeration;
+    scene.effectiveRadiusM = m.effectiveRadiusM;
     ViewLight vl;
-    vl.sunAzimuthDeg = out.sunAzimuthDeg;
-    vl.sunElevationDeg = out.sunElevationDeg;
-    vl.gridConvergenceDeg = gammaDeg;
+    vl.sunAzimuthDeg = sunAzimuthDeg;
+    vl.sunElevationDeg = sunElevationDeg;
+    vl.gridConvergenceDeg = m.gammaDeg;
     vl.sunDiameterDeg = request.sunDiameterDeg;
     vl.sunColor = {request.sunColor[0], request.sunColor[1], request.sunColor[2]};
     vl.skyColor = {request.skyColor[0], request.skyColor[1], request.skyColor[2]};
     PreviewParams display;
     display.exposure = request.exposure;
-    out.view = renderView(scene, surface, camera, vl, request.atmosphere, display, threads);
-    out.renderSeconds = secondsSince(renderStart);
+    return renderView(scene, *m.surface, m.camera, vl, request.atmosphere, display, request.search.threads);
+}
 
-    out.camera = camera;
-    out.cellWidthM = cw;
-    out.cellHeightM = ch;
-    out.effectiveRadiusM = rEff;
-    out.exaggeration = exag;
-    std::tie(out.eyeLatitudeDeg, out.eyeLongitudeDeg) = cellLatLon(dem, eyeCol, eyeRow);
-    out.eyeHeightM = camera.eye.u / exag;
-    out.distanceToTargetM = std::hypot(targetGround, camera.target.u - camera.eye.u);
+void ViewStage::describe(ViewResult& out) const {
+    const Impl& m = *impl_;
+    out.camera = m.camera;
+    out.cellWidthM = m.cellWidthM;
+    out.cellHeightM = m.cellHeightM;
+    out.effectiveRadiusM = m.effectiveRadiusM;
+    out.exaggeration = m.request.camera.exaggeration;
+    std::tie(out.eyeLatitudeDeg, out.eyeLongitudeDeg) = cellLatLon(*m.whole, m.eyeCol, m.eyeRow);
+    out.eyeHeightM = m.camera.eye.u / out.exaggeration;
+    out.distanceToTargetM = m.distanceToTargetM;
+}
+
+ViewResult viewProduct(const DemSource& source, const ViewRequest& request, const ProgressFn& progress) {
+    validateView(request);
+    ViewResult out;
+    // The camera first: a camera under the terrain is refused before the light is computed.
+    const auto stageStart = std::chrono::steady_clock::now();
+    const ViewStage stage(source, request);
+    double stageSeconds = secondsSince(stageStart);
+
+    // The light of every cell, as the light product gives it; the stage multiplies in the albedo.
+    const auto lightStart = std::chrono::steady_clock::now();
+    LightRequest lr;
+    lr.time = request.time;
+    lr.sunColor = request.sunColor;
+    lr.skyColor = request.skyColor;
+    lr.albedo = request.albedo;
+    lr.skyDirections = request.skyDirections;
+    lr.sunDiameterDeg = request.sunDiameterDeg;
+    lr.search = request.search;
+    const LightResult light = lightProduct(source, source.whole(), lr, progress);
+    out.lightSeconds = secondsSince(lightStart);
+    out.sunAzimuthDeg = light.centreAzimuthDeg;
+    out.sunElevationDeg = light.centreElevationDeg;
+    const ScenePlan plan = planFor(request.search, source.readWhole()->terrain);
+    out.quality = plan.quality;
+    out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+
+    const auto renderStart = std::chrono::steady_clock::now();
+    out.view = stage.render({&light.bands.at(0).values, &light.bands.at(1).values, &light.bands.at(2).values},
+                            out.sunAzimuthDeg, out.sunElevationDeg);
+    out.renderSeconds = stageSeconds + secondsSince(renderStart);
+    stage.describe(out);
     return out;
 }
 

@@ -11,6 +11,8 @@
 #include "products/product.h"
 #include "products/sun.h"
 
+#include <array>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -86,5 +88,31 @@ struct ViewResult {
 /// Throws Error naming the field of a bad request, and (FieldError "eye" / "camera") when the
 /// camera is under the terrain.
 ViewResult viewProduct(const DemSource& source, const ViewRequest& request, const ProgressFn& progress = {});
+
+/// A view set up once (camera, surface and its pyramid, the ground's albedo) and lit for any
+/// number of instants: viewProduct's picture for one, a time-lapse's frames from one camera.
+class ViewStage {
+public:
+    /// The whole DEM of `source`; request.time is not read. Throws as viewProduct.
+    ViewStage(const DemSource& source, const ViewRequest& request);
+    ViewStage(const ViewStage&) = delete;
+    ViewStage& operator=(const ViewStage&) = delete;
+    ~ViewStage();
+
+    /// The picture under per-cell light (linear R, G, B normalised irradiance before the ground's
+    /// albedo, the DEM's shape) with the sun at the DEM centre at azimuth/elevation (degrees).
+    ViewImage render(const std::array<const Grid<float>*, 3>& light, double sunAzimuthDeg,
+                     double sunElevationDeg) const;
+    /// The light of one instant from a time-lapse's terms: sunColor x sun irradiance +
+    /// skyColor x f_sky(K, the sky's albedo), as `light` combines them. NaN at nodata.
+    std::array<Grid<float>, 3> light(const Grid<float>& sunIrradiance, const Grid<float>& skyK) const;
+
+    /// ViewResult's geometry fields (camera, frame, eye).
+    void describe(ViewResult& out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace demlight

@@ -10,6 +10,7 @@
 #include "products/view.h"
 #include "src/error.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -278,6 +279,59 @@ TEST(ViewCli, DrawsLatLonUtmAndSurfaceModels) {
     EXPECT_NE(under.exitCode, 0);
     EXPECT_NE(under.err.find("under the terrain"), std::string::npos) << under.err;
     EXPECT_FALSE(fs::exists(dir / "under.png"));
+    fs::remove_all(dir);
+}
+
+/// An RGBA picture's bytes and size.
+std::vector<std::uint8_t> pictureBytes(const std::string& path, int& width, int& height) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        ADD_FAILURE() << path << ": " << OIIO::geterror();
+        return {};
+    }
+    width = in->spec().width;
+    height = in->spec().height;
+    std::vector<std::uint8_t> px(static_cast<std::size_t>(width) * height * 4);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+    return px;
+}
+
+// A time-lapse in the view draws each frame as `view` draws its instant (its sun term per frame,
+// the sky term once, the same light); camera options without --view are refused.
+TEST(ViewCli, TimelapseFramesAreTheViewsOfTheirInstants) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("demlight_view_tl_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string dem = std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif";
+    const std::string camera = " --size 96x64 --camera-azimuth 150 --camera-elevation 30";
+    const auto tl = testing::runDemlight("-q timelapse " + dem + " -o " + (dir / "tl").string() +
+                                         " --start 2024-06-21T14:00Z --end 2024-06-21T17:00Z --step 3h --view --formats png,gif" +
+                                         camera);
+    ASSERT_EQ(tl.exitCode, 0) << tl.err;
+    EXPECT_TRUE(fs::exists(dir / "tl" / "timelapse.gif"));
+    for (const auto& [frame, time] : {std::pair{"frame_000.png", "2024-06-21T14:00Z"}, std::pair{"frame_001.png", "2024-06-21T17:00Z"}}) {
+        const std::string single = (dir / (std::string("view_") + frame)).string();
+        const auto v = testing::runDemlight("-q view " + dem + " -o " + single + " --time " + time + camera);
+        ASSERT_EQ(v.exitCode, 0) << v.err;
+        int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+        const auto a = pictureBytes((dir / "tl" / frame).string(), w1, h1);
+        const auto b = pictureBytes(single, w2, h2);
+        ASSERT_EQ(w1, 96);
+        ASSERT_EQ(h1, 64);
+        ASSERT_EQ(a.size(), b.size());
+        int worst = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+        EXPECT_LE(worst, 1) << frame;
+    }
+    // The two frames differ (the sun moved): the comparison can tell instants apart.
+    int w = 0, h = 0;
+    EXPECT_NE(pictureBytes((dir / "tl" / "frame_000.png").string(), w, h),
+              pictureBytes((dir / "tl" / "frame_001.png").string(), w, h));
+    const auto without = testing::runDemlight("-q timelapse " + dem + " -o " + (dir / "tl2").string() +
+                                              " --start 2024-06-21T14:00Z --end 2024-06-21T17:00Z --step 3h --camera-azimuth 10");
+    EXPECT_NE(without.exitCode, 0);
+    EXPECT_NE(without.err.find("--view"), std::string::npos) << without.err;
     fs::remove_all(dir);
 }
 
