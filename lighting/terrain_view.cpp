@@ -85,15 +85,29 @@ double henyeyGreenstein(double cosTheta, double g) {
     return (1 - g * g) / std::pow(1 + g * g - 2 * g * cosTheta, 1.5);
 }
 
-/// Bilinear value of a grid at (x, y) in cell coordinates (centres at integers), clamped inside.
-double bilinear(const Grid<float>& g, double x, double y) {
-    const double xc = std::clamp(x, 0.0, static_cast<double>(g.width() - 1));
-    const double yc = std::clamp(y, 0.0, static_cast<double>(g.height() - 1));
-    const auto i = std::min(static_cast<std::size_t>(xc), g.width() - 2 + (g.width() < 2 ? 1 : 0));
-    const auto j = std::min(static_cast<std::size_t>(yc), g.height() - 2 + (g.height() < 2 ? 1 : 0));
+/// The radiance leaving the ground at (x, y) in cell coordinates (centres at integers, clamped
+/// inside): bilinear between the four cells' albedo x light (or the sea's).
+Rgb groundRadiance(const ViewScene& s, double x, double y) {
+    const Grid<float>& h = *s.groundHeightsM;
+    const double xc = std::clamp(x, 0.0, static_cast<double>(h.width() - 1));
+    const double yc = std::clamp(y, 0.0, static_cast<double>(h.height() - 1));
+    const auto i = std::min(static_cast<std::size_t>(xc), h.width() - 2);
+    const auto j = std::min(static_cast<std::size_t>(yc), h.height() - 2);
     const double u = xc - static_cast<double>(i), v = yc - static_cast<double>(j);
-    const std::size_t i1 = std::min(i + 1, g.width() - 1), j1 = std::min(j + 1, g.height() - 1);
-    return (1 - v) * ((1 - u) * g(i, j) + u * g(i1, j)) + v * ((1 - u) * g(i, j1) + u * g(i1, j1));
+    const double w[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+    const std::size_t ci[4] = {i, i + 1, i, i + 1}, cj[4] = {j, j, j + 1, j + 1};
+    const double sea[3] = {s.seaRadiance.r, s.seaRadiance.g, s.seaRadiance.b};
+    double out[3] = {0, 0, 0};
+    for (int k = 0; k < 4; ++k) {
+        if (w[k] == 0) continue;
+        const bool water = std::isnan(h(ci[k], cj[k]));
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double r = water ? (s.sea ? sea[c] : 0.0)
+                                   : static_cast<double>((*s.albedo[c])(ci[k], cj[k])) * (*s.light[c])(ci[k], cj[k]);
+            out[c] += w[k] * (std::isnan(r) ? 0.0 : r);
+        }
+    }
+    return {out[0], out[1], out[2]};
 }
 
 }  // namespace
@@ -183,10 +197,7 @@ ViewImage renderView(const ViewScene& scene, const MaxMipmap& surface, const Vie
             Rgb c;
             bool opaque = true;
             if (const auto hit = surface.cast(ray, std::numeric_limits<double>::infinity())) {
-                const double r = bilinear(*scene.radiance[0], hit->x, hit->y);
-                const double g = bilinear(*scene.radiance[1], hit->x, hit->y);
-                const double b = bilinear(*scene.radiance[2], hit->x, hit->y);
-                c = {std::isnan(r) ? 0 : r, std::isnan(g) ? 0 : g, std::isnan(b) ? 0 : b};
+                c = groundRadiance(scene, hit->x, hit->y);
                 const double ground2 = hit->t * hit->t * (d.e * d.e + d.n * d.n);
                 const double altitude = (hit->z + curvature * ground2) / scene.exaggeration;
                 const Rgb T = hazeTransmittance(atmosphere, hit->t, eyeAltitude, altitude);

@@ -64,7 +64,13 @@ struct ViewLight {
 /// The terrain as the view sees it.
 struct ViewScene {
     const Grid<float>* heightsM = nullptr;      ///< the surface's heights (exaggerated, curvature applied: viewHeights)
-    std::array<const Grid<float>*, 3> radiance{};  ///< linear R, G, B leaving each cell (NaN = none)
+    /// The ground's linear albedo and the light on it per cell (R, G, B): the radiance leaving a
+    /// cell is their product, taken at the four cells around the point a ray meets.
+    std::array<const Grid<float>*, 3> albedo{}, light{};
+    /// The DEM's own heights: a NaN cell is sea (with `sea`, radiance seaRadiance), else a hole.
+    const Grid<float>* groundHeightsM = nullptr;
+    bool sea = false;
+    Rgb seaRadiance;
     double cellWidthM = 1, cellHeightM = 1;
     /// Heights of the haze: a frame height z stands for the altitude z / exaggeration + d^2 / (2 R_eff)
     /// (d from the eye), so the haze thins with the true altitude, not the exaggerated one.

@@ -104,9 +104,10 @@ Rgb landscapeAlbedo(double heightM, double normalUp, double treeLineM, double sn
 }
 
 struct ViewStage::Impl {
+    const DemSource* source = nullptr;
     std::shared_ptr<const Dem> whole;
     ViewRequest request;
-    std::array<Grid<float>, 3> albedo;  ///< linear, per cell (NaN where no height)
+    std::array<Grid<float>, 3> albedo;  ///< linear, per cell (NaN where no height); made by ensureAlbedo
     Grid<float> surfaceHeights;
     std::unique_ptr<MaxMipmap> surface;
     ViewCamera camera;
@@ -114,23 +115,18 @@ struct ViewStage::Impl {
     double eyeCol = 0, eyeRow = 0, distanceToTargetM = 0;
 };
 
-ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl_(std::make_unique<Impl>()) {
-    validateView(request);
-    Impl& m = *impl_;
-    m.request = request;
-    const ViewCameraRequest& cam = request.camera;
-    m.whole = source.readWhole();
-    const Dem& dem = *m.whole;
-    const Terrain& t = dem.terrain;
+/// The ground's albedo (the colour raster's, one grey, or the landscape's), made at the first
+/// picture: after viewProduct's light, so the two never hold their grids at once.
+void ensureAlbedo(ViewStage::Impl& m) {
+    if (!m.albedo[0].empty()) return;
+    const ViewRequest& request = m.request;
+    const Terrain& t = m.whole->terrain;
     const std::size_t W = t.width(), H = t.height();
-    if (W < 2 || H < 2) throw Error("a view needs a DEM of at least 2 x 2 cells");
     const int threads = request.search.threads;
-    const bool sea = request.nodata == ViewNodata::Sea;
-
     // The ground's albedo: the colour raster's, one grey, or the landscape's.
     if (!request.colorRaster.empty()) {
         std::vector<Grid<float>> colour =
-            loadAuxiliaryRaster(request.colorRaster, source, {"colorRaster", 3, true, 0, 1, true, request.colorEncoding});
+            loadAuxiliaryRaster(request.colorRaster, *m.source, {"colorRaster", 3, true, 0, 1, true, request.colorEncoding});
         for (std::size_t c = 0; c < 3; ++c) m.albedo[c] = std::move(colour[c]);
     } else {
         for (auto& g : m.albedo) g = Grid<float>(W, H);
@@ -147,6 +143,22 @@ ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl
             }
         }, 16);
     }
+
+}
+
+ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl_(std::make_unique<Impl>()) {
+    validateView(request);
+    Impl& m = *impl_;
+    m.request = request;
+    m.source = &source;
+    const ViewCameraRequest& cam = request.camera;
+    m.whole = source.readWhole();
+    const Dem& dem = *m.whole;
+    const Terrain& t = dem.terrain;
+    const std::size_t W = t.width(), H = t.height();
+    if (W < 2 || H < 2) throw Error("a view needs a DEM of at least 2 x 2 cells");
+    const int threads = request.search.threads;
+    const bool sea = request.nodata == ViewNodata::Sea;
 
     // The frame: cell (0, 0)'s centre at the origin, E along columns, N against rows.
     const double cw = t.cellWidthM[H / 2], ch = t.cellHeightM[H / 2];
@@ -221,29 +233,22 @@ std::array<Grid<float>, 3> ViewStage::light(const Grid<float>& sunIrradiance, co
 
 ViewImage ViewStage::render(const std::array<const Grid<float>*, 3>& light, double sunAzimuthDeg,
                             double sunElevationDeg) const {
+    ensureAlbedo(*impl_);
     const Impl& m = *impl_;
     const ViewRequest& request = m.request;
     const Terrain& t = m.whole->terrain;
-    const std::size_t W = t.width(), H = t.height();
-    const bool sea = request.nodata == ViewNodata::Sea;
     // The sea: open water under the disk's visible share above the horizontal and the whole sky.
     const double sunUp = std::clamp(0.5 + sunElevationDeg / request.sunDiameterDeg, 0.0, 1.0) *
                          std::max(0.0, std::sin(sunElevationDeg * kDegToRad));
-    std::array<Grid<float>, 3> radiance;
-    for (auto& g : radiance) g = Grid<float>(W, H);
-    parallelFor(0, H, request.search.threads, [&](std::size_t r) {
-        for (std::size_t c = 0; c < W; ++c)
-            for (std::size_t k = 0; k < 3; ++k) {
-                const double seaLight = request.sunColor[k] * sunUp + request.skyColor[k];
-                const double seaAlbedo = k == 0 ? kSeaAlbedo.r : k == 1 ? kSeaAlbedo.g : kSeaAlbedo.b;
-                radiance[k](c, r) = std::isnan(t.heightsM(c, r))
-                                        ? (sea ? static_cast<float>(seaAlbedo * seaLight) : NAN)
-                                        : static_cast<float>(m.albedo[k](c, r) * (*light[k])(c, r));
-            }
-    }, 16);
     ViewScene scene;
     scene.heightsM = &m.surfaceHeights;
-    scene.radiance = {&radiance[0], &radiance[1], &radiance[2]};
+    scene.albedo = {&m.albedo[0], &m.albedo[1], &m.albedo[2]};
+    scene.light = light;
+    scene.groundHeightsM = &t.heightsM;
+    scene.sea = request.nodata == ViewNodata::Sea;
+    scene.seaRadiance = {kSeaAlbedo.r * (request.sunColor[0] * sunUp + request.skyColor[0]),
+                         kSeaAlbedo.g * (request.sunColor[1] * sunUp + request.skyColor[1]),
+                         kSeaAlbedo.b * (request.sunColor[2] * sunUp + request.skyColor[2])};
     scene.cellWidthM = m.cellWidthM;
     scene.cellHeightM = m.cellHeightM;
     scene.exaggeration = request.camera.exaggeration;

@@ -93,7 +93,8 @@ ViewResult viewProduct(const DemSource& source, const ViewRequest& request, cons
 /// number of instants: viewProduct's picture for one, a time-lapse's frames from one camera.
 class ViewStage {
 public:
-    /// The whole DEM of `source`; request.time is not read. Throws as viewProduct.
+    /// The whole DEM of `source` (which must outlive the stage); request.time is not read. Throws
+    /// as viewProduct. Pictures are rendered one at a time (render is not reentrant).
     ViewStage(const DemSource& source, const ViewRequest& request);
     ViewStage(const ViewStage&) = delete;
     ViewStage& operator=(const ViewStage&) = delete;
@@ -110,8 +111,9 @@ public:
     /// ViewResult's geometry fields (camera, frame, eye).
     void describe(ViewResult& out) const;
 
-private:
     struct Impl;
+
+private:
     std::unique_ptr<Impl> impl_;
 };
 
