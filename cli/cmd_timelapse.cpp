@@ -10,6 +10,7 @@
 // or on a --srcwin window writes the GeoTIFFs and frames.csv only: pictures are of whole frames.
 #include "cli/common.h"
 #include "cli/progress_bar.h"
+#include "cli/view_options.h"
 #include "geo/image_out.h"
 #include "geo/output_file.h"
 #include "products/timelapse.h"
@@ -46,6 +47,9 @@ struct TimelapseOptions {
     std::size_t gifSize = 800;
     std::optional<std::size_t> skyDirections;
     PictureOptions picture;
+    bool albedoGiven = false;  ///< --albedo on the command line (--view: else the landscape)
+    bool view = false;         ///< previews in an oblique view (--view and the camera options)
+    ViewCameraOptions camera;
     double sunDiameterDeg = kSunDiameterDeg;
     int fitDegree = 0;
     std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
@@ -280,6 +284,18 @@ TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std:
     r.picture = pictureRequest(o.picture);
     r.fitDegree = o.fitDegree;
     r.search = o.search.request;
+    if (o.view) {
+        ViewRequest v;
+        applyViewCameraOptions(o.camera, v);
+        v.colorRaster = r.picture.colorRaster;
+        v.colorEncoding = r.picture.colorEncoding;
+        if (o.albedoGiven && v.colorRaster.empty()) v.albedo = r.picture.albedo;
+        v.exposure = r.picture.exposure;
+        v.sunDiameterDeg = r.sunDiameterDeg;
+        v.skyDirections = r.skyDirections;
+        v.search = r.search;
+        r.view = v;
+    }
     return r;
 }
 
@@ -495,6 +511,15 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
                         " with full; --horizon-mode interpolated:N uses its N)")
         ->check(finiteRange(4, 1024));
     addPictureOptions(cmd, o->picture);
+    CLI::Option* view = cmd->add_flag("--view", o->view,
+                                      "Previews (png, gif, mp4) in an oblique view from one camera, as demlight view "
+                                      "draws it (camera options below), instead of top-down");
+    addViewCameraOptions(cmd, o->camera);
+    // A camera option without --view would be ignored: it needs it.
+    for (const char* name : {"--camera-azimuth", "--camera-elevation", "--camera-distance", "--eye", "--eye-xy",
+                             "--target", "--target-xy", "--fov", "--size", "--exaggeration", "--tree-line",
+                             "--snow-line", "--no-haze", "--no-sky", "--visibility", "--nodata"})
+        cmd->get_option(name)->needs(view);
     cmd->add_option("--fit-degree", o->fitDegree,
                     "Also store sun_irradiance as per-cell Legendre polynomials of this degree in "
                     "DIR/sequence_fit.tif (0 = off); read back with demlight sequence")
@@ -502,7 +527,10 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { runTimelapse(*o, ctx); });
+    cmd->callback([o, &ctx, cmd] {
+        o->albedoGiven = cmd->get_option("--albedo")->count() > 0;
+        runTimelapse(*o, ctx);
+    });
 }
 
 }  // namespace demlight::cli

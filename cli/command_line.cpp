@@ -68,10 +68,12 @@ void registerCommands(CLI::App& app, CliContext& ctx) {
     registerIrradiance(app, ctx);
     registerInsolation(app, ctx);
     registerRender(app, ctx);
+    registerView(app, ctx);
     registerTimelapse(app, ctx);
     registerSunhours(app, ctx);
     registerSequence(app, ctx);
     registerBench(app, ctx);
+    registerQuicklook(app, ctx);
     registerOptions(app, ctx);
     for (CLI::App* sub : app.get_subcommands({})) sub->footer(kExitCodesHelp);
 

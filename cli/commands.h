@@ -47,6 +47,8 @@ void registerLight(CLI::App& app, CliContext& ctx);
 void registerIrradiance(CLI::App& app, CliContext& ctx);
 void registerInsolation(CLI::App& app, CliContext& ctx);
 void registerRender(CLI::App& app, CliContext& ctx);
+void registerView(CLI::App& app, CliContext& ctx);
+void registerQuicklook(CLI::App& app, CliContext& ctx);
 void registerTimelapse(CLI::App& app, CliContext& ctx);
 void registerSunhours(CLI::App& app, CliContext& ctx);
 void registerSequence(CLI::App& app, CliContext& ctx);

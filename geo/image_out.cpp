@@ -213,4 +213,19 @@ Image8 downsample(const Image8& image, std::size_t maxSide) {
     return out;
 }
 
+TextBox measureText(const std::string& text, int sizePx) {
+    TextBox box;
+    char err[512];
+    if (oiioPlugin().textSize(text.c_str(), sizePx, &box.x0, &box.y0, &box.x1, &box.y1, err, sizeof err) != 0)
+        throw Error(err);
+    return box;
+}
+
+void drawText(Image8& image, int x, int y, const std::string& text, int sizePx, const std::array<std::uint8_t, 4>& rgba) {
+    char err[512];
+    if (oiioPlugin().drawText(image.rgba.data(), image.width, image.height, x, y, text.c_str(), sizePx, rgba.data(), err,
+                              sizeof err) != 0)
+        throw Error(err);
+}
+
 }  // namespace demlight

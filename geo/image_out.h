@@ -6,6 +6,8 @@
 #include "geo/png_writer.h"
 #include "src/image.h"
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +51,21 @@ private:
     std::size_t frames_ = 0;
     std::unique_ptr<Impl> impl_;
 };
+
+/// Where text drawn by drawText lies, relative to the left end of its baseline (pixels; y down:
+/// y0 < 0 is above the baseline).
+struct TextBox {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+};
+
+/// The box of `text` (UTF-8) drawn `sizePx` pixels high in DejaVu Sans, through the OpenImageIO
+/// plugin. Throws Error when the plugin or the font (Debian's fonts-dejavu-core) is missing.
+TextBox measureText(const std::string& text, int sizePx);
+
+/// Draws `text` over `image` in colour `rgba`, composited over what is there, the left end of
+/// its baseline at (x, y). Throws Error as measureText.
+void drawText(Image8& image, int x, int y, const std::string& text, int sizePx, const std::array<std::uint8_t, 4>& rgba);
 
 /// Box-filtered copy of `image` whose longer side is at most maxSide pixels (integer factor;
 /// returned unchanged when already small enough). Transparent pixels are left out of the mean.

@@ -13,7 +13,7 @@ namespace demlight {
 namespace {
 
 constexpr const char* kPluginName = "libdemlight_oiio.so";
-constexpr int kPluginVersion = 2;  // demlight_oiio_version() of the plugin this build expects
+constexpr int kPluginVersion = 3;  // demlight_oiio_version() of the plugin this build expects
 
 template <class Fn>
 Fn symbol(void* handle, const char* name, const std::string& path) {
@@ -41,7 +41,9 @@ OiioPlugin load() {
             symbol<decltype(&demlight_oiio_gif_open)>(handle, "demlight_oiio_gif_open", path),
             symbol<decltype(&demlight_oiio_gif_add)>(handle, "demlight_oiio_gif_add", path),
             symbol<decltype(&demlight_oiio_gif_close)>(handle, "demlight_oiio_gif_close", path),
-            symbol<decltype(&demlight_oiio_gif_free)>(handle, "demlight_oiio_gif_free", path)};
+            symbol<decltype(&demlight_oiio_gif_free)>(handle, "demlight_oiio_gif_free", path),
+            symbol<decltype(&demlight_oiio_text_size)>(handle, "demlight_oiio_text_size", path),
+            symbol<decltype(&demlight_oiio_draw_text)>(handle, "demlight_oiio_draw_text", path)};
 }
 
 }  // namespace

@@ -13,6 +13,8 @@ struct OiioPlugin {
     decltype(&demlight_oiio_gif_add) gifAdd;
     decltype(&demlight_oiio_gif_close) gifClose;
     decltype(&demlight_oiio_gif_free) gifFree;
+    decltype(&demlight_oiio_text_size) textSize;
+    decltype(&demlight_oiio_draw_text) drawText;
 };
 
 /// The plugin's functions; loads it the first time (thread-safe). Throws Error, naming the

@@ -385,6 +385,40 @@ std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary*
     return out;
 }
 
+PictureBand readPictureBand(const std::string& path, const std::string& band) {
+    DatasetPtr ds = openRaster(path);
+    PictureBand out;
+    out.bandCount = static_cast<std::size_t>(ds->GetRasterCount());
+    std::string names;
+    int found = 0;
+    for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+        const std::string description = ds->GetRasterBand(b)->GetDescription();
+        names += (names.empty() ? "" : ", ") + std::to_string(b) + (description.empty() ? "" : " " + description);
+        if (!found && (band == std::to_string(b) || (!description.empty() && band == description))) found = b;
+    }
+    if (!found)
+        throw Error("'" + path + "' has no band '" + band + "'; its bands: " + (names.empty() ? "none" : names));
+    GDALRasterBand* b = ds->GetRasterBand(found);
+    out.index = found;
+    out.description = b->GetDescription();
+    out.unit = b->GetUnitType();
+    out.values = readFloatBand(b, b, "band " + std::to_string(found) + " of '" + path + "'");
+    int hasScale = 0, hasOffset = 0;
+    const double scale = b->GetScale(&hasScale), offset = b->GetOffset(&hasOffset);
+    if ((hasScale && scale != 1.0) || (hasOffset && offset != 0.0))
+        for (float& v : out.values.values()) v = static_cast<float>(v * (hasScale ? scale : 1.0) + (hasOffset ? offset : 0.0));
+    if (ds->GetGeoTransform(out.geoTransform.data()) != CE_None) out.geoTransform = {0, 1, 0, 0, 0, 1};
+    if (const OGRSpatialReference* srs = ds->GetSpatialRef()) out.geographic = srs->IsGeographic();
+    CSLConstList items = ds->GetMetadata(nullptr);
+    for (CSLConstList it = items; it && *it; ++it) {
+        char* key = nullptr;
+        const char* value = CPLParseNameValue(*it, &key);
+        if (key && value) out.metadata[key] = value;
+        CPLFree(key);
+    }
+    return out;
+}
+
 std::vector<Grid<float>> readRasterOverview(const std::string& path, int level) {
     DatasetPtr ds = openRaster(path);
     std::vector<Grid<float>> out;

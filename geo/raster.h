@@ -78,6 +78,22 @@ private:
 /// Reads every band of a raster as float (nodata and NaN become NaN), without resampling.
 std::vector<Grid<float>> readRasterBands(const std::string& path, RasterSummary* summary = nullptr);
 
+/// One band of any raster GDAL opens, for a picture of it (demlight quicklook).
+struct PictureBand {
+    /// The band's values as float, GDAL scale and offset applied; NaN at nodata and NaN cells.
+    Grid<float> values;
+    int index = 1;  ///< 1-based band number
+    std::size_t bandCount = 0;
+    std::string description, unit;  ///< GDAL's band description and unit type (may be empty)
+    std::map<std::string, std::string> metadata;  ///< the dataset's, default domain
+    std::array<double, 6> geoTransform{0, 1, 0, 0, 0, 1};  ///< GDAL's (identity without one)
+    bool geographic = false;  ///< the CRS is latitude/longitude
+};
+
+/// Reads band `band` of `path`: a 1-based number or a band description. Throws Error naming the
+/// raster's bands when there is no such band.
+PictureBand readPictureBand(const std::string& path, const std::string& band);
+
 /// Reads every band of overview `level` (0 = the largest) of a raster as float (nodata and NaN
 /// become NaN), for checks of written files. Throws Error when there is no such overview.
 std::vector<Grid<float>> readRasterOverview(const std::string& path, int level);

@@ -194,6 +194,11 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
     const std::vector<Grid<float>> albedo =
         request.previews ? loadPictureAlbedo(source, request.picture) : std::vector<Grid<float>>{};
 
+    // One camera for every frame: the surface, its pyramid and the ground's albedo set up once
+    // (and a camera under the terrain refused before any work).
+    std::optional<ViewStage> stage;
+    if (request.previews && request.view) stage.emplace(source, *request.view);
+
     const auto tStart = Clock::now();
     const std::size_t n = instants.size();
     ProgressCounter counter(progress, "timelapse", t.heightsM.size() * (skyDirections + n));
@@ -262,7 +267,11 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
         out.localTime = formatInstant(when, request.frames.zone);
         out.centreAzimuthDeg = field.centreAzimuthDeg;
         out.centreElevationDeg = field.centreElevationDeg;
-        if (request.previews) {
+        if (stage) {
+            const std::array<Grid<float>, 3> light = stage->light(frame.light.irradiance, sky.skyK);
+            out.preview = stage->render({&light[0], &light[1], &light[2]}, field.centreAzimuthDeg,
+                                        field.centreElevationDeg).image;
+        } else if (request.previews) {
             // A night picture: with every valid cell's visibility +0 the key light is 0 (each
             // penumbra exponent is positive), and below kBounceLowDeg so is the bounce, whatever
             // the sun's direction; what is left depends on the sky scale alone. A frame with the
@@ -286,6 +295,8 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
                     night.reset();
                 }
             }
+        }
+        if (request.previews) {
             out.preview.text = {{"Creation Time", out.localTime},
                                 {"Comment", "demlight time-lapse frame " + std::to_string(i) + ", " + out.localTime +
                                                 " (UTC " + formatInstant(when, std::string()) + "), sun at the DEM centre: azimuth " +

@@ -10,6 +10,7 @@
 #include "lighting/preview.h"
 #include "products/product.h"
 #include "products/render.h"
+#include "products/view.h"
 
 #include <array>
 #include <chrono>
@@ -49,6 +50,9 @@ struct TimelapseRequest {
     bool lightmaps = true;  ///< make each frame's sun_visibility / sun_irradiance bands
     bool previews = true;   ///< render each frame's picture
     PictureRequest picture;
+    /// Previews in an oblique view from this camera (products/view.h; its time is not read)
+    /// instead of top-down: the frame's sun term and the sky term once, lit as `view` lights them.
+    std::optional<ViewRequest> view;
     /// > 0: also fit sun_irradiance over the frames with per-cell Legendre polynomials.
     int fitDegree = 0;
     SearchRequest search;

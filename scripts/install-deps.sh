@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages demlight needs, only those that are missing (clang and its
-# runtime libraries: the asan preset and the libFuzzer targets; help2man: the man page; ffmpeg:
+# runtime libraries: the asan preset and the libFuzzer targets; help2man: the man page; fonts-dejavu-core:
+# the text of quicklook's pictures; ffmpeg:
 # timelapse --formats mp4 and its tests; qgis,
 # python3-qgis and python3-pytest: the QGIS provider's tests, qgis/tests; python3-venv and
 # python3-pip: the tests that pip-install demlight into fresh virtual environments).
@@ -11,7 +12,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgdal-dev gdal-bin libgeographiclib-dev libopenimageio-dev openimageio-tools libglm-dev
   libgtest-dev libgmock-dev libcli11-dev libhowardhinnant-date-dev libtbb-dev
-  nlohmann-json3-dev libdeflate-dev libtiff-dev libzstd-dev tzdata gnuplot-nox ffmpeg python3 help2man
+  nlohmann-json3-dev libdeflate-dev libtiff-dev libzstd-dev tzdata gnuplot-nox ffmpeg python3 help2man fonts-dejavu-core
   pybind11-dev python3-dev python3-numpy python3-dask python3-distributed python3-rioxarray python3-pytest
   python3-venv python3-pip
   clang libclang-rt-dev

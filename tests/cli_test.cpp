@@ -513,7 +513,7 @@ TEST(CliOutputs, OptionsJsonDescribesEveryCommandAsItsHelpDoes) {
     const auto j = nlohmann::json::parse(r.out);
     std::map<std::string, nlohmann::json> commands;
     for (const auto& c : j.at("commands")) commands[c.at("name").get<std::string>()] = c;
-    EXPECT_EQ(commands.size(), 14u);  // bench included (the QGIS provider skips it)
+    EXPECT_EQ(commands.size(), 16u);  // bench included (the QGIS provider skips it)
     EXPECT_FALSE(commands.contains("options"));
     EXPECT_EQ(commands.at("sun").at("help").get<std::string>(), runDemlight("sun --help").out);
     EXPECT_EQ(commands.at("sun").at("output"), "raster");

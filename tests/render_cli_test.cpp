@@ -292,7 +292,7 @@ TEST(RenderCli, PicturePluginLoadsFromTheBinarysFolder) {
 
     const fs::path alone = d / "alone";
     fs::create_directories(alone);
-    // The launcher and the program it runs, without the plugin.
+    // The launcher and the program it runs, without the plugin beside them.
     fs::copy_file(DEMLIGHT_CLI_PATH, alone / "demlight");
     fs::copy_file(fs::path(DEMLIGHT_CLI_PATH).parent_path() / "demlight-core", alone / "demlight-core");
     const auto run = [&](const std::string& out) {

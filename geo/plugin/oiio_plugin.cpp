@@ -1,6 +1,8 @@
 // libdemlight_oiio.so: picture output through OpenImageIO; see oiio_plugin.h.
 #include "geo/plugin/oiio_plugin.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -11,7 +13,12 @@
 
 namespace {
 
-constexpr int kVersion = 2;
+constexpr int kVersion = 3;
+
+/// The font of demlight_oiio_text_size and _draw_text: Debian's fonts-dejavu-core.
+constexpr const char* kFont = "DejaVuSans";
+constexpr const char* kFontMissing =
+    "OpenImageIO cannot draw text in DejaVu Sans (install Debian's fonts-dejavu-core)";
 
 int failWith(const std::string& message, char* err, std::size_t errSize) {
     if (err && errSize > 0) {
@@ -133,5 +140,29 @@ void demlight_oiio_gif_free(void* handle) {
     if (!gif) return;
     if (gif->open) gif->out->close();
     delete gif;
+}
+
+int demlight_oiio_text_size(const char* text, int sizePx, int* x0, int* y0, int* x1, int* y1, char* err,
+                            std::size_t errSize) {
+    const OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, sizePx, kFont);
+    if (!box.defined()) return failWith(kFontMissing, err, errSize);
+    *x0 = box.xbegin;
+    *y0 = box.ybegin;
+    *x1 = box.xend;
+    *y1 = box.yend;
+    return 0;
+}
+
+int demlight_oiio_draw_text(std::uint8_t* image, std::size_t width, std::size_t height, int x, int y, const char* text,
+                            int sizePx, const std::uint8_t* rgba, char* err, std::size_t errSize) {
+    OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 4, OIIO::TypeDesc::UINT8);
+    spec.alpha_channel = 3;
+    OIIO::ImageBuf buffer(spec, image);  // wraps the caller's pixels: drawn in place
+    const float colour[4] = {rgba[0] / 255.0f, rgba[1] / 255.0f, rgba[2] / 255.0f, rgba[3] / 255.0f};
+    if (!OIIO::ImageBufAlgo::render_text(buffer, x, y, text, sizePx, kFont, colour)) {
+        const std::string why = buffer.geterror();
+        return failWith(why.empty() ? std::string(kFontMissing) : kFontMissing + std::string(": ") + why, err, errSize);
+    }
+    return 0;
 }
 }

@@ -29,4 +29,14 @@ int demlight_oiio_gif_add(void* gif, const std::uint8_t* rgba, std::size_t width
                           std::size_t errSize);
 int demlight_oiio_gif_close(void* gif, char* err, std::size_t errSize);
 void demlight_oiio_gif_free(void* gif);
+
+/// Text in the DejaVu Sans font (Debian's fonts-dejavu-core), `sizePx` pixels high, UTF-8.
+/// text_size: the box of `text` drawn at (0, 0) with its baseline's left end there (x0 <= 0 < x1,
+/// y0 < 0 above the baseline, y1 below it).
+int demlight_oiio_text_size(const char* text, int sizePx, int* x0, int* y0, int* x1, int* y1, char* err,
+                            std::size_t errSize);
+/// draw_text: draws `text` over an 8-bit RGBA image in place, the baseline's left end at (x, y),
+/// in colour `rgba` (4 bytes), composited over what is there.
+int demlight_oiio_draw_text(std::uint8_t* image, std::size_t width, std::size_t height, int x, int y, const char* text,
+                            int sizePx, const std::uint8_t* rgba, char* err, std::size_t errSize);
 }

@@ -139,7 +139,7 @@ def test_qgis_process_lists_the_raster_commands(qgis):
               if line.startswith("\tdemlight:")}
     # The commands that write rasters, pictures or folders; not info and sunpos, which print.
     assert listed == {"horizon", "sun", "sky", "aperture", "light", "irradiance", "insolation", "render",
-                      "timelapse", "sunhours", "sequence"}
+                      "view", "timelapse", "sunhours", "sequence", "quicklook"}
 
 
 def test_qgis_process_help_is_the_cli_help(qgis):

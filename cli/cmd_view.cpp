@@ -1,0 +1,90 @@
+// demlight view DEM -o OUT.png --time T [--tz ZONE]: an oblique, perspective picture of the lit
+// terrain through an atmosphere (products/view.h).
+#include "cli/common.h"
+#include "cli/view_options.h"
+#include "geo/image_out.h"
+#include "products/view.h"
+
+namespace demlight::cli {
+namespace {
+
+struct ViewOptions {
+    DemOptions dem;
+    std::string outPath;
+    SearchOptions search;
+    std::string time, tz;
+    ViewCameraOptions camera;
+    std::string colorRaster, colorEncoding = "auto";
+    std::optional<double> albedo;
+    double exposure = 1;
+    std::optional<std::size_t> skyDirections;
+    double sunDiameterDeg = kSunDiameterDeg;
+};
+
+ViewRequest viewRequest(const ViewOptions& o) {
+    ViewRequest r;
+    r.time = parseTimeOptions(o.time, o.tz);
+    applyViewCameraOptions(o.camera, r);
+    r.colorRaster = o.colorRaster;
+    r.colorEncoding = parseColorEncoding(o.colorEncoding, "--color-encoding");
+    r.albedo = o.albedo;
+    r.exposure = o.exposure;
+    r.skyDirections = o.skyDirections;
+    r.sunDiameterDeg = o.sunDiameterDeg;
+    r.search = o.search.request;
+    return r;
+}
+
+void runView(const ViewOptions& o, const CliContext& ctx) {
+    const ViewRequest request = viewRequest(o);
+    checkOutputPath(o.outPath, o.dem.path);
+    checkImagePath(o.outPath);
+    const DemSource dem = openDem(o.dem, ctx);
+    notePlan(o.search, dem.geometry().terrain, ctx);
+    const auto start = std::chrono::steady_clock::now();
+    ProgressBar bar(!ctx.quiet);
+    const ViewResult r = viewProduct(dem, request, bar.callback());
+    bar.finish();
+    writeImage(o.outPath, r.view.image);
+    note(ctx, "sun at DEM centre: azimuth " + formatNumber(r.sunAzimuthDeg) + " deg, elevation " +
+                  formatNumber(r.sunElevationDeg) + " deg (" + formatInstant(request.time.utc, request.time.zone) + ")");
+    note(ctx, "camera at " + formatNumber(r.eyeLatitudeDeg) + ", " + formatNumber(r.eyeLongitudeDeg) + ", " +
+                  formatNumber(r.eyeHeightM) + " m, " + formatDistance(r.distanceToTargetM) + " from its target");
+    note(ctx, "wrote " + o.outPath + " (" + std::to_string(r.view.image.width) + " x " +
+                  std::to_string(r.view.image.height) + "); light " + formatSeconds(r.lightSeconds) + " (" +
+                  std::to_string(r.skyDirections) + " sky directions), view " + formatSeconds(r.renderSeconds) +
+                  ", in all " + formatSeconds(secondsSince(start)));
+}
+
+
+}  // namespace
+
+void registerView(CLI::App& app, CliContext& ctx) {
+    auto o = std::make_shared<ViewOptions>();
+    CLI::App* cmd = app.add_subcommand("view", "Oblique perspective picture of the lit terrain through haze, with sky");
+    ctx.outputs[cmd->get_name()].kind = "picture";
+    addDemArgument(cmd, o->dem);
+    cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg, .exr)")
+        ->required()
+        ->type_name("OUT.png");
+    addTimeOptions(cmd, o->time, o->tz);
+    addViewCameraOptions(cmd, o->camera);
+    addColorRasterOptions(cmd, o->colorRaster, o->colorEncoding, "the ground's albedo per channel");
+    cmd->add_option("--albedo", o->albedo,
+                    "Grey ground albedo (0-1) instead of the default landscape (vegetation, rock, snow by height and slope)")
+        ->check(finiteRange(0.0, 1.0))
+        ->excludes("--color-raster");
+    cmd->add_option("--exposure", o->exposure, "Multiplies linear light before gamma")
+        ->capture_default_str()
+        ->check(finiteRange(0, 1000));
+    cmd->add_option("--sky-directions", o->skyDirections,
+                    "Horizon directions of the sky term (default: " + std::to_string(kAutoSkyDirections) +
+                        " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
+        ->check(finiteRange(1, 1024));
+    addSunDiameterOption(cmd, o->sunDiameterDeg);
+    addSearchOptions(cmd, o->search);
+    cmd->callback([o, &ctx] { runView(*o, ctx); });
+}
+
+
+}  // namespace demlight::cli
