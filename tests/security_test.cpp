@@ -299,6 +299,7 @@ public:
     Child(const Child&) = delete;
     Child& operator=(const Child&) = delete;
     bool started() const { return ok_; }
+    pid_t pid() const { return pid_; }
     bool running() {
         if (done_) return false;
         if (::waitpid(pid_, &status_, WNOHANG) == pid_) done_ = true;
@@ -380,6 +381,20 @@ TEST(Security, AStoppedTimelapseKeepsOnlyItsFinishedFrames) {
 
 // ---- Early signals ---------------------------------------------------------------------------
 
+/// Whether process `pid` has SIGTERM blocked (its SigBlk mask in /proc), or has already moved on
+/// to the program proper (demlight-core, which releases it).
+bool sigtermBlocked(pid_t pid) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.starts_with("SigBlk:")) {
+            const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
+            if (mask & (1ull << (SIGTERM - 1))) return true;
+        }
+    std::error_code ec;
+    return fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", ec).filename() == "demlight-core";
+}
+
 // SIGTERM at once after the start, while the libraries load: exit 130 ("cancelled"), not killed
 // by the signal (status 143 in a shell) as before main() installed its handlers.
 TEST(Security, ASignalInTheFirstMillisecondsIsAnsweredAsOne) {
@@ -388,6 +403,12 @@ TEST(Security, ASignalInTheFirstMillisecondsIsAnsweredAsOne) {
     for (int i = 0; i < 20; ++i) {
         Child child({"sun", kHelens, "--time", kTime, "-o", (dir / "o.tif").string()}, dir / "err.txt");
         ASSERT_TRUE(child.started());
+        // From the launcher's first instruction on (before it, no program can answer a signal):
+        // its SIGTERM is blocked, as /proc shows.
+        const auto start = std::chrono::steady_clock::now();
+        while (!sigtermBlocked(child.pid()) && child.running() &&
+               std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+            std::this_thread::yield();
         std::this_thread::sleep_for(std::chrono::microseconds(2000 * i));
         child.signal(SIGTERM);
         const int status = child.wait();
