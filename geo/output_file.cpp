@@ -165,7 +165,7 @@ std::string describeErrno(int err) {
     case ENOSPC: return "the disk is full (" + std::string(std::strerror(err)) + ")";
     case EDQUOT: return "the disk quota is used up (" + std::string(std::strerror(err)) + ")";
     case EFBIG:
-        return "file too large for the file size limit (ulimit -f) or the file system (" +
+        return "file too large for the file size limit (ulimit -f) or for the file system (" +
                std::string(std::strerror(err)) + ")";
     default: return std::strerror(err);
     }
