@@ -10,6 +10,7 @@
 //  - two time-lapses into one folder: the second is refused while the first runs, and a run that
 //    fails keeps only the frames it finished;
 //  - a signal in the first milliseconds of the process is answered as one (exit 130).
+#include "child_process.h"
 #include "cli_runner.h"
 #include "geo/output_file.h"
 #include "src/error.h"
@@ -36,6 +37,7 @@ namespace demlight {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Child;
 using testing::runDemlight;
 
 const std::string kSamples = DEMLIGHT_SAMPLES_DIR;
@@ -273,51 +275,6 @@ TEST(Security, PicturesCutShortAreErrorsNotFiles) {
 }
 
 // ---- Time-lapse folders ----------------------------------------------------------------------
-
-/// A demlight process started with posix_spawn, stderr to a file.
-class Child {
-public:
-    Child(const std::vector<std::string>& args, const fs::path& errPath) {
-        std::vector<std::string> argv = {DEMLIGHT_CLI_PATH};
-        argv.insert(argv.end(), args.begin(), args.end());
-        std::vector<char*> cargv;
-        for (auto& a : argv) cargv.push_back(a.data());
-        cargv.push_back(nullptr);
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-        ok_ = posix_spawn(&pid_, cargv[0], &actions, nullptr, cargv.data(), environ) == 0;
-        posix_spawn_file_actions_destroy(&actions);
-    }
-    ~Child() {
-        if (ok_ && !done_) {
-            ::kill(pid_, SIGKILL);
-            wait();
-        }
-    }
-    Child(const Child&) = delete;
-    Child& operator=(const Child&) = delete;
-    bool started() const { return ok_; }
-    pid_t pid() const { return pid_; }
-    bool running() {
-        if (done_) return false;
-        if (::waitpid(pid_, &status_, WNOHANG) == pid_) done_ = true;
-        return !done_;
-    }
-    void signal(int sig) { ::kill(pid_, sig); }
-    int wait() {
-        if (!done_) ::waitpid(pid_, &status_, 0);
-        done_ = true;
-        return status_;
-    }
-
-private:
-    pid_t pid_ = -1;
-    int status_ = 0;
-    bool ok_ = false;
-    bool done_ = false;
-};
 
 // Two time-lapses into one new folder: while the first writes, the second is refused and
 // changes nothing; the folder then holds the first run's set alone.
