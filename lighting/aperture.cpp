@@ -6,6 +6,7 @@
 #include "src/error.h"
 #include "src/fast_math.h"
 #include "src/parallel.h"
+#include "src/simd.h"
 
 #include <algorithm>
 #include <array>
@@ -154,8 +155,9 @@ FastApertureSector makeFastApertureSector(const detail::AzimuthRange& r) {
 /// max(h, 0)); the others get kept = 0 and are left to the caller (kept is a double, not a byte
 /// flag: GCC does not narrow double-lane masks to bytes). NaN inputs make omega NaN.
 /// The pointers do not alias (restrict: nine arrays are more than the vectoriser checks).
+/// Inlined where it is called, on the widest SimdPath.
 template <bool Narrow>
-void accumulateApertureRowFast(const float* __restrict h, const float* __restrict e,
+DEMLIGHT_INLINE inline void accumulateApertureRowFast(const float* __restrict h, const float* __restrict e,
                                const float* __restrict n, const float* __restrict u,
                                double* __restrict omega, double* __restrict ve, double* __restrict vn,
                                double* __restrict vu, double* __restrict kept, std::size_t cols,
@@ -356,7 +358,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
     const std::size_t width = east_.width();
     const FastApertureSector fast = makeFastApertureSector(sector);
     [[maybe_unused]] const bool eightAtOnce =
-        fast.narrow && detail::exactPassEightCellsAtOnce.load(std::memory_order_relaxed);
+        fast.narrow && simdPath() == SimdPath::Avx512;
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<double> keptBuffer;
         keptBuffer.resize(width);
@@ -370,11 +372,13 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
         double* vn = vn_.rowPtr(row);
         double* vu = vu_.rowPtr(row);
         // Pass 1, vectorised: the sector where the constant lower limit holds throughout.
-        if (fast.narrow) {
-            accumulateApertureRowFast<true>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
-        } else {
-            accumulateApertureRowFast<false>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
-        }
+        onWidestPath([&]() DEMLIGHT_INLINE {
+            if (fast.narrow) {
+                accumulateApertureRowFast<true>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
+            } else {
+                accumulateApertureRowFast<false>(h, e, n, u, omega, ve, vn, vu, kept, width, fast);
+            }
+        });
         // Pass 2: where the tangent plane rises above the horizon inside the sector; under a
         // sector narrower than pi, eight such cells at once (lighting/sky_wedge_lanes.h).
         const auto addExact = [&](std::size_t col) {

@@ -21,7 +21,6 @@
 #include "src/progress.h"
 #include "src/terrain.h"
 
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -209,13 +208,6 @@ struct SweepBuffers {
     };
     ValidBits validBits[2];  // [0]: X-major lines, [1]: Y-major
 };
-
-namespace detail {
-/// For tests: false makes the sweep walk and serve one line at a time where it would take eight
-/// at once (AVX-512 builds), so that a test can hold both ways to the same bits. Set it only
-/// while no sweep runs.
-extern std::atomic<bool> sweepEightLinesAtOnce;
-}  // namespace detail
 
 /// sweepHorizon() writing into `out` (resized to the terrain if its shape differs) and reusing
 /// `buffers`; the result is identical. Returns the number of regions swept (sweepRegions).

@@ -6,6 +6,7 @@
 #include "src/error.h"
 #include "src/fast_math.h"
 #include "src/parallel.h"
+#include "src/simd.h"
 
 #include <algorithm>
 #include <charconv>
@@ -18,7 +19,6 @@
 
 namespace demlight {
 
-std::atomic<bool> detail::exactPassEightCellsAtOnce{true};
 
 using detail::kHalfPi;
 using detail::kPi;
@@ -135,11 +135,12 @@ FastSector makeFastSector(const detail::AzimuthRange& r) {
 ///   constant-limit closed form, as in wedgeKFast); the others get rises = 1 and are left to the
 ///   caller. Flat cells take K from the SVF sum in SkyAccumulator::finish and add nothing here.
 /// NaN inputs give NaN. The pointers do not alias (restrict: seven arrays are more than the
-/// vectoriser checks at run time).
-void accumulateRowFast(const float* __restrict h, const float* __restrict e,
-                       const float* __restrict n, const float* __restrict u, float* __restrict k,
-                       float* __restrict s1, float* __restrict s2, std::uint8_t* __restrict rises,
-                       std::size_t cols, const FastSector c) {
+/// vectoriser checks at run time). Inlined into accumulateRowFast.
+DEMLIGHT_INLINE inline void accumulateRowFastLoop(const float* __restrict h, const float* __restrict e,
+                                                  const float* __restrict n, const float* __restrict u,
+                                                  float* __restrict k, float* __restrict s1, float* __restrict s2,
+                                                  std::uint8_t* __restrict rises, std::size_t cols,
+                                                  const FastSector c) {
     constexpr float kPiF = static_cast<float>(kPi);
     constexpr auto kFlatEps2 = static_cast<float>(detail::kFlatNormalEps * detail::kFlatNormalEps);
     for (std::size_t col = 0; col < cols; ++col) {
@@ -167,6 +168,12 @@ void accumulateRowFast(const float* __restrict h, const float* __restrict e,
         k[col] += planeRises ? 0.0f : add;
         rises[col] = planeRises;
     }
+}
+
+/// accumulateRowFastLoop on the widest SimdPath.
+void accumulateRowFast(const float* h, const float* e, const float* n, const float* u, float* k, float* s1,
+                       float* s2, std::uint8_t* rises, std::size_t cols, const FastSector& c) {
+    onWidestPath([&]() DEMLIGHT_INLINE { accumulateRowFastLoop(h, e, n, u, k, s1, s2, rises, cols, c); });
 }
 
 /// Overlap of a sector (radians) with every patch, shifting patches by whole turns.
@@ -445,7 +452,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const std::size_t width = east_.width();
     const FastSector fast = makeFastSector(sector);
     [[maybe_unused]] const bool eightAtOnce =
-        fast.narrow && detail::exactPassEightCellsAtOnce.load(std::memory_order_relaxed);
+        fast.narrow && simdPath() == SimdPath::Avx512;
     parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
         thread_local std::vector<std::uint8_t> risesBuffer;
         risesBuffer.resize(width);

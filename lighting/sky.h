@@ -18,7 +18,6 @@
 #include "lighting/surface.h"
 #include "src/grid.h"
 
-#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -206,12 +205,5 @@ SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
                    const Grid<float>& normalEast, const Grid<float>& normalNorth,
                    const Grid<float>& normalUp, double albedo, const SkyPatches& patches = {},
                    int threads = 0);
-
-namespace detail {
-/// For tests: false makes the sky and aperture accumulations compute the cells whose tangent
-/// plane rises in a sector one at a time where they would take eight at once (AVX-512 builds),
-/// so that a test can compare both ways. Set it only while no accumulation runs.
-extern std::atomic<bool> exactPassEightCellsAtOnce;
-}  // namespace detail
 
 }  // namespace demlight

@@ -1,11 +1,11 @@
 // The sky's and the aperture's exact passes (cells whose tangent plane rises above the horizon
-// in a sector narrower than pi) for eight cells at once, one per AVX-512 lane: the scalar chains
+// in a sector narrower than pi) for eight cells at once, one per AVX-512 lane (on the AVX-512 path
+// of src/simd.h: every function here is compiled for it, DEMLIGHT_AVX512): the scalar chains
 // (unitNormal, the clamped elevation, fastSinCosElevation, then sectorPiKAboveLower / pi or
 // addApertureSectorAlgebraic, over forEachAlgebraicPiece's pieces) written as the same
 // expressions on vectors (GCC's vector extensions: + - * / act per lane), their branches as
-// selects. The compiler may fuse a multiply and an add in one copy and not the other, so a lane
-// can differ from the scalar chain in the last bits of the double (tests/sky_test.cpp and
-// tests/aperture_test.cpp bound it).
+// selects. The build contracts no multiply and add into one rounding (-ffp-contract=off), so a
+// lane gives the scalar chain's bits (tests/sky_test.cpp and tests/aperture_test.cpp).
 #pragma once
 
 #include "lighting/sky_wedge.h"
@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <vector>
 
-#if defined(__AVX512F__)
+#ifdef DEMLIGHT_HAS_AVX512_KERNELS
 #define DEMLIGHT_SKY_LANES 1
 #endif
 
@@ -50,16 +50,16 @@ namespace lanes {
 using D8 = double __attribute__((vector_size(64)));
 using M8 = long long __attribute__((vector_size(64)));  // a comparison's lanes: all ones or zero
 
-inline D8 splat(double x) { return D8{x, x, x, x, x, x, x, x}; }  // (0 + x would turn -0 into +0)
-inline D8 select(M8 m, D8 a, D8 b) { return m ? a : b; }
-inline D8 sqrt8(D8 x) { return reinterpret_cast<D8>(_mm512_sqrt_pd(reinterpret_cast<__m512d>(x))); }
+DEMLIGHT_AVX512 inline D8 splat(double x) { return D8{x, x, x, x, x, x, x, x}; }  // (0 + x would turn -0 into +0)
+DEMLIGHT_AVX512 inline D8 select(M8 m, D8 a, D8 b) { return m ? a : b; }
+DEMLIGHT_AVX512 inline D8 sqrt8(D8 x) { return reinterpret_cast<D8>(_mm512_sqrt_pd(reinterpret_cast<__m512d>(x))); }
 inline constexpr long long kSignBit = std::numeric_limits<long long>::min();
-inline D8 abs8(D8 x) { return reinterpret_cast<D8>(reinterpret_cast<M8>(x) & ~kSignBit); }
+DEMLIGHT_AVX512 inline D8 abs8(D8 x) { return reinterpret_cast<D8>(reinterpret_cast<M8>(x) & ~kSignBit); }
 
 /// fastAtan (src/fast_math.h), lane by lane. A mirror rather than one template for both: written
 /// once for double and vectors, the scalar function compiled differently and changed the
 /// patched sky's values (`sky --patches`, three files of scripts/compare_outputs.sh).
-inline D8 fastAtan8(D8 x) {
+DEMLIGHT_AVX512 inline D8 fastAtan8(D8 x) {
     constexpr double kTanPi8 = 0.41421356237309503;
     constexpr double kPi4 = std::numbers::pi / 4.0, kPi2 = std::numbers::pi / 2.0;
     const D8 ax = abs8(x);
@@ -86,7 +86,7 @@ inline D8 fastAtan8(D8 x) {
 }
 
 /// fastSinCosElevation, lane by lane.
-inline void fastSinCosElevation8(D8 x, D8& sinX, D8& cosX) {
+DEMLIGHT_AVX512 inline void fastSinCosElevation8(D8 x, D8& sinX, D8& cosX) {
     const D8 x2 = x * x;
     D8 s = splat(1.0 / 355687428096000.0);
     s = s * x2 - 1.0 / 1307674368000.0;
@@ -116,7 +116,7 @@ struct End8 {
     D8 sin, cos, offset, a, b;
 };
 
-inline End8 select(M8 m, const End8& x, const End8& y) {
+DEMLIGHT_AVX512 inline End8 select(M8 m, const End8& x, const End8& y) {
     return {select(m, x.sin, y.sin), select(m, x.cos, y.cos), select(m, x.offset, y.offset), select(m, x.a, y.a),
             select(m, x.b, y.b)};
 }
@@ -131,7 +131,7 @@ struct Cells8 {
     D8 ne, nn, nu, lower, sinL, cosL, horizontal;
 };
 
-inline Cells8 cells8(const double e[8], const double n[8], const double u[8], const double hDeg[8]) {
+DEMLIGHT_AVX512 inline Cells8 cells8(const double e[8], const double n[8], const double u[8], const double hDeg[8]) {
     D8 e8, n8, u8, h8;
     __builtin_memcpy(&e8, e, sizeof e8);
     __builtin_memcpy(&n8, n, sizeof n8);
@@ -159,14 +159,14 @@ struct Ends8 {
     M8 inside[2], both, swap;
     /// The second and third end (i = 0, 1) of a quantity given at first, cut[0], cut[1], last.
     template <class T>
-    T middle(int i, const T& c0, const T& c1, const T& l) const {
+    DEMLIGHT_AVX512 T middle(int i, const T& c0, const T& c1, const T& l) const {
         return i == 0 ? select(inside[0], select(swap, c1, c0), select(inside[1], c1, l))
                       : select(both, select(swap, c0, c1), l);
     }
 };
 
-inline Ends8 ends8(const Cells8& c, const AzimuthRange& r) {
-    const auto end = [&](D8 sinPhi, D8 cosPhi, D8 offset) {
+DEMLIGHT_AVX512 inline Ends8 ends8(const Cells8& c, const AzimuthRange& r) {
+    const auto end = [&](D8 sinPhi, D8 cosPhi, D8 offset) DEMLIGHT_AVX512 {
         return End8{sinPhi, cosPhi, offset, c.ne * sinPhi + c.nn * cosPhi, c.ne * cosPhi - c.nn * sinPhi};
     };
     Ends8 e;
@@ -195,7 +195,7 @@ inline Ends8 ends8(const Cells8& c, const AzimuthRange& r) {
 
 /// The pieces' plane test (forEachAlgebraicPiece): the plane against the lower limit at the
 /// piece's middle azimuth.
-inline M8 planeLower(const Cells8& c, const End8& p, const End8& q) {
+DEMLIGHT_AVX512 inline M8 planeLower(const Cells8& c, const End8& p, const End8& q) {
     const D8 midSin = p.sin + q.sin, midCos = p.cos + q.cos;
     const D8 midLength = sqrt8(midSin * midSin + midCos * midCos);
     return (p.a + q.a) * c.cosL + c.nu * c.sinL * midLength < 0.0;
@@ -206,7 +206,7 @@ inline M8 planeLower(const Cells8& c, const End8& p, const End8& q) {
 /// For eight cells at once: the sector's K (pi K / pi) above each cell's horizon hDeg (degrees)
 /// clipped to its tangent plane, the normal (e, n, u) as the grids hold it (unitNormal makes it
 /// unit), the sector r narrower than pi: sky.cpp's chain in every lane. No NaN input.
-inline void risingSectorK8(const double e[kSkyLanes], const double n[kSkyLanes], const double u[kSkyLanes],
+DEMLIGHT_AVX512 inline void risingSectorK8(const double e[kSkyLanes], const double n[kSkyLanes], const double u[kSkyLanes],
                            const double hDeg[kSkyLanes], const AzimuthRange& r, double k[kSkyLanes]) {
     using namespace lanes;
     const Cells8 c = cells8(e, n, u, hDeg);
@@ -216,7 +216,7 @@ inline void risingSectorK8(const double e[kSkyLanes], const double n[kSkyLanes],
     const D8 kc = c.horizontal / c.nu;
     const D8 m = sqrt8(1.0 + kc * kc);
     const D8 mMinus1 = kc * kc / (m + 1.0);
-    const auto planeJ = [&](const End8& y) {
+    const auto planeJ = [&](const End8& y) DEMLIGHT_AVX512 {
         const D8 planeAtan = fastAtan8(mMinus1 * y.a * y.b / (y.b * y.b + m * y.a * y.a));
         return -y.b * fastAtan8(y.a / c.nu) + c.nu * m * planeAtan;
     };
@@ -246,7 +246,7 @@ inline void risingSectorK8(const double e[kSkyLanes], const double n[kSkyLanes],
 /// For eight cells at once: aperture.cpp's exact pass (unitNormal, the clamped lower limit, its
 /// sine and cosine, addApertureSectorAlgebraic) adding the sector above each cell's horizon to
 /// its sums omega, ve, vn, vu (in and out). The sector r narrower than pi; no NaN input.
-inline void risingApertureSector8(const double e[kSkyLanes], const double n[kSkyLanes], const double u[kSkyLanes],
+DEMLIGHT_AVX512 inline void risingApertureSector8(const double e[kSkyLanes], const double n[kSkyLanes], const double u[kSkyLanes],
                                   const double hDeg[kSkyLanes], const AzimuthRange& r, double omega[kSkyLanes],
                                   double ve[kSkyLanes], double vn[kSkyLanes], double vu[kSkyLanes]) {
     using namespace lanes;
@@ -260,7 +260,7 @@ inline void risingApertureSector8(const double e[kSkyLanes], const double n[kSky
     struct Terms {
         D8 asinB, l, iS, iC;
     };
-    const auto terms = [&](const End8& y) {
+    const auto terms = [&](const End8& y) DEMLIGHT_AVX512 {
         const D8 bUnit = select(y.b < -1.0, splat(-1.0), select(1.0 < y.b, splat(1.0), y.b));  // std::clamp
         const D8 rest = 1.0 - bUnit * bUnit;
         Terms t;
@@ -271,7 +271,7 @@ inline void risingApertureSector8(const double e[kSkyLanes], const double n[kSky
         t.iS = 0.5 * (kc * t.l - (y.b / c.horizontal) * atanX);
         return t;
     };
-    const auto pick = [&](int i, const Terms& t0, const Terms& t1, const Terms& tl) {
+    const auto pick = [&](int i, const Terms& t0, const Terms& t1, const Terms& tl) DEMLIGHT_AVX512 {
         return Terms{x.middle(i, t0.asinB, t1.asinB, tl.asinB), x.middle(i, t0.l, t1.l, tl.l),
                      x.middle(i, t0.iS, t1.iS, tl.iS), x.middle(i, t0.iC, t1.iC, tl.iC)};
     };

@@ -4,6 +4,7 @@
 #include "src/angles.h"
 #include "src/fast_math.h"
 #include "src/parallel.h"
+#include "src/simd.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +21,9 @@ constexpr double kLowestShadowElevationDeg = 0.25;
 /// the tangent plane in the sun's azimuth, the visible fraction of the disk (Hoffman & Mitchell
 /// 2001b, Eq. 5-7; a point sun when !Disk) and the Lambert term. Normals of a height field have
 /// N_up > 0 (computeNormals), where sunTerms() takes the same arctangent; NaN horizons (nodata)
-/// give NaN. The pointers do not alias (restrict).
+/// give NaN. The pointers do not alias (restrict). Inlined into shadeSunRow for each SimdPath.
 template <bool Disk>
-void shadeRow(const float* __restrict horizonDeg, const float* __restrict east, const float* __restrict north,
+DEMLIGHT_INLINE inline void shadeRow(const float* __restrict horizonDeg, const float* __restrict east, const float* __restrict north,
               const float* __restrict up, const detail::SunRowAngles sun, float* __restrict visibility,
               float* __restrict irradiance, std::size_t cols, double diameterDeg) {
     const double* __restrict sinAz = sun.sinAzimuth;
@@ -113,11 +114,13 @@ namespace detail {
 void shadeSunRow(const float* horizonDeg, const float* east, const float* north, const float* up,
                  const SunRowAngles& sun, float* visibility, float* irradiance, std::size_t cols,
                  double sunDiameterDeg) {
-    if (sunDiameterDeg > 0.0) {
-        shadeRow<true>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
-    } else {
-        shadeRow<false>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
-    }
+    onWidestPath([&]() DEMLIGHT_INLINE {
+        if (sunDiameterDeg > 0.0) {
+            shadeRow<true>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
+        } else {
+            shadeRow<false>(horizonDeg, east, north, up, sun, visibility, irradiance, cols, sunDiameterDeg);
+        }
+    });
 }
 
 }  // namespace detail

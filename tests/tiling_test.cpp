@@ -13,6 +13,7 @@
 #include "products/sunhours.h"
 #include "products/timelapse.h"
 #include "shared_dem.h"
+#include "src/simd.h"
 #include "src/terrain.h"
 
 #include <gtest/gtest.h>
@@ -337,6 +338,41 @@ TEST_P(TiledProducts, WindowsGiveTheWholeDemsBitsForEveryProduct) {
     for (const ProductCase& p : productCases()) {
         for (const std::size_t tile : std::set<std::size_t>(std::begin(c.productTiles), std::end(c.productTiles))) {
             EXPECT_EQ(windowMismatches(*source, p.run, tile), 0u) << c.dem << " " << p.name << " tile " << tile;
+        }
+    }
+}
+
+// The portable path (DEMLIGHT_SIMD=portable, or an older processor) computes the vector kernels'
+// expressions one lane at a time, and their fused multiply-adds by libm: every product's bits
+// are the same on every path.
+TEST_P(TiledProducts, EveryVectorPathGivesThePortablePathsBitsForEveryProduct) {
+    std::vector<SimdPath> paths;
+    if (processorHasAvx2()) paths.push_back(SimdPath::Avx2);
+    if (processorHasAvx512()) paths.push_back(SimdPath::Avx512);
+    if (paths.empty()) GTEST_SKIP() << "no vector path on this processor";
+    const Case c = GetParam();
+    const auto source = caseSource(c, c.productCropW, c.productCropH);
+    if (!source) GTEST_SKIP() << c.dem << " absent";
+    for (const ProductCase& p : productCases()) {
+        const auto run = [&](SimdPath path) {
+            const detail::ScopedSimdPath forced(path);
+            return p.run(*source, source->whole());
+        };
+        const ProductResult portable = run(SimdPath::Portable);
+        for (const SimdPath path : paths) {
+            const ProductResult wide = run(path);
+            ASSERT_EQ(wide.bands.size(), portable.bands.size()) << p.name;
+            for (std::size_t b = 0; b < wide.bands.size(); ++b) {
+                const ProductBand& x = wide.bands[b];
+                const ProductBand& y = portable.bands[b];
+                std::size_t differing = 0;
+                for (std::size_t row = 0; row < source->height(); ++row)
+                    for (std::size_t col = 0; col < source->width(); ++col)
+                        differing += x.flags.empty() ? !sameBits(x.values(col, row), y.values(col, row))
+                                                     : x.flags(col, row) != y.flags(col, row);
+                EXPECT_EQ(differing, 0u) << c.dem << " " << p.name << " band " << b << " on the "
+                                         << simdPathName(path) << " path";
+            }
         }
     }
 }

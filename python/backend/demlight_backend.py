@@ -16,8 +16,7 @@ Where it builds:
   nothing is compiled again;
 - otherwise in `build/python-<tag>-<digest>` (one folder per interpreter installation, which
   its virtual environments share), configured on first use.
-Config setting `native=OFF` builds for any x86-64 CPU rather than this machine's (the CMake
-option DEMLIGHT_NATIVE, on by default as in every build of the project).
+Every build runs on any x86-64 CPU (the vector code is picked when the program runs).
 docs/python.md, "Installing with pip", says more.
 """
 
@@ -174,7 +173,7 @@ def _build_dir(config_settings):
     if given:
         return pathlib.Path(given).resolve()
     release = SOURCE / "build" / "release"
-    if _setting(config_settings, "native") is None and _fits_this_interpreter(_cache(release)):
+    if _fits_this_interpreter(_cache(release)):
         return release
     installation = "%s\n%s" % (_include_dir(), os.path.realpath(sys.base_prefix))
     digest = hashlib.sha256(installation.encode()).hexdigest()[:10]
@@ -207,10 +206,6 @@ def _build(config_settings):
                 configure += ["-G", "Ninja"]
             configure += ["-DDEMLIGHT_BUILD_TESTS=OFF", "-DDEMLIGHT_FUZZ=OFF"]
         configure += ["-DCMAKE_BUILD_TYPE=Release", "-DDEMLIGHT_PYTHON=ON", "-DPython_EXECUTABLE=" + sys.executable]
-        native = _setting(config_settings, "native")
-        if native is not None:
-            on = str(native).upper() in ("ON", "1", "TRUE", "YES")
-            configure.append("-DDEMLIGHT_NATIVE=" + ("ON" if on else "OFF"))
         _run(configure)
         if not _fits_this_interpreter(_cache(build_dir)):
             raise BuildError("%s: CMake found another Python than %s" % (build_dir, sys.executable))
