@@ -1,8 +1,8 @@
 // Wall-clock helpers shared by the benchmarks (timings are printed, never asserted): the
-// library's (src/timing.h), under the benchmarks' namespace.
+// library's (demlight/core/timing.h), under the benchmarks' namespace.
 #pragma once
 
-#include "src/timing.h"
+#include "demlight/core/timing.h"
 
 namespace demlight::bench {
 

@@ -1,15 +1,15 @@
 // The horizon error of both scene plans on whole DEMs, the statistic DEMLIGHT_EXPECTED_ERROR_DEG
-// states (lighting/quality.h, ExpectedError): |error| against the full-physics reference (ray
+// states (demlight/lighting/quality.h, ExpectedError): |error| against the full-physics reference (ray
 // march, curvature on, whole DEM) over a fixed random sample of valid cells and six azimuths,
 // where both meet terrain; auto's horizons clamped at the budget's lowest elevation (2 deg),
 // full's on every horizon. The bench's auto-vs-full rows measure 600^2 crops; this measures
 // whole tiles, where the search is longest and auto's scan tolerance the widest.
 // Usage: demlight_error_bench [--cells N] [--csv PATH] DEM ...   (2 threads)
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/core/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,10 +4,10 @@
 //   0,37,90,123.4,225; azimuths as a comma-separated list). Each azimuth is timed on 1 thread
 //   and on all threads within the same run, so their ratio is not skewed by load drift.
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "src/error.h"
-#include "src/parallel.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-// Error of the binned insolation (products/insolation.h) against the exact per-instant integral,
+// Error of the binned insolation (demlight/products/insolation.h) against the exact per-instant integral,
 // over the number of azimuth sectors N and the elevation band of the bins: the chart of
 // docs/accuracy.md#insolation-accuracy. The reference is `irradiance` at every instant of the day
 // (10-minute steps, trapezoid weights, 64 sky directions), as tests/insolation_test.cpp takes it.
@@ -7,11 +7,11 @@
 // Writes one CSV row per (day, N, band): the global's mean absolute error relative to its mean,
 // the beam's, the global's 99th percentile absolute error (kWh m-2), the bins and the binned run's
 // wall time (s).
-#include "geo/dem_source.h"
-#include "geo/time.h"
-#include "products/insolation.h"
-#include "products/irradiance.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/time.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/core/error.h"
 
 #include <algorithm>
 #include <chrono>

@@ -8,10 +8,10 @@
 //        azimuths 0 37 90 123.4;
 //        a step count ending in c, e.g. 4c, forces the far field's grid-line crossings on, one
 //        ending in n forces them off, a bare count takes the plan's choice)
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/core/error.h"
 
 #include <time.h>
 

@@ -6,9 +6,9 @@
 // the per-round ratios (docs/journal.md, "Against the sweep before the near field").
 // Usage: demlight_plan_bench DEM [REPEATS [AZIMUTH]]   (default 9 repeats; one azimuth in degrees
 // instead of the four, e.g. for a profiler)
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
 
 #include <time.h>
 

@@ -7,14 +7,14 @@
 //   N44W072.hgt 2 6627 400 400; big_tujunga_srtm30m_utm11.tif 2 3750 600 500;
 //   svalbard_longyearbyen_npi_dtm20.tif 2 2500 600 500.
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/sky.h"
-#include "lighting/surface.h"
-#include "src/error.h"
-#include "src/parallel.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 
 #include <algorithm>
 #include <chrono>

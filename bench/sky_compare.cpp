@@ -40,15 +40,15 @@
 // distance is at most d / 2R = 0.017 deg at 3.75 km), so the CLI rows show the curvature-on
 // result.
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "geo/raster.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/sky.h"
-#include "lighting/surface.h"
-#include "src/angles.h"
-#include "src/error.h"
-#include "src/parallel.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/raster.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 
 #include <algorithm>
 #include <chrono>

@@ -23,10 +23,10 @@
 // (columns are meridians) the kernels are checked against the library's sweep at azimuth 0: the
 // angles agree to float rounding, or the bench says how many cells differ by more than 1e-3 deg.
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "src/error.h"
-#include "src/parallel.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +36,7 @@
 #include <vector>
 
 #if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
-// As in lighting/horizon_sweep.cpp: GCC 12 reports its intrinsics' deliberately undefined start
+// As in demlight/lighting/horizon_sweep.cpp: GCC 12 reports its intrinsics' deliberately undefined start
 // values as maybe uninitialized where they are inlined.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push

@@ -5,7 +5,7 @@
 // Usage: demlight_tradeoff_bench [--dem PATH ...] [--out DIR] [--quick]
 //   Writes DIR/tradeoff.csv (method, params, dem, ns_per_cell, error_metric, error_value, pareto,
 //   notes); scripts/bench.sh draws the chart from it with bench/tradeoff_chart.gnuplot.
-//   The rows "quality auto" and "quality full" are the scene plans of --quality (lighting/
+//   The rows "quality auto" and "quality full" are the scene plans of --quality (demlight/lighting/
 //   quality.h) on the crop: what `demlight sun` and `demlight sky` run by default and with full.
 // Usage: demlight_tradeoff_bench --auto-vs-full [--dem PATH ...] [--out DIR] [--quick]
 //   Whole DEMs (default: the bundled samples): wall time and error of --quality auto against
@@ -25,19 +25,19 @@
 // capped at a sixth of the crop's shorter side, so that every cell has terrain around it (the
 // whole-crop reference is cut by the crop edge beyond that, as every method is).
 #include "bench/bench_timing.h"
-#include "geo/dem.h"
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/lighting_models.h"
-#include "lighting/quality.h"
-#include "lighting/sky.h"
-#include "lighting/sun.h"
-#include "lighting/sun_frame.h"
-#include "lighting/sunhours.h"
-#include "lighting/surface.h"
-#include "src/error.h"
-#include "src/sun_field.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/lighting_models.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/sun.h"
+#include "demlight/lighting/sun_frame.h"
+#include "demlight/lighting/sunhours.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/error.h"
+#include "demlight/core/sun_field.h"
 
 #include <algorithm>
 #include <array>
@@ -644,7 +644,7 @@ struct AutoVsFullRow {
 };
 
 /// Median and 99th percentile of |max(h, e) - max(ref, e)| where both meet terrain: the statistic
-/// of ExpectedError (lighting/quality.h).
+/// of ExpectedError (demlight/lighting/quality.h).
 std::pair<double, double> clampedMedianP99(const std::vector<double>& h, const std::vector<double>& ref, double e) {
     std::vector<double> err;
     for (std::size_t i = 0; i < h.size(); ++i)

@@ -1,7 +1,7 @@
 #include "cli/clear_sky_options.h"
 
 #include "cli/common.h"
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <sstream>

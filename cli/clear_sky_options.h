@@ -1,11 +1,11 @@
 // The clear-sky options of `irradiance` and `insolation`: --linke, --albedo, --coeff-bh,
 // --coeff-dh, their rasters (--linke-raster, --albedo-raster, --coeff-bh-raster, --coeff-dh-raster),
-// --diffuse-model, --solar-constant (products/irradiance.h).
+// --diffuse-model, --solar-constant (demlight/products/irradiance.h).
 #pragma once
 
-#include "lighting/irradiance.h"
-#include "products/irradiance.h"
-#include "products/sky.h"
+#include "demlight/lighting/irradiance.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/sky.h"
 
 #include <CLI/CLI.hpp>
 

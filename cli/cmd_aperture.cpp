@@ -1,7 +1,7 @@
-// demlight aperture DEM -o OUT.tif: ambient aperture per cell (products/aperture.h).
+// demlight aperture DEM -o OUT.tif: ambient aperture per cell (demlight/products/aperture.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "products/aperture.h"
+#include "demlight/products/aperture.h"
 
 #include <optional>
 

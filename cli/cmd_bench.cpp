@@ -1,14 +1,14 @@
 // demlight bench DEM -o DIR [--crop N] [--peers]: speed against accuracy of the horizon methods
-// on the user's DEM (products/bench.h), written as DIR/bench.csv and a chart (DIR/bench.png and
+// on the user's DEM (demlight/products/bench.h), written as DIR/bench.csv and a chart (DIR/bench.png and
 // DIR/bench.svg, drawn by gnuplot when it is installed). With --peers, GRASS r.horizon runs on
 // the same crop, directions and distance, and is scored against the same reference.
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "geo/output_file.h"
-#include "products/bench.h"
-#include "products/horizon.h"
-#include "src/error.h"
-#include "src/process.h"
+#include "demlight/geo/output_file.h"
+#include "demlight/products/bench.h"
+#include "demlight/products/horizon.h"
+#include "demlight/core/error.h"
+#include "demlight/core/process.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
 // demlight horizon DEM -o OUT.tif (--azimuth DEG... | --directions N): horizon angle maps, one
-// Float32 band per azimuth (products/horizon.h), and the truncation mask in OUT.truncated.tif.
+// Float32 band per azimuth (demlight/products/horizon.h), and the truncation mask in OUT.truncated.tif.
 #include "cli/common.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
-#include "products/horizon.h"
-#include "products/point.h"
-#include "src/error.h"
+#include "demlight/products/horizon.h"
+#include "demlight/products/point.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <filesystem>

@@ -2,8 +2,8 @@
 // lighting it, heights in metres as demlight reads them.
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "products/info.h"
-#include "src/error.h"
+#include "demlight/products/info.h"
+#include "demlight/core/error.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,13 +1,13 @@
 // demlight insolation DEM -o OUT.tif (--date D | --start D --end D | --month M | --year Y) --tz ZONE:
 // beam, diffuse, reflected and global irradiation in kWh m-2 and hours of direct sun over a
-// period of local days or times, by binned sun positions (products/insolation.h).
+// period of local days or times, by binned sun positions (demlight/products/insolation.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
-#include "products/insolation.h"
-#include "products/point.h"
-#include "src/error.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/point.h"
+#include "demlight/core/error.h"
 
 #include <optional>
 

@@ -1,12 +1,12 @@
 // demlight irradiance DEM -o OUT.tif --time T [--tz ZONE]: beam, diffuse, reflected and global
-// irradiance in W m-2 on each cell's surface, ESRA clear sky (products/irradiance.h).
+// irradiance in W m-2 on each cell's surface, ESRA clear sky (demlight/products/irradiance.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
-#include "products/irradiance.h"
-#include "products/point.h"
-#include "src/error.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/point.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <optional>

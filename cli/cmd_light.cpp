@@ -1,9 +1,9 @@
 // demlight light DEM -o OUT.tif --time T [--tz ZONE]: the combined sun + sky lightmap, Float32
-// linear (products/light.h).
+// linear (demlight/products/light.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "products/light.h"
-#include "src/error.h"
+#include "demlight/products/light.h"
+#include "demlight/core/error.h"
 
 #include <optional>
 

@@ -1,8 +1,8 @@
 // demlight quicklook RASTER -o OUT.png [--band N|NAME]: one band of any raster (demlight's outputs
-// above all) as a picture with a colour bar and a title (products/quicklook.h).
+// above all) as a picture with a colour bar and a title (demlight/products/quicklook.h).
 #include "cli/common.h"
-#include "geo/image_out.h"
-#include "products/quicklook.h"
+#include "demlight/geo/image_out.h"
+#include "demlight/products/quicklook.h"
 
 #include <sstream>
 

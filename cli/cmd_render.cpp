@@ -1,9 +1,9 @@
 // demlight render DEM -o OUT.png --time T [--tz ZONE]: a picture of the lit DEM for a person
-// (products/render.h).
+// (demlight/products/render.h).
 #include "cli/common.h"
-#include "geo/image_out.h"
+#include "demlight/geo/image_out.h"
 #include "cli/progress_bar.h"
-#include "products/render.h"
+#include "demlight/products/render.h"
 
 #include <optional>
 

@@ -1,7 +1,7 @@
 // demlight sequence FIT.tif -o OUT.tif --time T: reconstructs sun_irradiance at any instant of a
-// time-lapse's sequence fit (products/sequence.h).
+// time-lapse's sequence fit (demlight/products/sequence.h).
 #include "cli/common.h"
-#include "products/sequence.h"
+#include "demlight/products/sequence.h"
 
 namespace demlight::cli {
 namespace {

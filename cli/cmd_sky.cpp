@@ -1,9 +1,9 @@
-// demlight sky DEM -o OUT.tif: sky-view factors and skylight (products/sky.h), or with --model
+// demlight sky DEM -o OUT.tif: sky-view factors and skylight (demlight/products/sky.h), or with --model
 // hemisphere Hargreaves' hemisphere lighting (no horizons, one band).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "products/sky.h"
-#include "src/error.h"
+#include "demlight/products/sky.h"
+#include "demlight/core/error.h"
 
 #include <optional>
 

@@ -1,8 +1,8 @@
 // demlight sun DEM -o OUT.tif --time T [--tz ZONE]: how much of the sun's disk each cell sees
-// (products/sun.h).
+// (demlight/products/sun.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "products/sun.h"
+#include "demlight/products/sun.h"
 
 #include <optional>
 

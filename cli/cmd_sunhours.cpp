@@ -1,11 +1,11 @@
 // demlight sunhours DEM -o OUT.tif (--date D | --start D --end D) --tz ZONE: hours of direct
 // sun, sun and sky irradiation and the cell's own sunrise/sunset over local days
-// (products/sunhours.h).
+// (demlight/products/sunhours.h).
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "products/sunhours.h"
-#include "products/timelapse.h"
-#include "src/error.h"
+#include "demlight/products/sunhours.h"
+#include "demlight/products/timelapse.h"
+#include "demlight/core/error.h"
 
 #include <optional>
 

@@ -2,8 +2,8 @@
 // SPA, topocentric and refracted) and sunrise, transit and sunset of the local day.
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "geo/solar_position.h"
-#include "geo/time.h"
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
 // demlight timelapse DEM -o DIR (--start T --end T --step DURATION | --date D --tz ZONE): a
-// frame per instant (products/timelapse.h). Writes
+// frame per instant (demlight/products/timelapse.h). Writes
 //   DIR/frame_NNN.tif  lightmaps: sun_visibility, sun_irradiance (Float32, linear)
 //   DIR/sky_k.tif      the sky light K every frame shares (written once)
 //   DIR/frame_NNN.png  previews with the render rig
@@ -11,11 +11,11 @@
 #include "cli/common.h"
 #include "cli/progress_bar.h"
 #include "cli/view_options.h"
-#include "geo/image_out.h"
-#include "geo/output_file.h"
-#include "products/timelapse.h"
-#include "src/error.h"
-#include "src/process.h"
+#include "demlight/geo/image_out.h"
+#include "demlight/geo/output_file.h"
+#include "demlight/products/timelapse.h"
+#include "demlight/core/error.h"
+#include "demlight/core/process.h"
 
 #include <algorithm>
 #include <cctype>

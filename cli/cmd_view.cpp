@@ -1,9 +1,9 @@
 // demlight view DEM -o OUT.png --time T [--tz ZONE]: an oblique, perspective picture of the lit
-// terrain through an atmosphere (products/view.h).
+// terrain through an atmosphere (demlight/products/view.h).
 #include "cli/common.h"
 #include "cli/view_options.h"
-#include "geo/image_out.h"
-#include "products/view.h"
+#include "demlight/geo/image_out.h"
+#include "demlight/products/view.h"
 
 namespace demlight::cli {
 namespace {

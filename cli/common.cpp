@@ -1,9 +1,9 @@
 #include "cli/common.h"
 
 #include "cli/progress_bar.h"
-#include "geo/output_file.h"
-#include "geo/time.h"
-#include "src/error.h"
+#include "demlight/geo/output_file.h"
+#include "demlight/geo/time.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <cstdio>

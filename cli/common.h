@@ -2,18 +2,18 @@
 // and write its result.
 #pragma once
 
-#include "src/timing.h"  // secondsSince, for the time notes of the commands
+#include "demlight/core/timing.h"  // secondsSince, for the time notes of the commands
 
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
-#include "geo/dem_source.h"
-#include "geo/time.h"
-#include "geo/raster.h"
-#include "products/canopy.h"
-#include "products/product.h"
-#include "products/render.h"
-#include "products/tiles.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/time.h"
+#include "demlight/geo/raster.h"
+#include "demlight/products/canopy.h"
+#include "demlight/products/product.h"
+#include "demlight/products/render.h"
+#include "demlight/products/tiles.h"
+#include "demlight/core/error.h"
 
 #include <array>
 #include <chrono>
@@ -214,7 +214,7 @@ LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
 
 /// --sun-diameter (degrees).
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg);
-/// --canopy RASTER and --transmissivity (products/canopy.h).
+/// --canopy RASTER and --transmissivity (demlight/products/canopy.h).
 void addCanopyOptions(CLI::App* cmd, CanopyRequest& canopy);
 
 /// --color-raster, --color-encoding, --albedo, --exposure and --pixels of pictures.

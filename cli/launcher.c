@@ -3,7 +3,7 @@
  * runs the real program, demlight-core in its own folder, in its place (execv). A blocked
  * signal's mask survives execv, so a signal that comes while demlight-core loads its many shared
  * libraries stays pending until demlight-core has installed its handlers, and is then answered
- * as one (cli/main.cpp, geo/signals.h): the process ends with exit 130, not killed by the
+ * as one (cli/main.cpp, demlight/geo/signals.h): the process ends with exit 130, not killed by the
  * signal. DEMLIGHT_SIGNALS_HELD tells demlight-core which of them it should release (those this
  * program blocked; one its caller blocked stays blocked). */
 #include <errno.h>

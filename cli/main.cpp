@@ -3,8 +3,8 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "geo/signals.h"
-#include "src/error.h"
+#include "demlight/geo/signals.h"
+#include "demlight/core/error.h"
 
 #include <malloc.h>
 #include <signal.h>
@@ -33,7 +33,7 @@ enum ExitCode : int {
 };
 
 /// The first Ctrl-C (SIGTERM, SIGHUP): stop at the next safe point, and say so. Runs in the
-/// signal handler (geo/signals.h): async-signal-safe calls only.
+/// signal handler (demlight/geo/signals.h): async-signal-safe calls only.
 void onFirstInterrupt() noexcept {
     demlight::cli::requestCancel();
     static constexpr char kMessage[] = "\ndemlight: stopping at the next safe point (interrupt again to quit at once)\n";

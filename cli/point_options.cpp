@@ -2,7 +2,7 @@
 
 #include "cli/common.h"
 #include "cli/progress_bar.h"
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <iostream>

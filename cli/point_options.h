@@ -1,9 +1,9 @@
 // --at, --at-xy and --point-format of horizon, irradiance and insolation: a point query prints
-// the values at one cell (products/point.h) instead of writing a raster.
+// the values at one cell (demlight/products/point.h) instead of writing a raster.
 #pragma once
 
 #include "cli/common.h"
-#include "products/point.h"
+#include "demlight/products/point.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

@@ -6,14 +6,14 @@
 //  - quiet: nothing.
 // A new stage label (the library passes one with every call: "sky", then "sunhours") starts the
 // bar, the line count and the time estimate afresh. In every mode the callback returns false
-// once requestCancel() was called (on the first Ctrl-C: cli/main.cpp, geo/signals.h), so the
+// once requestCancel() was called (on the first Ctrl-C: cli/main.cpp, demlight/geo/signals.h), so the
 // library throws demlight::Cancelled at its next safe point. Writing outputs checks
 // cancelRequested() between strips (cli/common.cpp writeResult); work that reports no progress
 // (reading the DEM) is not interrupted, and a command that reaches no further progress call after
 // the request finishes normally.
 #pragma once
 
-#include "src/progress.h"
+#include "demlight/core/progress.h"
 
 #include <atomic>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // The camera and atmosphere options of an oblique view, shared by `view` and `timelapse --view`.
 #pragma once
 
-#include "products/view.h"
+#include "demlight/products/view.h"
 
 #include <CLI/CLI.hpp>
 

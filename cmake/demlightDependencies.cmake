@@ -8,17 +8,24 @@ if(NOT COMMAND demlight_find_package)
   endmacro()
 endif()
 
-list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+# GeographicLib installs its find module (FindGeographicLib.cmake) beside its other CMake files
+# rather than a config; look for it under the prefixes CMake searches.
+find_path(DEMLIGHT_GEOGRAPHICLIB_MODULE_DIR FindGeographicLib.cmake
+          PATH_SUFFIXES share/cmake/geographiclib lib/cmake/GeographicLib share/cmake/GeographicLib
+          PATHS ${CMAKE_SYSTEM_PREFIX_PATH})
+if(DEMLIGHT_GEOGRAPHICLIB_MODULE_DIR)
+  list(APPEND CMAKE_MODULE_PATH ${DEMLIGHT_GEOGRAPHICLIB_MODULE_DIR})
+endif()
 demlight_find_package(GDAL CONFIG)
 demlight_find_package(GeographicLib)
 demlight_find_package(glm CONFIG)
 demlight_find_package(date CONFIG)
 demlight_find_package(TBB CONFIG)
 # libtiff and zstd (libtiff-dev, libzstd-dev): Float32 GeoTIFF tiles encoded by demlight
-# (geo/tiff_tiles.cpp), in the file GDAL creates with the same libtiff.
+# (demlight/geo/tiff_tiles.cpp), in the file GDAL creates with the same libtiff.
 demlight_find_package(TIFF)
 demlight_find_package(zstd CONFIG)
-# libdeflate (libdeflate-dev): PNG previews (geo/png_writer.cpp); Debian 12 ships no CMake config.
+# libdeflate (libdeflate-dev): PNG previews (demlight/geo/png_writer.cpp); Debian 12 ships no CMake config.
 demlight_find_package(PkgConfig)
 pkg_check_modules(libdeflate REQUIRED IMPORTED_TARGET libdeflate)
 

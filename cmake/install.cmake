@@ -1,7 +1,8 @@
 # cmake --install: the CLI (bin/demlight with the picture plugin it loads from its own folder),
-# and the C++ package: the static libraries, their headers under include/demlight/<folder>/ (the
-# sources include each other as "geo/dem_source.h") and a config for find_package(demlight)
-# that provides demlight::demlight (docs/cpp.md).
+# and the C++ package: the static libraries, their headers under include/demlight/<folder>/ (a
+# consumer, like the sources, writes #include <demlight/geo/dem_source.h>) and a config for
+# find_package(demlight) that provides demlight::demlight (docs/cpp.md). These are the project's
+# only install rules.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -14,14 +15,11 @@ set_target_properties(demlight_library PROPERTIES EXPORT_NAME demlight)
 add_library(demlight::demlight ALIAS demlight_library)
 target_link_libraries(demlight_library INTERFACE demlight_products)
 
-install(TARGETS demlight_library demlight_products demlight_lighting demlight_geo demlight_core demlight_warnings
+# Only the libraries are exported (the warning flags are the build's own: $<BUILD_INTERFACE>).
+install(TARGETS demlight_library demlight_products demlight_lighting demlight_geo demlight_core
         EXPORT demlightTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/demlight)
-foreach(folder src geo geo/plugin lighting products)
-  file(GLOB _headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${folder}/*.h)
-  install(FILES ${_headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/demlight/${folder})
-endforeach()
+        FILE_SET HEADERS DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
 install(EXPORT demlightTargets NAMESPACE demlight:: DESTINATION ${DEMLIGHT_INSTALL_CMAKEDIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/demlightConfig.cmake.in

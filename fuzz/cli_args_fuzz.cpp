@@ -10,7 +10,7 @@
 // A parse error (CLI::ParseError) or a demlight::Error is a clean rejection; any other
 // exception is what main() reports as an "internal error" (exit 2) and is a finding.
 #include "cli/commands.h"
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <cstdint>
 #include <cstdio>

@@ -1,13 +1,13 @@
-// libFuzzer target: opening a DEM (openDem in geo/dem.h) from bytes that GDAL reads as a VRT or
+// libFuzzer target: opening a DEM (openDem in demlight/geo/dem.h) from bytes that GDAL reads as a VRT or
 // a GeoTIFF, then reading a corner window of it: headers that lie about their size, sources that
 // point anywhere, broken tags. Run under a memory cap (scripts/fuzz.sh passes -rss_limit_mb):
 // no input may make the opening hold memory in proportion to the size a header declares, crash,
 // or fail other than by demlight::Error. The first byte picks the name's extension (so the
 // driver); the rest is the file.
-#include "geo/dem.h"
-#include "geo/gdal_session.h"
-#include "geo/raster.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/gdal_session.h"
+#include "demlight/geo/raster.h"
+#include "demlight/core/error.h"
 
 #include <cpl_conv.h>
 #include <cpl_vsi.h>

@@ -1,9 +1,9 @@
-// libFuzzer target: durations (parseDuration, parseDurationOr in geo/time.h; --step and the
+// libFuzzer target: durations (parseDuration, parseDurationOr in demlight/geo/time.h; --step and the
 // other duration options). Properties checked on every accepted input: the duration is not
 // negative, and text parseDuration accepts is accepted by parseDurationOr with the same value
 // (a bare number only adds forms). Rejections must be demlight::Error.
-#include "geo/time.h"
-#include "src/error.h"
+#include "demlight/geo/time.h"
+#include "demlight/core/error.h"
 
 #include <chrono>
 #include <cstdint>

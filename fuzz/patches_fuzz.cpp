@@ -1,10 +1,10 @@
-// libFuzzer target: the --patches spec parser (parseSkyPatches in lighting/sky.h). Properties
+// libFuzzer target: the --patches spec parser (parseSkyPatches in demlight/lighting/sky.h). Properties
 // checked on every accepted spec: at least one patch, each a non-empty azimuth range of at most
 // 360 deg and a non-empty elevation range within [-90, 90], and the patches' solid angles (on
 // the whole sphere) summing to the sphere's: the patches partition it, as patch K values must
 // sum to K. Rejections must be demlight::Error.
-#include "lighting/sky.h"
-#include "src/error.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// libFuzzer target: output file names (geo/output_file.h). Input: a file name (any bytes but '/'
+// libFuzzer target: output file names (demlight/geo/output_file.h). Input: a file name (any bytes but '/'
 // and NUL; cut at 200). In a scratch folder with a planted link at every name an earlier
 // demlight's temporary file could have had, each input is written through a TemporaryFile and
 // committed, then written again and discarded. Properties checked on every input:
@@ -8,8 +8,8 @@
 //  - after the discard the output is unchanged and still nothing else is left;
 //  - isTemporaryName agrees with the private folder's name, and gives back the final name.
 // Refusals must be demlight::Error; anything else escaping is a finding.
-#include "geo/output_file.h"
-#include "src/error.h"
+#include "demlight/geo/output_file.h"
+#include "demlight/core/error.h"
 
 #include <cstdint>
 #include <cstdio>

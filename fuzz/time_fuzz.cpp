@@ -1,4 +1,4 @@
-// libFuzzer target: the --time / --tz parser (geo/time.h). Input: the time text, then after the
+// libFuzzer target: the --time / --tz parser (demlight/geo/time.h). Input: the time text, then after the
 // first newline the zone name (may be empty). Properties checked on every accepted input:
 //  - the local day of the instant contains it and is a non-empty interval;
 //  - the instant written back (formatInstant) parses to the same instant, with the same zone,
@@ -6,8 +6,8 @@
 //    has; local mean times before 1900 have seconds);
 //  - decimalYear and julianDay are finite.
 // Rejections must be demlight::Error; anything else escaping is a finding.
-#include "geo/time.h"
-#include "src/error.h"
+#include "demlight/geo/time.h"
+#include "demlight/core/error.h"
 
 #include <cmath>
 #include <cstdint>

@@ -6,15 +6,15 @@
 // callbacks take it back.
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "geo/dem.h"
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "products/horizon.h"
-#include "products/point.h"
-#include "products/product.h"
-#include "products/tiles.h"
-#include "src/angles.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/products/horizon.h"
+#include "demlight/products/point.h"
+#include "demlight/products/product.h"
+#include "demlight/products/tiles.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -17,7 +17,7 @@ stage "Release: build and tests"
 scripts/build.sh
 ctest --preset release -j2 --timeout 900
 
-# The same binaries on the portable path (DEMLIGHT_SIMD=portable, src/simd.h): what a processor
+# The same binaries on the portable path (DEMLIGHT_SIMD=portable, demlight/core/simd.h): what a processor
 # without AVX-512 runs. The tests on real DEMs and the README's recipes stay in the pass above:
 # the synthetic tests and the samples run every kernel, and the product test that holds both
 # paths to the same bits (Samples/TiledProducts) runs on real DEMs there.

@@ -13,14 +13,14 @@
 // band runs towards the sun (a_sun > 10: the sun shines along the trough, which the cap, narrowed
 // by the side walls, misses: false shadow) or across it (a_sun < -10: walls towards and away
 // from the sun, which the cap, widened along the open axis, ignores: false lit).
-#include "geo/dem.h"
-#include "geo/sun_field.h"
-#include "geo/time.h"
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/lighting_models.h"
-#include "lighting/sun_frame.h"
-#include "lighting/surface.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/sun_field.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/lighting_models.h"
+#include "demlight/lighting/sun_frame.h"
+#include "demlight/lighting/surface.h"
 
 #include "shared_dem.h"
 

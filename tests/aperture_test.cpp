@@ -1,13 +1,13 @@
 // Ambient aperture: analytic apertures (flat, tilted plane, V valley, wall), the cap-cap
 // intersection against Monte Carlo, the smoothstep approximation's error, the centroid
 // Lambert term, the aperture / hemisphere lighting models, and the streaming grid driver.
-#include "lighting/aperture.h"
-#include "lighting/lighting_models.h"
-#include "lighting/sky.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/lighting_models.h"
+#include "demlight/lighting/sky.h"
 #include "rising_planes.h"
 
-#include "src/error.h"
-#include "src/simd.h"
+#include "demlight/core/error.h"
+#include "demlight/core/simd.h"
 
 #include <gtest/gtest.h>
 
@@ -352,7 +352,7 @@ TEST(LightingModels, Hemisphere) {
 
 // ---- Grid driver -----------------------------------------------------------------------------
 
-// The accumulator integrates each sector in closed form on algebraic pieces (lighting/aperture.cpp,
+// The accumulator integrates each sector in closed form on algebraic pieces (demlight/lighting/aperture.cpp,
 // addApertureSectorAlgebraic) and vectorises the constant-limit case; the per-cell kernel
 // aperture() takes the closed form too where the plane rises. Every cell of random grids, from
 // flat (with negative horizons) to nearly vertical normals, horizons anywhere and near the
@@ -418,7 +418,7 @@ TEST(ApertureGrid, ClosedFormSectorsMatchTheDenseReference) {
               << "grid " << worstRef << ", kernel " << worstKernelRef << "\n";
 }
 
-// The exact pass eight cells at once (lighting/sky_wedge_lanes.h) against one cell at a time,
+// The exact pass eight cells at once (demlight/lighting/sky_wedge_lanes.h) against one cell at a time,
 // on random grids of every slope with horizons near the tangent plane's elevation: the same
 // maps (the same expressions, none contracted into a fused multiply-add), and the path taken by
 // most cells whose plane rises.

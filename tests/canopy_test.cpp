@@ -1,21 +1,21 @@
-// Vegetation that lets light through (lighting/canopy.h, --canopy, --transmissivity): on an
+// Vegetation that lets light through (demlight/lighting/canopy.h, --canopy, --transmissivity): on an
 // analytic scene, a box tree's shadow has the outline the sun's rays give and the value
 // tau (tau cos on flat ground), a building's shadow stays dark, and the ground under the crown
 // gets tau of what open ground gets; on real surface models, the limits tau = 1 (the ground and
 // buildings alone) and tau = 0 (crowns as walls) and the bits of tiles.
-#include "geo/dem.h"
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "geo/time.h"
-#include "lighting/canopy.h"
-#include "products/insolation.h"
-#include "products/irradiance.h"
-#include "products/point.h"
-#include "products/sun.h"
-#include "products/sunhours.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/canopy.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/point.h"
+#include "demlight/products/sun.h"
+#include "demlight/products/sunhours.h"
 #include "shared_dem.h"
-#include "src/angles.h"
-#include "src/error.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // Rasters of the clear-sky inputs (--linke-raster, --albedo-raster, --coeff-bh-raster,
-// --coeff-dh-raster; products/irradiance.h ClearSkyRasters): a constant raster gives the
+// --coeff-dh-raster; demlight/products/irradiance.h ClearSkyRasters): a constant raster gives the
 // constant's values, a raster of two halves gives each half its constant's values, tiles give the
 // one-piece bits, no data gives nodata, and point queries read the raster at their cell.
 #include "cli_runner.h"
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "products/insolation.h"
-#include "products/irradiance.h"
-#include "products/point.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/point.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 
@@ -115,7 +115,7 @@ TEST(ClearSkyRasters, InsolationFollowsTheRastersWithinTheBeamTablesBound) {
     const InsolationResult w = insolationProduct(source, source.whole(), west);
     const InsolationResult e = insolationProduct(source, source.whole(), east);
     // A Linke raster evaluates E2-E9 per cell; the constant goes through BeamNormalTable, within
-    // 1e-7 of the formula (lighting/esra.h).
+    // 1e-7 of the formula (demlight/lighting/esra.h).
     for (const char* name : kBands) {
         double worst = 0;
         for (std::size_t row = 0; row < source.height(); ++row)
@@ -228,7 +228,7 @@ void expectClose(const ProductResult& a, const ProductResult& b, double toleranc
 // A 12-band Linke raster is twelve monthly maps (it was read as its first band, January's, for the
 // whole year: 8 % too much beam on this year): a year with twelve constant monthly maps, as one
 // 12-band file or as twelve files, gives the year of the twelve monthly constants. The constant
-// path reads BeamNormalTable, within 1e-7 of the formulas a raster evaluates (lighting/esra.h).
+// path reads BeamNormalTable, within 1e-7 of the formulas a raster evaluates (demlight/lighting/esra.h).
 TEST(ClearSkyRasters, TwelveMonthlyLinkeMapsGiveTheYearOfTwelveMonthlyConstants) {
     const DemSource source = DemSource::open(kRocky);
     const std::vector<double> linke = monthlyLinke();

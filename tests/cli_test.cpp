@@ -1,7 +1,7 @@
 // End-to-end CLI tests: every bad input of docs/design.md §9 gets one clear message naming the
 // problem, a non-zero exit, and leaves no output file behind; good runs produce aligned GeoTIFFs.
 #include "cli_runner.h"
-#include "geo/raster.h"
+#include "demlight/geo/raster.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

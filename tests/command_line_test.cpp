@@ -4,7 +4,7 @@
 // errors read in the order a user types.
 #include "cli/commands.h"
 #include "cli_runner.h"
-#include "geo/raster.h"
+#include "demlight/geo/raster.h"
 
 #include <gtest/gtest.h>
 
@@ -176,16 +176,20 @@ TEST(CommandsDoc, DocumentsEveryMetadataKeyAndBandWritten) {
 
 // The man page (docs/man.cmake, built with the tests) holds every command's help.
 TEST(CommandsDoc, ManPageHasEveryCommand) {
+#ifndef DEMLIGHT_MAN_PAGE
+    GTEST_SKIP() << "help2man was not found when this build was configured: no man page";
+#else
     CLI::App app;
     CliContext ctx;
     registerCommands(app, ctx);
-    const std::string page = readText(std::string(DEMLIGHT_BUILD_DIR) + "/docs/demlight.1");
-    ASSERT_FALSE(page.empty()) << DEMLIGHT_BUILD_DIR << "/docs/demlight.1";
+    const std::string page = readText(DEMLIGHT_MAN_PAGE);
+    ASSERT_FALSE(page.empty()) << DEMLIGHT_MAN_PAGE;
     for (const CLI::App* command : listedCommands(app)) {
         const std::string name = command->get_name();
         EXPECT_NE(page.find(".SS demlight " + name + "\n"), std::string::npos) << "no section for " << name;
         EXPECT_NE(page.find("Usage: demlight " + name + " "), std::string::npos) << "no usage line for " << name;
     }
+#endif
 }
 
 // The checks above find a missing option: an option deleted from a section is reported.

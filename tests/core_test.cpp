@@ -1,8 +1,8 @@
 // Core types: grid layout, convergence lattice interpolation, parallel-for determinism.
-#include "src/grid.h"
-#include "src/parallel.h"
-#include "src/progress.h"
-#include "src/terrain.h"
+#include "demlight/core/grid.h"
+#include "demlight/core/parallel.h"
+#include "demlight/core/progress.h"
+#include "demlight/core/terrain.h"
 
 #include <gtest/gtest.h>
 
@@ -134,7 +134,7 @@ TEST(ProgressCounter, CancelStopsWork) {
 }  // namespace
 }  // namespace demlight
 
-#include "src/angles.h"
+#include "demlight/core/angles.h"
 
 namespace demlight {
 namespace {

@@ -3,13 +3,13 @@
 // same heights; units and overrides; GDAL virtual paths (/vsizip/); and `info` reporting what it
 // applied. The files are made with GDAL's own tools (tests do not link GDAL), skipped when absent.
 #include "cli_runner.h"
-#include "geo/dem.h"
-#include "geo/dem_source.h"
-#include "geo/time.h"
-#include "products/sun.h"
-#include "geo/raster.h"
-#include "src/terrain.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/time.h"
+#include "demlight/products/sun.h"
+#include "demlight/geo/raster.h"
+#include "demlight/core/terrain.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,14 +1,14 @@
 // A DEM read window by window from its file (DemSource::open) is the DEM loadDem reads whole:
 // the same heights, raw values, georeference, per-row geometry, convergence and frame, and the
 // same product bits; it holds no heights of its own.
-#include "geo/dem.h"
-#include "geo/dem_source.h"
-#include "geo/sun_field.h"
-#include "geo/time.h"
-#include "products/horizon.h"
-#include "products/sun.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/sun_field.h"
+#include "demlight/geo/time.h"
+#include "demlight/products/horizon.h"
+#include "demlight/products/sun.h"
 #include "shared_dem.h"
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 
@@ -87,7 +87,7 @@ TEST(DemSource, AFileReadByWindowIsTheDemLoadedWhole) {
             EXPECT_TRUE(sameBits(a.nodesM, b.nodesM)) << path << " step " << step;
             EXPECT_EQ(std::memcmp(&a.centreM, &b.centreM, sizeof(float)), 0) << path;
             EXPECT_EQ(a.meanM, b.meanM) << path;
-            // Each node against the cell it names (src/sun_field.h's lattice), read here directly.
+            // Each node against the cell it names (demlight/core/sun_field.h's lattice), read here directly.
             const Grid<float>& z = loadDem(path).terrain.heightsM;
             ASSERT_EQ(a.nodesM.width(), (w - 1) / step + 2);
             ASSERT_EQ(a.nodesM.height(), (h - 1) / step + 2);

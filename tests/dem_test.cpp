@@ -1,9 +1,9 @@
 // Per-cell metric geometry: ellipsoidal cell sizes of lat/lon grids against published lengths of
 // a degree, and meridian convergence of a projected grid against GeographicLib's exact
 // transverse Mercator (an implementation independent of the PROJ path demlight uses).
-#include "geo/dem.h"
-#include "geo/raster.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/raster.h"
+#include "demlight/core/error.h"
 
 #include <GeographicLib/TransverseMercator.hpp>
 #include <gtest/gtest.h>

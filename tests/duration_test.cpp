@@ -1,8 +1,8 @@
-// Durations (geo/time.h parseDuration, parseDurationOr): the accepted forms, the rejected ones
+// Durations (demlight/geo/time.h parseDuration, parseDurationOr): the accepted forms, the rejected ones
 // with their messages, and compatibility with the step parser the CLI used before (a bare
 // number of minutes), checked against a copy of it on a table and on random text.
-#include "geo/time.h"
-#include "src/error.h"
+#include "demlight/geo/time.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

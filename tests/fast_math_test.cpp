@@ -1,5 +1,5 @@
-// The polynomial atan/sin/cos of src/fast_math.h against <cmath> over their whole domains.
-#include "src/fast_math.h"
+// The polynomial atan/sin/cos of demlight/core/fast_math.h against <cmath> over their whole domains.
+#include "demlight/core/fast_math.h"
 
 #include <gtest/gtest.h>
 

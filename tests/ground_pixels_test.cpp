@@ -1,8 +1,8 @@
-// Square ground pixels for previews (lighting/preview.h toGroundPixels): the size rule, area
+// Square ground pixels for previews (demlight/lighting/preview.h toGroundPixels): the size rule, area
 // averaging when shrinking, linear interpolation when stretching, nodata kept transparent, and
 // square-cell grids left byte for byte as they were.
-#include "lighting/preview.h"
-#include "src/error.h"
+#include "demlight/lighting/preview.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Sweep vs reference horizon on real DEMs (docs/design.md §7): median and 99th-percentile absolute
 // horizon error (degrees) and sun-visibility mean absolute error, on cells whose horizon is not
 // truncated by the DEM edge. The reference runs on a fixed pseudo-random subset of cells.
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "lighting/sun.h"
-#include "lighting/surface.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sun.h"
+#include "demlight/lighting/surface.h"
 
 #include "shared_dem.h"
 

@@ -1,9 +1,9 @@
-// Horizon sweep and reference on analytic terrains (lighting/horizon.h).
-#include "lighting/horizon.h"
+// Horizon sweep and reference on analytic terrains (demlight/lighting/horizon.h).
+#include "demlight/lighting/horizon.h"
 
-#include "src/angles.h"
-#include "src/error.h"
-#include "src/simd.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
+#include "demlight/core/simd.h"
 
 #include <gtest/gtest.h>
 

@@ -3,10 +3,10 @@
 // asking for blocks no writer can hold, and a long thin DEM (its tiles' halos cannot reach past
 // it, so it runs in one piece).
 #include "cli_runner.h"
-#include "geo/dem.h"
-#include "geo/raster.h"
-#include "src/error.h"
-#include "src/grid.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/raster.h"
+#include "demlight/core/error.h"
+#include "demlight/core/grid.h"
 
 #include <gtest/gtest.h>
 
@@ -114,7 +114,7 @@ TEST_F(HostileInput, AVastDemHasABoundedLatticeThatStillGivesTheConvergence) {
         const auto [x2, y2] = crsPointOfWgs84(dem, lat + 1e-4, lon);
         const double x = gt[0] + col * gt[1], y = gt[3] + row * gt[5];
         const double gammaDeg = -std::atan2(x2 - x, y2 - y) * 180.0 / M_PI;
-        // The lattice's stated accuracy (geo/dem.cpp): far below 0.001 degrees.
+        // The lattice's stated accuracy (demlight/geo/dem.cpp): far below 0.001 degrees.
         EXPECT_NEAR(g.at(col, row), gammaDeg, 1e-3) << col << ", " << row;
     }
 }

@@ -1,17 +1,17 @@
-// Period totals by binned sun positions (lighting/insolation.h, products/insolation.h) against the
+// Period totals by binned sun positions (demlight/lighting/insolation.h, demlight/products/insolation.h) against the
 // exact integral, the irradiance product at every instant of the period summed with the same
 // trapezoid weights.
-#include "geo/dem_source.h"
-#include "geo/time.h"
-#include "lighting/insolation.h"
-#include "products/insolation.h"
-#include "products/irradiance.h"
-#include "products/sunhours.h"
-#include "lighting/sun.h"
-#include "lighting/surface.h"
-#include "src/angles.h"
-#include "src/error.h"
-#include "src/terrain.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/insolation.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/sunhours.h"
+#include "demlight/lighting/sun.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
+#include "demlight/core/terrain.h"
 
 #include <gtest/gtest.h>
 
@@ -272,7 +272,7 @@ TEST(InsolationProduct, BandsUnitsAndBadRequests) {
 }
 
 // sun_hours of the bins against the sunhours product, which sweeps along every instant's own
-// azimuth (lighting/sunhours.h): the same step, days and disk.
+// azimuth (demlight/lighting/sunhours.h): the same step, days and disk.
 TEST(InsolationProduct, SunHoursFollowThePerInstantSunHours) {
     const DemSource dem = DemSource::open(kRocky);
     for (const char* day : {"2024-06-21", "2024-12-21"}) {

@@ -2,7 +2,7 @@
 // georeference, metadata), tiles and windows through the shared raster options, and its
 // messages for bad options.
 #include "cli_runner.h"
-#include "geo/raster.h"
+#include "demlight/geo/raster.h"
 
 #include <gtest/gtest.h>
 

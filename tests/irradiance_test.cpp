@@ -1,16 +1,16 @@
-// Irradiance in W m-2 (lighting/esra.h, lighting/irradiance.h, products/irradiance.h): the ESRA
+// Irradiance in W m-2 (demlight/lighting/esra.h, demlight/lighting/irradiance.h, demlight/products/irradiance.h): the ESRA
 // formulas against GRASS r.sun's output and published properties, then the product on
 // synthetic terrain where the answer is known: open flat ground, an open tilted plane, the
 // shadow of a wall.
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "geo/solar_position.h"
-#include "geo/time.h"
-#include "lighting/esra.h"
-#include "lighting/irradiance.h"
-#include "products/irradiance.h"
-#include "src/angles.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/esra.h"
+#include "demlight/lighting/irradiance.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
 
 #include <GeographicLib/UTMUPS.hpp>
 #include <gtest/gtest.h>
@@ -199,7 +199,7 @@ double at(const ProductResult& r, const std::string& name, std::size_t col, std:
 }
 
 TEST(IrradianceProduct, OnOpenFlatGroundBeamIsBeamNormalTimesSinElevationAndDiffuseIsDiffuseHorizontal) {
-    // Cell (0, 0) sits on the sun lattice's first node (geo/sun_field.h), so its sun is SPA's at
+    // Cell (0, 0) sits on the sun lattice's first node (demlight/geo/sun_field.h), so its sun is SPA's at
     // its centre; farther cells interpolate between nodes.
     constexpr std::size_t kSide = 21, kCentre = 0;
     constexpr double kCellDeg = 0.001, kHeightM = 500;

@@ -1,7 +1,7 @@
 // End-to-end tests of `demlight light` and `demlight sunhours` options: the scene plan
 // (--quality, --tolerance, -v) must reach the computation, not only the help text.
 #include "cli_runner.h"
-#include "geo/raster.h"
+#include "demlight/geo/raster.h"
 
 #include <gtest/gtest.h>
 

@@ -15,14 +15,14 @@
 //    --of, years outside SPA's are refused, a missing input reads the same in every command.
 #include "child_process.h"
 #include "cli_runner.h"
-#include "geo/image_out.h"
-#include "geo/raster.h"
-#include "geo/solar_position.h"
-#include "geo/time.h"
-#include "products/product.h"
+#include "demlight/geo/image_out.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
+#include "demlight/products/product.h"
 #include "shared_dem.h"
-#include "src/error.h"
-#include "src/parallel.h"
+#include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The libdeflate PNG encoder, decoded by an independent reader (OpenImageIO's libpng).
-#include "geo/png_writer.h"
-#include "src/error.h"
+#include "demlight/geo/png_writer.h"
+#include "demlight/core/error.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

@@ -1,20 +1,20 @@
-// Point queries (products/point.h, --at / --at-xy): the horizon profile against the reference
+// Point queries (demlight/products/point.h, --at / --at-xy): the horizon profile against the reference
 // horizon of the whole DEM at that cell, irradiance and insolation against the raster products at
 // that cell and against flat ground computed from the ESRA formulas, the point's cell from a
 // published UTM coordinate, and the CLI's JSON and CSV.
 #include "cli_runner.h"
-#include "geo/dem.h"
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "geo/solar_position.h"
-#include "geo/time.h"
-#include "lighting/esra.h"
-#include "products/horizon.h"
-#include "products/insolation.h"
-#include "products/irradiance.h"
-#include "products/point.h"
-#include "src/angles.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/esra.h"
+#include "demlight/products/horizon.h"
+#include "demlight/products/insolation.h"
+#include "demlight/products/irradiance.h"
+#include "demlight/products/point.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

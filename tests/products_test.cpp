@@ -1,19 +1,19 @@
 // The products layer called directly, without the CLI: bands, georeference, metadata, progress
 // and cancellation, windows, the light combination, and library messages in library terms.
-#include "geo/dem_source.h"
-#include "geo/raster.h"
-#include "geo/time.h"
-#include "products/aperture.h"
-#include "products/horizon.h"
-#include "products/info.h"
-#include "products/light.h"
-#include "products/render.h"
-#include "products/sequence.h"
-#include "products/sky.h"
-#include "products/sun.h"
-#include "products/sunhours.h"
-#include "products/timelapse.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/time.h"
+#include "demlight/products/aperture.h"
+#include "demlight/products/horizon.h"
+#include "demlight/products/info.h"
+#include "demlight/products/light.h"
+#include "demlight/products/render.h"
+#include "demlight/products/sequence.h"
+#include "demlight/products/sky.h"
+#include "demlight/products/sun.h"
+#include "demlight/products/sunhours.h"
+#include "demlight/products/timelapse.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // an interrupt that cancels with exit code 130.
 #include "cli/progress_bar.h"
 #include "cli_runner.h"
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 
@@ -111,7 +111,7 @@ TEST(ProgressBar, ANewStageStartsTheCountAndTheClockAfresh) {
     EXPECT_EQ(lines[19], "sunhours: 100 % after 10 s");
 }
 
-// Tiles of one job (products/tiles.h tileProgress) report the job's fraction under a stage named
+// Tiles of one job (demlight/products/tiles.h tileProgress) report the job's fraction under a stage named
 // by the tile: the clock and the ten-per-cent lines run over the whole job, not per tile.
 TEST(ProgressBar, TilesOfOneJobKeepTheJobsClock) {
     Harness h(true, false, 0);

@@ -4,8 +4,8 @@
 // must be exactly the timelapse preview of the same instant. A command that ignored the plan
 // would fail these (auto and full differ in sky directions, distances and the sun lattice).
 #include "cli_runner.h"
-#include "geo/raster.h"
-#include "lighting/quality.h"
+#include "demlight/geo/raster.h"
+#include "demlight/lighting/quality.h"
 
 #include <gtest/gtest.h>
 

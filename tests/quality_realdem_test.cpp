@@ -9,12 +9,12 @@
 // modelling choices - search distance, curvature, scan-direction tolerance - add at most the
 // tolerance to full's median and 99th percentile. Cost: deterministic work counts
 // (estimateSweepWork), not wall time; the bench checks that they track wall time.
-#include "geo/dem.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "lighting/sky.h"
-#include "lighting/surface.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/surface.h"
 
 #include "shared_dem.h"
 

@@ -1,6 +1,6 @@
 // planScene: what `--quality auto` and `full` choose, against hand-computed values.
-#include "lighting/quality.h"
-#include "src/error.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

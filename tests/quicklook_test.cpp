@@ -1,8 +1,8 @@
 // demlight quicklook: the colour map, ticks and range as units; the command on the first band of
 // every raster product's output, read back as a picture.
 #include "cli_runner.h"
-#include "geo/raster.h"
-#include "products/quicklook.h"
+#include "demlight/geo/raster.h"
+#include "demlight/products/quicklook.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // Raster I/O: reading real samples (nodata kinds), refusing bad georeferencing, and a write/read
 // round trip that keeps CRS, geotransform, nodata, descriptions, units and metadata.
-#include "geo/dem.h"
-#include "geo/raster.h"
-#include "geo/tiff_tiles.h"
-#include "src/error.h"
+#include "demlight/geo/dem.h"
+#include "demlight/geo/raster.h"
+#include "demlight/geo/tiff_tiles.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 
@@ -225,7 +225,7 @@ TEST(LoadDem, RefusesAllNodata) {
     EXPECT_THROW(loadDem((dir / "nan.tif").string()), Error);
 }
 
-// ---- Float32 tiles encoded by demlight (geo/tiff_tiles.h) ----------------------------------------
+// ---- Float32 tiles encoded by demlight (demlight/geo/tiff_tiles.h) ----------------------------------------
 
 // TIFF Technical Note 3 by hand: 1.0f = 3F800000, -2.0f = C0000000. The bytes regrouped most
 // significant first are 3F C0 80 00 00 00 00 00; each minus the one before it (mod 256).

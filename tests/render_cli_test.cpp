@@ -1,7 +1,7 @@
 // End-to-end tests of `demlight render`, `timelapse` and `sunhours`: run the built binary
 // (DEMLIGHT_CLI_PATH) on the Mount St Helens sample and check the pictures it writes.
-#include "geo/raster.h"
-#include "lighting/preview.h"
+#include "demlight/geo/raster.h"
+#include "demlight/lighting/preview.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // plane rises above many of their horizons.
 #pragma once
 
-#include "src/grid.h"
+#include "demlight/core/grid.h"
 
 #include <cmath>
 #include <cstddef>

@@ -12,9 +12,9 @@
 //  - a signal in the first milliseconds of the process is answered as one (exit 130).
 #include "child_process.h"
 #include "cli_runner.h"
-#include "geo/output_file.h"
-#include "src/error.h"
-#include "src/process.h"
+#include "demlight/geo/output_file.h"
+#include "demlight/core/error.h"
+#include "demlight/core/process.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Polynomial sequences: exact on polynomials up to the degree, least-squares residual matches
 // a direct evaluation, NaN stays NaN, and a lit-then-shadowed cell shows the documented error.
-#include "lighting/sequence_fit.h"
-#include "src/error.h"
+#include "demlight/lighting/sequence_fit.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

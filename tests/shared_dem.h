@@ -1,8 +1,8 @@
 // The real DEMs of ../shared/data/dem used by the accuracy tests (skipped when absent).
 #pragma once
 
-#include "geo/dem.h"
-#include "src/terrain.h"
+#include "demlight/geo/dem.h"
+#include "demlight/core/terrain.h"
 
 #include <cctype>
 #include <cstddef>

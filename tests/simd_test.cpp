@@ -1,9 +1,9 @@
-// The run-time choice of vector code (src/simd.h): DEMLIGHT_SIMD's values, and a forced path.
+// The run-time choice of vector code (demlight/core/simd.h): DEMLIGHT_SIMD's values, and a forced path.
 // That both paths give the same bits is tested where the kernels are (horizon, sky, aperture
 // and every product in tests/tiling_test.cpp).
-#include "src/simd.h"
+#include "demlight/core/simd.h"
 
-#include "src/error.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

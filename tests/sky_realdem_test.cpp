@@ -10,13 +10,13 @@
 //
 // The table printed here is the one in README "Sky accuracy"; kDefaultSkyDirections (sky.h) is
 // the smallest D meeting the budget on all three DEMs.
-#include "geo/dem.h"
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "lighting/sky.h"
-#include "lighting/surface.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/surface.h"
 
 #include "shared_dem.h"
 

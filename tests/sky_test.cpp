@@ -1,12 +1,12 @@
 // Sky factors: analytic cases (flat, tilted plane, V valley, paraboloid pit, wall), patches,
 // f_sky limits, monotonicity, the dense reference, and the streaming grid driver.
-#include "lighting/sky.h"
-#include "lighting/sky_wedge.h"
-#include "lighting/sky_wedge_lanes.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/sky_wedge.h"
+#include "demlight/lighting/sky_wedge_lanes.h"
 #include "rising_planes.h"
 
-#include "src/error.h"
-#include "src/simd.h"
+#include "demlight/core/error.h"
+#include "demlight/core/simd.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// Tests of NREL SPA (geo/solar_position.h) against the report's own example and published
+// Tests of NREL SPA (demlight/geo/solar_position.h) against the report's own example and published
 // values, and against PyEphem (tests/data/solar_cases.inc, from scripts/gen_solar_cases.py).
-#include "geo/solar_position.h"
-#include "geo/time.h"
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
 
 #include <gtest/gtest.h>
 

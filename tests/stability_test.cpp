@@ -10,16 +10,16 @@
 // Every check also becomes a row of a markdown report, written to stability.md in the build
 // tree and, when DEMLIGHT_STABILITY_REPORT names a path, there too (docs/stability.md in the
 // repository is one such run).
-#include "lighting/aperture.h"
-#include "lighting/directions.h"
-#include "lighting/horizon.h"
-#include "lighting/lighting_models.h"
-#include "lighting/quality.h"
-#include "lighting/sky.h"
-#include "lighting/sun.h"
-#include "lighting/sun_frame.h"
-#include "lighting/surface.h"
-#include "src/angles.h"
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/lighting_models.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/sun.h"
+#include "demlight/lighting/sun_frame.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/angles.h"
 
 #include <gtest/gtest.h>
 

@@ -2,11 +2,11 @@
 // sweep following the azimuth; windowed sweeps at a few azimuths, interpolated per cell), against
 // the reference horizon taken at every sampled cell's own sun azimuth (docs/design.md §7), on a
 // real DEM.
-#include "geo/dem.h"
-#include "lighting/horizon.h"
-#include "lighting/sun.h"
-#include "lighting/sun_frame.h"
-#include "lighting/surface.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/sun.h"
+#include "demlight/lighting/sun_frame.h"
+#include "demlight/lighting/surface.h"
 
 #include "shared_dem.h"
 

@@ -1,10 +1,10 @@
-// Sun visibility and irradiance (lighting/sun.h) and normals (lighting/surface.h).
-#include "lighting/sun.h"
+// Sun visibility and irradiance (demlight/lighting/sun.h) and normals (demlight/lighting/surface.h).
+#include "demlight/lighting/sun.h"
 
-#include "lighting/horizon.h"
-#include "lighting/surface.h"
-#include "src/angles.h"
-#include "src/error.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/angles.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-// Sun-hour integrals (lighting/sunhours.h) on analytic terrain with the real SPA sun.
-#include "geo/solar_position.h"
-#include "geo/time.h"
-#include "lighting/directions.h"
-#include "lighting/sky.h"
-#include "lighting/sunhours.h"
-#include "src/error.h"
+// Sun-hour integrals (demlight/lighting/sunhours.h) on analytic terrain with the real SPA sun.
+#include "demlight/geo/solar_position.h"
+#include "demlight/geo/time.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/sunhours.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

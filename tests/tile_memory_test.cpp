@@ -2,11 +2,11 @@
 // limit and uses it (no tile needlessly small), and a run of the CLI on a DEM whose one-piece run
 // would not fit stays under the limit, measured as the child process's peak resident set.
 #include "cli_runner.h"
-#include "geo/raster.h"
-#include "products/aperture.h"
-#include "products/sky.h"
-#include "products/tiles.h"
-#include "src/grid.h"
+#include "demlight/geo/raster.h"
+#include "demlight/products/aperture.h"
+#include "demlight/products/sky.h"
+#include "demlight/products/tiles.h"
+#include "demlight/core/grid.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // one-piece output's bytes (gdalinfo -checksum and the values' bytes of every band) on real DEMs
 // of each kind of CRS.
 #include "cli_runner.h"
-#include "geo/raster.h"
+#include "demlight/geo/raster.h"
 #include "shared_dem.h"
 
 #include <gtest/gtest.h>

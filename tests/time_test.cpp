@@ -1,6 +1,6 @@
-// Tests of time parsing, zones and local days (geo/time.h).
-#include "geo/time.h"
-#include "src/error.h"
+// Tests of time parsing, zones and local days (demlight/geo/time.h).
+#include "demlight/geo/time.h"
+#include "demlight/core/error.h"
 
 #include <gtest/gtest.h>
 

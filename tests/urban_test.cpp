@@ -1,13 +1,13 @@
-// Horizons at walls (lighting/horizon.h, HorizonParams::nearFieldSteps): the sweep against its
+// Horizons at walls (demlight/lighting/horizon.h, HorizonParams::nearFieldSteps): the sweep against its
 // stated model computed cell by cell, synthetic urban scenes with analytic answers (a box
 // building, its shadow, an infinite street canyon, a row of towers at an oblique azimuth), and
 // the real surface models of the shared data folder against the reference ray march.
-#include "lighting/horizon.h"
-#include "lighting/quality.h"
-#include "lighting/sun.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/quality.h"
+#include "demlight/lighting/sun.h"
 
 #include "shared_dem.h"
-#include "src/angles.h"
+#include "demlight/core/angles.h"
 
 #include <gtest/gtest.h>
 

@@ -4,11 +4,11 @@
 // cell; haze thickening with distance; a camera under the terrain refused. And the command on a
 // lat/lon DEM, a UTM DEM and a surface model.
 #include "cli_runner.h"
-#include "geo/dem_source.h"
-#include "lighting/max_mipmap.h"
-#include "products/light.h"
-#include "products/view.h"
-#include "src/error.h"
+#include "demlight/geo/dem_source.h"
+#include "demlight/lighting/max_mipmap.h"
+#include "demlight/products/light.h"
+#include "demlight/products/view.h"
+#include "demlight/core/error.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // consumer DEM TIME: lights a DEM with the sun product of the installed demlight library and
 // prints the share of its cells the sun reaches (docs/cpp.md). TIME: ISO 8601 with its offset.
-#include "geo/dem_source.h"
-#include "products/sun.h"
-#include "src/error.h"
+#include <demlight/geo/dem_source.h>
+#include <demlight/products/sun.h>
+#include <demlight/core/error.h>
 
 #include <cmath>
 #include <iostream>

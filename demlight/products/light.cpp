@@ -1,0 +1,216 @@
+#include "demlight/products/light.h"
+
+#include "demlight/lighting/aperture.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/sky.h"
+#include "demlight/lighting/sun_frame.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/products/sky.h"
+#include "demlight/core/error.h"
+
+#include <cmath>
+#include <limits>
+
+namespace demlight {
+namespace {
+
+/// The auxiliary rasters of a request, on the DEM grid.
+struct LightRasters {
+    Grid<float> albedo, cloud;
+    std::vector<Grid<float>> color;
+};
+
+LightRasters loadRasters(const DemSource& dem, const LightRequest& r) {
+    LightRasters out;
+    if (!r.albedoRaster.empty())
+        out.albedo = std::move(loadAuxiliaryRaster(r.albedoRaster, dem, {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
+    if (!r.colorRaster.empty())
+        out.color = loadAuxiliaryRaster(r.colorRaster, dem, {"colorRaster", 3, true, 0, 1, true, r.colorEncoding});
+    if (!r.cloudShadow.empty())
+        out.cloud = std::move(loadAuxiliaryRaster(r.cloudShadow, dem, {"cloudShadow", 1, false, 0, 1, false, {}})[0]);
+    return out;
+}
+
+/// The whole DEM's rasters on a window of it (the cells `dem` covers).
+LightRasters rastersOnTile(const LightRasters& whole, const Dem& dem) {
+    const CellWindow w = cellsOnFullGrid(dem.terrain);
+    LightRasters out;
+    out.albedo = cropGrid(whole.albedo, w);
+    out.cloud = cropGrid(whole.cloud, w);
+    for (const Grid<float>& g : whole.color) out.color.push_back(cropGrid(g, w));
+    return out;
+}
+
+LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const SunField& field,
+                         const LightRasters& rasters, const ProgressFn& progress) {
+    const Terrain& t = dem.terrain;
+    const bool aperture = o.model != SunModel::Horizon;
+    const bool colorRaster = !o.colorRaster.empty();
+    const bool colour = colorRaster || o.sunColor || o.skyColor;
+    const double albedo = o.albedo.value_or(kDefaultAlbedo);
+
+    const Normals normals = computeNormals(t, o.search.threads);
+    const bool skySweeps = o.skyModel == SkyModel::StewartLanger;
+    const std::size_t directions = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const std::size_t sweeps = skySweeps || aperture ? directions : 0;
+    const HorizonParams hp = integralParams(o.search, plan, t, std::max<std::size_t>(directions, 1));
+    ProgressCounter counter(progress, "light", t.heightsM.size() * (sweeps + (aperture ? 0 : 1)));
+
+    // One pass over the directions feeds the sky and the aperture alike.
+    std::optional<SkyAccumulator> skyAcc;
+    std::optional<ApertureAccumulator> apertureAcc;
+    if (skySweeps) skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, o.search.threads);
+    if (aperture) apertureAcc.emplace(normals.east, normals.north, normals.up, directions, o.search.threads);
+    if (sweeps > 0)
+        sweepDirections(t, hp, sweeps, [&](std::size_t i, const HorizonMap& h) {
+            if (skyAcc) skyAcc->addDirection(i, h.angleDeg);
+            if (apertureAcc) apertureAcc->addDirection(i, h.angleDeg);
+        }, &counter);
+
+    // Sun term.
+    Grid<float> sunIrradiance;
+    double sunDistanceM = 0;
+    std::size_t sunRegions = 0;
+    if (aperture) {
+        ApertureLightParams lp;
+        lp.sunRadiusDeg = 0.5 * o.sunDiameterDeg;
+        lp.smoothIntersection = o.model == SunModel::ApertureSmooth;
+        sunIrradiance = applyApertureSun(apertureAcc->finish(), normals.east, normals.north, normals.up, field, lp,
+                                         o.search.threads)
+                            .irradiance;
+        sunDistanceM = hp.maxDistanceM;  // the aperture is the sky's: the sky's distance
+    } else {
+        // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
+        SunFrame frame = computeSunFrame(t, normals, field, sunFrameParams(o.search, o.sunDiameterDeg, plan), &counter);
+        sunIrradiance = std::move(frame.light.irradiance);
+        sunDistanceM = frame.maxDistanceM;
+        sunRegions = frame.sweepRegions;
+    }
+
+    // Sky term: one grid, or one per channel when the colour raster sets the albedo.
+    std::vector<Grid<float>> sky;
+    for (std::size_t c = 0; c < (colorRaster ? 3 : 1); ++c) {
+        const Grid<float>* albedoC = colorRaster ? &rasters.color[c] : rasters.albedo.empty() ? nullptr : &rasters.albedo;
+        if (skySweeps) {
+            sky.push_back((albedoC ? skyAcc->finish(*albedoC) : skyAcc->finish(albedo)).skyFactor);
+        } else if (o.skyModel == SkyModel::Hemisphere) {
+            HemisphereParams hemi;
+            hemi.albedo = albedo;
+            sky.push_back(applyHemisphereLight(normals.up, hemi, albedoC, o.search.threads));
+        }
+    }
+
+    LightTerms terms;
+    terms.heightsM = &t.heightsM;
+    terms.sunIrradiance = &sunIrradiance;
+    terms.cloud = rasters.cloud.empty() ? nullptr : &rasters.cloud;
+    for (const auto& s : sky) terms.sky.push_back(&s);
+    for (const auto& c : rasters.color) terms.reflectance.push_back(&c);
+    terms.sunColor = o.sunColor.value_or(LinearRgb{1, 1, 1});
+    terms.skyColor = o.skyColor.value_or(LinearRgb{1, 1, 1});
+    terms.channels = colour ? 3 : 1;
+    std::vector<Grid<float>> light = combineLight(terms);
+
+    std::map<std::string, std::string> meta = planMetadata(plan);
+    meta.merge(searchMetadata(t, sunDistanceM, o.search.refraction));
+    meta.insert({
+        {"DEMLIGHT_TIME_UTC", formatInstant(o.time.utc, std::string())},
+        {"DEMLIGHT_TIME_LOCAL", formatInstant(o.time.utc, o.time.zone)},
+        {"DEMLIGHT_SUN_AZIMUTH_DEG", formatNumber(field.centreAzimuthDeg)},
+        {"DEMLIGHT_SUN_ELEVATION_DEG", formatNumber(field.centreElevationDeg)},
+        {"DEMLIGHT_SUN_DIAMETER_DEG", formatNumber(o.sunDiameterDeg)},
+        {"DEMLIGHT_SUN_SWEEP_REGIONS", aperture ? std::string() : std::to_string(sunRegions)},
+        {"DEMLIGHT_MODEL", std::string(sunModelName(o.model))},
+        {"DEMLIGHT_DIRECTIONS", aperture ? std::to_string(directions) : std::string()},
+        {"DEMLIGHT_SKY_MODEL", std::string(skyModelName(o.skyModel))},
+        {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skySweeps ? directions : 0)},
+        {"DEMLIGHT_ALBEDO", colorRaster            ? std::string("per channel from the colour raster")
+                            : o.albedoRaster.empty() ? formatNumber(albedo)
+                                                     : o.albedoRaster},
+        {"DEMLIGHT_COLOR_RASTER", o.colorRaster},
+        {"DEMLIGHT_CLOUD_SHADOW", o.cloudShadow},
+        {"DEMLIGHT_SKY_MAX_DISTANCE_M", sweeps > 0 ? metadataDistanceM(t, hp.maxDistanceM) : std::string()},
+    });
+    LightResult out;
+    static_cast<ProductResult&>(out) = makeResult(dem, "light", meta);
+    out.centreAzimuthDeg = field.centreAzimuthDeg;
+    out.centreElevationDeg = field.centreElevationDeg;
+    const std::string unit =
+        colorRaster ? "albedo x normalised irradiance: light reflected by the ground, relative to the "
+                      "source radiance (white ground under a unit zenith sun = 1)"
+                    : "normalised irradiance (1 = unit zenith sun, or unit sky, on open flat ground)";
+    const std::string prefix = colorRaster ? "reflected" : "light";
+    if (colour) {
+        const char* suffixes[3] = {"_r", "_g", "_b"};
+        for (std::size_t c = 0; c < 3; ++c) out.bands.push_back({prefix + suffixes[c], unit, std::move(light[c]), {}});
+    } else {
+        out.bands.push_back({prefix, unit, std::move(light[0]), {}});
+    }
+    return out;
+}
+
+void validateLight(const LightRequest& o) {
+    validateSun(o.sunDiameterDeg, o.atmosphere);
+    if (!o.colorRaster.empty() && (o.albedo || !o.albedoRaster.empty()))
+        throw Error("colorRaster gives the albedo of each channel; do not combine it with " +
+                    std::string(o.albedo ? "albedo" : "albedoRaster"));
+    if (o.albedo && !o.albedoRaster.empty()) throw Error("give albedo or albedoRaster, not both");
+    if (o.albedo && !(*o.albedo >= 0 && *o.albedo <= 1))
+        throw FieldError("albedo", " " + formatNumber(*o.albedo) + ": must be in [0, 1]");
+    for (const auto* c : {&o.sunColor, &o.skyColor})
+        if (*c)
+            for (double v : **c)
+                if (!(v >= 0) || !std::isfinite(v))
+                    throw FieldError(c == &o.sunColor ? "sunColor" : "skyColor", ": " + formatNumber(v) +
+                                " is not a linear radiance >= 0");
+    if (o.skyDirections && *o.skyDirections < 1)
+        throw FieldError("skyDirections", " " + std::to_string(*o.skyDirections) + ": must be >= 1");
+}
+
+}  // namespace
+
+std::vector<Grid<float>> combineLight(const LightTerms& terms) {
+    const Grid<float>& h = *terms.heightsM;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const bool reflect = terms.reflectance.size() >= terms.channels && !terms.reflectance.empty();
+    std::vector<Grid<float>> light(terms.channels, Grid<float>(h.width(), h.height(), nan));
+    for (std::size_t k = 0; k < h.size(); ++k) {
+        if (std::isnan(h.data()[k])) continue;
+        double s = terms.sunIrradiance->data()[k];
+        if (terms.cloud) s *= std::isnan(terms.cloud->data()[k]) ? 1.0 : terms.cloud->data()[k];
+        for (std::size_t c = 0; c < terms.channels; ++c) {
+            const double skyTerm = terms.sky.empty() ? 0.0 : terms.sky[std::min(c, terms.sky.size() - 1)]->data()[k];
+            const double reflectance = reflect ? terms.reflectance[c]->data()[k] : 1.0;
+            light[c].data()[k] = static_cast<float>(reflectance * (terms.sunColor[c] * s + terms.skyColor[c] * skyTerm));
+        }
+    }
+    return light;
+}
+
+LightResult lightProduct(const DemSource& source, const CellWindow& window, const LightRequest& request,
+                         const ProgressFn& progress) {
+    validateLight(request);
+    const Dem& whole = source.geometry();
+    const ScenePlan plan = planFor(request.search, whole.terrain);
+    // The sun and the rasters of the whole DEM, read by each window: the same bits on its cells
+    // (resampling onto a window's own georeference would round its coordinates differently).
+    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+    const LightRasters rasters = loadRasters(source, request);
+    std::size_t halo = 0;
+    if (!source.isWhole(window)) {
+        const double sunDistance =
+            sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
+        const double skyDistance =
+            integralParams(request.search, plan, whole.terrain,
+                           request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                .maxDistanceM;
+        halo = haloCellsFor(whole.terrain, std::max(sunDistance, skyDistance));
+    }
+    return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
+        if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, progress);  // the whole DEM
+        return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),
+                            progress);
+    });
+}
+
+}  // namespace demlight
