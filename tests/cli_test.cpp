@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <utility>
 
 namespace demlight {
 namespace {
@@ -88,41 +89,50 @@ TEST_F(CliBadInput, AllNodataAndNanHeights) {
     expectFailure("sun " + dem + " -o " + out() + " --time 2024-06-21T12:00Z", "every cell is nodata", 1);
 }
 
-TEST_F(CliBadInput, TimeWithoutZone) {
-    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00", "no zone", 0);
+/// A command line that must fail on a sample DEM, naming `needle`, with nothing left behind:
+/// {dem} stands for the sample, {out} for the output.
+struct BadCommand {
+    const char* name;
+    const char* args;
+    const char* needle;
+};
+
+void PrintTo(const BadCommand& c, std::ostream* os) { *os << c.args; }
+
+class CliBadCommand : public CliBadInput, public ::testing::WithParamInterface<BadCommand> {};
+
+TEST_P(CliBadCommand, FailsNamingTheCauseAndLeavesNothing) {
+    std::string args = GetParam().args;
+    for (const auto& [key, value] : {std::pair<std::string, std::string>{"{dem}", kHelens}, {"{out}", out()}})
+        for (std::size_t at; (at = args.find(key)) != std::string::npos;) args.replace(at, key.size(), value);
+    expectFailure(args, GetParam().needle, 0);
 }
 
-TEST_F(CliBadInput, UnknownZone) {
-    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00 --tz Mars/Olympus",
-                  "Mars/Olympus", 0);
-}
-
-TEST_F(CliBadInput, ImpossibleDate) {
-    expectFailure("sun " + kHelens + " -o " + out() + " --time 2023-02-30T12:00Z", "2023-02-30", 0);
-}
-
-TEST_F(CliBadInput, OutOfRangeOptions) {
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --refraction 1.5", "--refraction", 0);
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --max-distance -5", "--max-distance", 0);
-    expectFailure("sky " + kHelens + " -o " + out() + " --albedo 2", "--albedo", 0);
-    expectFailure("sky " + kHelens + " -o " + out() + " --albedo nan", "--albedo: expected a finite number", 0);
-    expectFailure("sun " + kHelens + " -o " + out() + " --time 2024-06-21T12:00Z --sun-diameter -1",
-                  "--sun-diameter", 0);
-    expectFailure("horizon " + kHelens + " -o " + out(), "--azimuth", 0);
-    expectFailure("sky " + kHelens + " -o " + out() + " --patches sectors:0", "sectors", 0);
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --threads -1",
-                  "demlight: error: --threads: must be >= 0, got -1", 0);
-}
-
-// A format or creation option GDAL would ignore must not silently give a different file.
-TEST_F(CliBadInput, UnknownFormatsAndCreationOptions) {
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --of PNG", "must be GTiff or COG", 0);
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 -co COMPRESS=BOGUS",
-                  "invalid creation option for GTiff", 0);
-    expectFailure("horizon " + kHelens + " -o " + out() + " --azimuth 90 --of COG -co NOSUCHKEY=1",
-                  "invalid creation option for COG", 0);
-    expectFailure("horizn " + kHelens + " -o " + out(), "unknown command 'horizn'", 0);
-}
+// Times, option ranges, formats and creation options (one GDAL would ignore must not silently
+// give a different file), commands.
+INSTANTIATE_TEST_SUITE_P(
+    Table, CliBadCommand,
+    ::testing::Values(
+        BadCommand{"TimeWithoutZone", "sun {dem} -o {out} --time 2024-06-21T12:00", "no zone"},
+        BadCommand{"UnknownZone", "sun {dem} -o {out} --time 2024-06-21T12:00 --tz Mars/Olympus", "Mars/Olympus"},
+        BadCommand{"ImpossibleDate", "sun {dem} -o {out} --time 2023-02-30T12:00Z", "2023-02-30"},
+        BadCommand{"RefractionAboveOne", "horizon {dem} -o {out} --azimuth 90 --refraction 1.5", "--refraction"},
+        BadCommand{"NegativeDistance", "horizon {dem} -o {out} --azimuth 90 --max-distance -5", "--max-distance"},
+        BadCommand{"AlbedoAboveOne", "sky {dem} -o {out} --albedo 2", "--albedo"},
+        BadCommand{"AlbedoNan", "sky {dem} -o {out} --albedo nan", "--albedo: expected a finite number"},
+        BadCommand{"NegativeSunDiameter", "sun {dem} -o {out} --time 2024-06-21T12:00Z --sun-diameter -1",
+                   "--sun-diameter"},
+        BadCommand{"HorizonWithoutAzimuth", "horizon {dem} -o {out}", "--azimuth"},
+        BadCommand{"NoSectors", "sky {dem} -o {out} --patches sectors:0", "sectors"},
+        BadCommand{"NegativeThreads", "horizon {dem} -o {out} --azimuth 90 --threads -1",
+                   "demlight: error: --threads: must be >= 0, got -1"},
+        BadCommand{"FormatPng", "horizon {dem} -o {out} --azimuth 90 --of PNG", "must be GTiff or COG"},
+        BadCommand{"BogusCompression", "horizon {dem} -o {out} --azimuth 90 -co COMPRESS=BOGUS",
+                   "invalid creation option for GTiff"},
+        BadCommand{"UnknownCogOption", "horizon {dem} -o {out} --azimuth 90 --of COG -co NOSUCHKEY=1",
+                   "invalid creation option for COG"},
+        BadCommand{"MistypedCommand", "horizn {dem} -o {out}", "unknown command 'horizn'"}),
+    [](const ::testing::TestParamInfo<BadCommand>& info) { return std::string(info.param.name); });
 
 TEST_F(CliBadInput, TimelapseRefusesAMistypedStep) {
     const auto r = runDemlight("timelapse " + kRocky + " -o " + out() +

@@ -21,7 +21,9 @@
 #include <memory>
 #include <optional>
 #include <strings.h>
+#include <tuple>
 #include <unistd.h>
+#include <utility>
 
 namespace demlight {
 namespace {
@@ -600,6 +602,204 @@ void checkRasterPath(const std::string& path) {
                     "' names another format, and this output is a GeoTIFF; name it .tif or .tiff");
 }
 
+namespace {
+
+/// The size all bands share (internal errors when one is empty or of another size).
+std::pair<std::size_t, std::size_t> bandsShape(const std::string& path, const std::vector<OutputBand>& bands) {
+    const auto shapeOf = [](const OutputBand& b) {
+        return b.values ? std::pair(b.values->width(), b.values->height())
+                        : std::pair(b.mask->width(), b.mask->height());
+    };
+    const auto shape = shapeOf(bands.front());
+    for (const auto& b : bands) {
+        if (!b.values && !b.mask) throw Error("internal: output band '" + b.description + "' is empty");
+        if (shapeOf(b) != shape) throw Error("internal: output bands of '" + path + "' differ in size");
+    }
+    return shape;
+}
+
+/// One writeRaster(): the file is written under a temporary name in its own private folder and
+/// renamed on success, so a failed or interrupted run never leaves a partial file at `path`.
+/// GTiff is created directly and filled from the grids (its Float32 and Int16 tiles encoded by
+/// detail::TileWriter, demlight/geo/tiff_tiles.h); COG can only be made by CreateCopy, so it is
+/// staged in a MEM dataset first. (The COG driver's own scratch files go beside its output: into
+/// the temporary file's private folder, removed with it.)
+class RasterWrite {
+public:
+    RasterWrite(const std::string& path, const std::vector<OutputBand>& bands, const WriteOptions& options,
+                GDALDataType type, const std::vector<std::string>& creationOptions)
+        : path_(path), bands_(bands), options_(options), type_(type), co_(creationOptions), tmp_(path),
+          direct_(options.format == "GTiff"), progress_(options.progress) {
+        std::tie(width_, height_) = bandsShape(path, bands);
+        for (const auto& kv : co_) coList_.AddString(kv.c_str());
+    }
+
+    void run(GDALDriver* driver, const GeoReference& ref) {
+        // libtiff opens local files only, not GDAL's virtual ones.
+        std::optional<detail::TileEncoding> ownTiles;
+        if (direct_ && (type_ == GDT_Float32 || type_ == GDT_Int16) && detail::encodeTiles && !isGdalVirtualPath(path_))
+            ownTiles = detail::tileEncoding(co_, type_ == GDT_Float32 ? detail::TileSamples::Float32
+                                                                     : detail::TileSamples::Int16);
+        if (ownTiles) coList_.AddString("SPARSE_OK=TRUE");
+        detail::takeGdalError();
+        create(driver, ref);
+        if (ownTiles) openTiles(*ownTiles);
+        fillBands();
+        if (!direct_) copyToCog(driver);
+        close();
+        // A request to stop that comes now finds the file complete: it is kept.
+        tmp_.commit();
+    }
+
+private:
+    /// Ends the write: the datasets (or the tile writer) closed, every temporary file removed;
+    /// Cancelled when the caller asked to stop, else an Error naming the cause, the tile writer's
+    /// `reason` or GDAL's (thrown by std::rethrow_exception, so that a Cancelled keeps its type).
+    std::exception_ptr fail(const std::string& what, std::string reason = {}) {
+        ds_.reset();
+        tiles_.reset();
+        if (const std::string gdal = detail::takeGdalError(); reason.empty()) reason = gdal;
+        if (progress_.stopped()) {
+            tmp_.discard();
+            return std::make_exception_ptr(Cancelled());
+        }
+        const std::string message =
+            writeFailureMessage((what.empty() ? "" : what + " of ") + "'" + path_ + "'", tmp_.path(), reason);
+        tmp_.discard();
+        return std::make_exception_ptr(Error(message));
+    }
+
+    void create(GDALDriver* driver, const GeoReference& ref) {
+        const int w = static_cast<int>(width_), h = static_cast<int>(height_), n = static_cast<int>(bands_.size());
+        if (direct_) {
+            ds_.reset(driver->Create(tmp_.path().c_str(), w, h, n, type_, coList_.List()));
+            if (!ds_) std::rethrow_exception(fail({}));
+        } else {
+            ds_.reset(GetGDALDriverManager()->GetDriverByName("MEM")->Create("", w, h, n, type_, nullptr));
+        }
+        describeDataset(*ds_, ref, options_, bands_, type_);
+    }
+
+    /// Closes GDAL's file before any cell (GDAL writes the directory with every tile offset zero)
+    /// and opens the tile writer on it.
+    void openTiles(const detail::TileEncoding& encoding) {
+        ds_.reset();
+        if (const std::string closeError = detail::takeGdalError(); !closeError.empty())
+            std::rethrow_exception(fail({}));
+        try {
+            tiles_.emplace(tmp_.path(), width_, height_, bands_.size(), encoding);
+        } catch (const Error& e) {
+            std::rethrow_exception(fail({}, e.what()));
+        }
+        // Four strips of whole tile rows per batch when they take at most 16 MB: a 1201-wide band
+        // has five tiles a row, which two threads share unevenly one row at a time.
+        const std::size_t tileH = tiles_->tileHeight();
+        const std::size_t strip = tileH * std::max<std::size_t>(1, kWriteStripRows / tileH);
+        constexpr std::size_t kBatchStrips = 4, kBatchBytes = std::size_t{16} << 20;
+        stripRows_ = kBatchStrips * strip * width_ * sizeof(float) <= kBatchBytes ? kBatchStrips * strip : strip;
+    }
+
+    /// Each band in strips of whole tile rows, each flushed to the file before the next (the GTiff
+    /// compresses and writes those tiles then, not all at the close): a full disk shows at the
+    /// strip that meets it, and a request to stop is seen within a strip. A band that needs
+    /// converting (a mask, or NaN to the nodata value) goes through a strip-sized buffer that stays
+    /// in cache, not a copy of the whole band.
+    void fillBands() {
+        const std::size_t strips = (height_ + stripRows_ - 1) / stripRows_;
+        for (std::size_t i = 0; i < bands_.size(); ++i) {
+            for (std::size_t s = 0; s < strips; ++s) {
+                // Shares of the whole write: GTiff's bands are all of it; a COG's staging is quick.
+                const double done = static_cast<double>(i * strips + s) / static_cast<double>(bands_.size() * strips);
+                if (!progress_.report(fillShare() * done)) std::rethrow_exception(fail({}));
+                const std::size_t r0 = s * stripRows_;
+                writeStrip(i, r0, std::min(stripRows_, height_ - r0));
+            }
+        }
+    }
+
+    void writeStrip(std::size_t i, std::size_t r0, std::size_t rows) {
+        const OutputBand& b = bands_[i];
+        const std::size_t first = r0 * width_, count = rows * width_;
+        const bool replaceNan = !std::isnan(options_.nodata);
+        const auto nodataF = static_cast<float>(options_.nodata);
+        if (tiles_) {
+            const void* data = type_ == GDT_Int16
+                                   ? static_cast<const void*>(fixedCells(b, first, count, *options_.fixedPoint, fixed_))
+                                   : floatCells(b, first, count, replaceNan, nodataF, buffer_);
+            try {
+                tiles_->writeRows(i, r0, rows, data);
+            } catch (const Error& e) {
+                std::rethrow_exception(fail("band " + std::to_string(i + 1), e.what()));
+            }
+            return;
+        }
+        void* data;
+        if (type_ == GDT_Byte)
+            data = const_cast<std::uint8_t*>(b.mask->rowPtr(r0));
+        else if (type_ == GDT_Int16)
+            data = const_cast<std::int16_t*>(fixedCells(b, first, count, *options_.fixedPoint, fixed_));
+        else
+            data = const_cast<float*>(floatCells(b, first, count, replaceNan, nodataF, buffer_));
+        GDALRasterBand* out = ds_->GetRasterBand(static_cast<int>(i) + 1);
+        const int w = static_cast<int>(width_), h = static_cast<int>(rows);
+        CPLErr err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), w, h, data, w, h, type_, 0, 0);
+        if (err == CE_None && direct_) err = out->FlushCache(false);
+        if (err != CE_None) std::rethrow_exception(fail("band " + std::to_string(i + 1)));
+    }
+
+    /// A COG's overviews (each band by its own method, unless the user chose them) and the
+    /// compressed copy: most of its write.
+    void copyToCog(GDALDriver* driver) {
+        constexpr double kOverviewShare = 0.3;
+        if (!overviewsChosenByUser(options_) &&
+            buildOverviewsPerBand(*ds_, bands_, cogOverviewFactors(width_, height_, options_), progress_, fillShare(),
+                                  fillShare() + kOverviewShare) != CE_None)
+            std::rethrow_exception(fail("overviews"));
+        WriteProgress::Span span{&progress_, fillShare() + kOverviewShare, 1.0};
+        DatasetPtr cog(driver->CreateCopy(tmp_.path().c_str(), ds_.get(), FALSE, coList_.List(),
+                                          WriteProgress::gdalCallback, &span));
+        if (!cog) std::rethrow_exception(fail({}));
+        ds_ = std::move(cog);
+    }
+
+    void close() {
+        if (tiles_) {
+            try {
+                tiles_->close();
+            } catch (const Error& e) {
+                std::rethrow_exception(fail({}, e.what()));
+            }
+            return;
+        }
+        GDALClose(GDALDataset::ToHandle(ds_.release()));
+        if (const std::string closeError = detail::takeGdalError(); !closeError.empty()) {
+            const std::string message = writeFailureMessage("'" + path_ + "'", tmp_.path(), closeError);
+            tmp_.discard();
+            throw Error(message);
+        }
+    }
+
+    double fillShare() const { return direct_ ? 1.0 : 0.1; }
+
+    const std::string& path_;
+    const std::vector<OutputBand>& bands_;
+    const WriteOptions& options_;
+    const GDALDataType type_;
+    const std::vector<std::string>& co_;
+    TemporaryFile tmp_;
+    const bool direct_;
+    WriteProgress progress_;
+    std::size_t width_ = 0, height_ = 0;
+    std::size_t stripRows_ = kWriteStripRows;
+    CPLStringList coList_;
+    DatasetPtr ds_;
+    std::optional<detail::TileWriter> tiles_;
+    std::vector<float> buffer_;
+    std::vector<std::int16_t> fixed_;
+};
+
+}  // namespace
+
 void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
                  const GeoReference& ref, const WriteOptions& options,
                  const std::string& inputPath) {
@@ -608,180 +808,11 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     GDALDriver* driver = checkedDriver(options);
     checkOutputFile(path);
     checkRasterPath(path);
-
     checkNotInput(path, inputPath);
-
     const GDALDataType type = storedType(bands, options);
-    const auto shapeOf = [](const OutputBand& b) {
-        return b.values ? std::pair(b.values->width(), b.values->height())
-                        : std::pair(b.mask->width(), b.mask->height());
-    };
-    const auto [width, height] = shapeOf(bands.front());
-    for (const auto& b : bands) {
-        if (!b.values && !b.mask) throw Error("internal: output band '" + b.description + "' is empty");
-        if (shapeOf(b) != std::pair(width, height))
-            throw Error("internal: output bands of '" + path + "' differ in size");
-    }
-
+    bandsShape(path, bands);
     const std::vector<std::string> co = creationOptions(options, type);
-    CPLStringList coList;
-    for (const auto& kv : co) coList.AddString(kv.c_str());
-    // Float32 or Int16 GTiff at the default layout: GDAL writes the directory of a file without
-    // tiles, detail::TileWriter encodes and appends the tiles (demlight/geo/tiff_tiles.h). (libtiff opens
-    // local files only, not GDAL's virtual ones.)
-    std::optional<detail::TileEncoding> ownTiles;
-    if (options.format == "GTiff" && (type == GDT_Float32 || type == GDT_Int16) && detail::encodeTiles &&
-        !isGdalVirtualPath(path))
-        ownTiles = detail::tileEncoding(co, type == GDT_Float32 ? detail::TileSamples::Float32
-                                                                : detail::TileSamples::Int16);
-    if (ownTiles) coList.AddString("SPARSE_OK=TRUE");
-
-    // Write under a temporary name in the same folder and rename on success, so a failed or
-    // interrupted run never leaves a partial file at `path`.
-    TemporaryFile tmp(path);
-    const bool direct = options.format == "GTiff";
-    // (The COG driver's own scratch files, when it builds overviews or reprojects itself, go
-    // beside its output: into the temporary file's private folder, removed with it.)
-    WriteProgress progress(options.progress);
-    detail::takeGdalError();
-
-    DatasetPtr ds;
-    std::optional<detail::TileWriter> tiles;
-    // Ends the write: the datasets (or the tile writer) closed, every temporary file removed;
-    // Cancelled when the caller asked to stop, else an Error naming the cause, the tile writer's
-    // `reason` or GDAL's (thrown by std::rethrow_exception, so that a Cancelled keeps its type).
-    const auto fail = [&](const std::string& what, std::string reason = {}) {
-        ds.reset();
-        tiles.reset();
-        if (const std::string gdal = detail::takeGdalError(); reason.empty()) reason = gdal;
-        if (progress.stopped()) {
-            tmp.discard();
-            return std::make_exception_ptr(Cancelled());
-        }
-        const std::string message =
-            writeFailureMessage((what.empty() ? "" : what + " of ") + "'" + path + "'", tmp.path(), reason);
-        tmp.discard();
-        return std::make_exception_ptr(Error(message));
-    };
-
-    // GTiff is created directly and filled from the grids; COG can only be made by CreateCopy,
-    // so it is staged in a MEM dataset first.
-    if (direct) {
-        ds.reset(driver->Create(tmp.path().c_str(), static_cast<int>(width), static_cast<int>(height),
-                                static_cast<int>(bands.size()), type, coList.List()));
-        if (!ds) std::rethrow_exception(fail({}));
-    } else {
-        GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-        ds.reset(mem->Create("", static_cast<int>(width), static_cast<int>(height),
-                             static_cast<int>(bands.size()), type, nullptr));
-    }
-    describeDataset(*ds, ref, options, bands, type);
-    std::size_t stripRows = kWriteStripRows;
-    if (ownTiles) {
-        // Closed before any cell: GDAL writes the directory with every tile offset zero.
-        ds.reset();
-        if (const std::string closeError = detail::takeGdalError(); !closeError.empty())
-            std::rethrow_exception(fail({}));
-        try {
-            tiles.emplace(tmp.path(), width, height, bands.size(), *ownTiles);
-        } catch (const Error& e) {
-            std::rethrow_exception(fail({}, e.what()));
-        }
-        // Four strips of whole tile rows per batch when they take at most 16 MB: a 1201-wide band
-        // has five tiles a row, which two threads share unevenly one row at a time.
-        const std::size_t tileH = tiles->tileHeight();
-        const std::size_t strip = tileH * std::max<std::size_t>(1, kWriteStripRows / tileH);
-        constexpr std::size_t kBatchStrips = 4, kBatchBytes = std::size_t{16} << 20;
-        stripRows = kBatchStrips * strip * width * sizeof(float) <= kBatchBytes ? kBatchStrips * strip : strip;
-    }
-
-    // Shares of the whole write, for progress: GTiff's bands are all of it; a COG's staging is
-    // quick, its overviews and the compressed copy are most.
-    const double fillShare = direct ? 1.0 : 0.1;
-    const double overviewShare = direct ? 0.0 : 0.3;
-    const std::size_t strips = (height + stripRows - 1) / stripRows;
-    const auto fillProgress = [&](std::size_t band, std::size_t strip) {
-        return fillShare * static_cast<double>(band * strips + strip) / static_cast<double>(bands.size() * strips);
-    };
-
-    const bool replaceNan = !std::isnan(options.nodata);
-    const auto nodataF = static_cast<float>(options.nodata);
-    std::vector<float> buffer;
-    std::vector<std::int16_t> fixedBuffer;
-    for (std::size_t i = 0; i < bands.size(); ++i) {
-        const OutputBand& b = bands[i];
-        GDALRasterBand* out = ds ? ds->GetRasterBand(static_cast<int>(i) + 1) : nullptr;
-        // In strips of whole tile rows, each flushed to the file before the next (the GTiff
-        // compresses and writes those tiles then, not all at the close): a full disk shows at
-        // the strip that meets it, and a request to stop is seen within a strip. A band that
-        // needs converting (a mask, or NaN to the nodata value) goes through a strip-sized
-        // buffer that stays in cache, not a copy of the whole band.
-        for (std::size_t s = 0; s < strips; ++s) {
-            if (!progress.report(fillProgress(i, s))) std::rethrow_exception(fail({}));
-            const std::size_t r0 = s * stripRows;
-            const std::size_t rows = std::min(stripRows, height - r0);
-            if (tiles) {
-                const void* data = type == GDT_Int16
-                                       ? static_cast<const void*>(fixedCells(b, r0 * width, rows * width,
-                                                                             *options.fixedPoint, fixedBuffer))
-                                       : floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
-                try {
-                    tiles->writeRows(i, r0, rows, data);
-                } catch (const Error& e) {
-                    std::rethrow_exception(fail("band " + std::to_string(i + 1), e.what()));
-                }
-                continue;
-            }
-            CPLErr err;
-            if (type == GDT_Byte) {
-                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
-                                    const_cast<std::uint8_t*>(b.mask->rowPtr(r0)), static_cast<int>(width),
-                                    static_cast<int>(rows), GDT_Byte, 0, 0);
-            } else if (type == GDT_Int16) {
-                const std::int16_t* data = fixedCells(b, r0 * width, rows * width, *options.fixedPoint, fixedBuffer);
-                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
-                                    const_cast<std::int16_t*>(data), static_cast<int>(width), static_cast<int>(rows),
-                                    GDT_Int16, 0, 0);
-            } else {
-                const float* data = floatCells(b, r0 * width, rows * width, replaceNan, nodataF, buffer);
-                err = out->RasterIO(GF_Write, 0, static_cast<int>(r0), static_cast<int>(width), static_cast<int>(rows),
-                                    const_cast<float*>(data), static_cast<int>(width), static_cast<int>(rows),
-                                    GDT_Float32, 0, 0);
-            }
-            if (err == CE_None && direct) err = out->FlushCache(false);
-            if (err != CE_None)
-                std::rethrow_exception(fail("band " + std::to_string(i + 1)));
-        }
-    }
-
-    if (!direct) {
-        if (!overviewsChosenByUser(options) &&
-            buildOverviewsPerBand(*ds, bands, cogOverviewFactors(width, height, options), progress, fillShare,
-                                  fillShare + overviewShare) != CE_None)
-            std::rethrow_exception(fail("overviews"));
-        WriteProgress::Span span{&progress, fillShare + overviewShare, 1.0};
-        DatasetPtr cog(driver->CreateCopy(tmp.path().c_str(), ds.get(), FALSE, coList.List(),
-                                          WriteProgress::gdalCallback, &span));
-        if (!cog) std::rethrow_exception(fail({}));
-        ds = std::move(cog);
-    }
-    if (tiles) {
-        try {
-            tiles->close();
-        } catch (const Error& e) {
-            std::rethrow_exception(fail({}, e.what()));
-        }
-    } else {
-        GDALClose(GDALDataset::ToHandle(ds.release()));
-        const std::string closeError = detail::takeGdalError();
-        if (!closeError.empty()) {
-            const std::string message = writeFailureMessage("'" + path + "'", tmp.path(), closeError);
-            tmp.discard();
-            throw Error(message);
-        }
-    }
-    // A request to stop that comes now finds the file complete: it is kept.
-    tmp.commit();
+    RasterWrite(path, bands, options, type, co).run(driver, ref);
 }
 
 std::string blockSizeProblem(const std::string& option) {
