@@ -62,3 +62,12 @@ if [ "$profile" != default ]; then
   exit 0
 fi
 "$qgis_process" plugins enable demlight_processing 2>&1 | grep -v -e "^QStandardPaths" -e "DeprecationWarning" || true
+
+# Debian 12's wrapper adds QGIS_OPTS from /etc/default/qgis (--noversioncheck), which
+# qgis_process 3.22 refuses ("Command --noversioncheck not known!"): say what works instead.
+if [ "$qgis_process" != "$(command -v qgis_process || true)" ] && [ -r /etc/default/qgis ] &&
+   grep -q -- "--noversioncheck" /etc/default/qgis; then
+  echo "note: Debian's qgis_process wrapper fails here (it passes --noversioncheck, which qgis_process"
+  echo "      refuses); run the program it wraps instead, e.g.:"
+  echo "      $qgis_process run demlight:sun -- INPUT=dem.tif TIME=2024-06-21T09:00 TZ=Europe/Zurich OUTPUT=sun.tif"
+fi

@@ -10,7 +10,7 @@ from qgis.core import (QgsProcessingAlgorithm, QgsProcessingException, QgsProces
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
                        QgsProcessingParameterRasterLayer, QgsProcessingParameterString)
 
-from . import cli
+from . import cli, styles
 
 #: The CLI's positional argument (the DEM, or sequence's FIT raster) and -o.
 INPUT = "INPUT"
@@ -140,10 +140,11 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         return QgsProcessingParameterString(name, label, option["default"], False, optional)
 
     def _arguments(self, parameters, context):
-        """The CLI command line for `parameters`; options left at the CLI's default are not
-        passed, so the command is the one a user would type."""
+        """The CLI command line for `parameters`, the outputs it writes and the input raster's
+        source; options left at the CLI's default are not passed, so the command is the one a
+        user would type."""
         args = [self._executable, self._command["name"]]
-        outputs = {}
+        outputs, source = {}, None
         for option in self._command["options"]:
             if option["name"] in _POINT_QUERY:
                 continue
@@ -153,6 +154,7 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                 if layer is None:
                     raise QgsProcessingException(f"{INPUT}: cannot open {parameters.get(name)!r} as a raster")
                 args.append(layer.source())
+                source = layer.source()
                 continue
             flag = _spelling(option)
             if option["name"] == _OUTPUT_OPTION:
@@ -191,10 +193,10 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                     args += [flag, item]  # repeatable: one value per use
             else:
                 args += [flag] + value.split()
-        return args, outputs
+        return args, outputs, source
 
     def processAlgorithm(self, parameters, context, feedback):
-        args, outputs = self._arguments(parameters, context)
+        args, outputs, source = self._arguments(parameters, context)
         feedback.pushCommandInfo(shlex.join(args))  # quoted: the log's line pastes into a shell
         stage = [None]
 
@@ -214,8 +216,20 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         if code != 0:
             errors = [m for m in messages if m.startswith(cli.ERROR_PREFIX)] or messages
             raise QgsProcessingException("\n".join(errors) or f"demlight exited with code {code}")
+        self._name_and_style(outputs[OUTPUT], source, context)
         outputs.update(self._companions(outputs[OUTPUT]))
         return outputs
+
+    def _name_and_style(self, path, source, context):
+        """The raster QGIS loads when the algorithm ends is named after the command and its input
+        ("sun – fuji_dem", not "Output raster path") and drawn with the command's style."""
+        if self._command["output"] != "raster" or not context.willLoadLayerOnCompletion(path):
+            return
+        details = context.layerToLoadOnCompletionDetails(path)
+        details.name = styles.layer_name(self.name(), source)
+        details.forceName = True
+        if self.name() in styles.BAND_STYLES:
+            details.setPostProcessor(styles.StylePostProcessor.create(self.name()))
 
     def _companions(self, path):
         """The rasters written with the -o raster, from the metadata items that name them."""

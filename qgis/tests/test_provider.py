@@ -231,3 +231,113 @@ def test_qgis_process_reports_the_cli_error(qgis, dem, tmp_path):
     assert done.returncode != 0
     assert "has no zone" in done.stdout + done.stderr
     assert not list(tmp_path.iterdir())
+
+
+# ---- inside QGIS: loaded layers and the plugin zip --------------------------------------------
+
+# Runs in its own Python (QGIS initialised offscreen): runs demlight:COMMAND as the Processing
+# dialog does (runAndLoadResults: outputs loaded into the project on completion) and prints each
+# loaded layer's name, renderer type, band and classification range as JSON.
+_LOAD_SCRIPT = r"""
+import json, sys
+from qgis.core import QgsApplication, QgsProject
+app = QgsApplication([], False)
+app.initQgis()
+sys.path[:0] = [sys.argv[1], QgsApplication.pkgDataPath() + "/python/plugins"]  # ours; QGIS's processing
+from processing.core.Processing import Processing
+Processing.initialize()
+from demlight_processing.provider import DemlightProvider
+provider = DemlightProvider()  # kept: the registry does not own the Python object
+QgsApplication.processingRegistry().addProvider(provider)
+import processing
+processing.runAndLoadResults("demlight:" + sys.argv[2], json.loads(sys.argv[3]))
+layers = []
+for layer in QgsProject.instance().mapLayers().values():
+    r = layer.renderer()
+    layers.append({"name": layer.name(), "renderer": r.type(), "band": getattr(r, "band", lambda: None)(),
+                   "min": getattr(r, "classificationMin", lambda: None)(),
+                   "max": getattr(r, "classificationMax", lambda: None)()})
+print("LAYERS " + json.dumps(layers))
+"""
+
+
+def _load_in_qgis(command, parameters, tmp_path):
+    if qgis_process_program() is None:
+        pytest.skip("QGIS not installed: install the Debian packages qgis and python3-qgis")
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen", QGIS_CUSTOM_CONFIG_PATH=str(tmp_path / "profile"))
+    env[cli.EXECUTABLE_ENV] = demlight_executable()
+    done = subprocess.run(["/usr/bin/python3", "-c", _LOAD_SCRIPT, os.path.join(REPO, "qgis"), command,
+                           json.dumps(parameters)], env=env, capture_output=True, text=True, timeout=600)
+    lines = [l for l in done.stdout.splitlines() if l.startswith("LAYERS ")]
+    assert done.returncode == 0 and lines, done.stdout + done.stderr
+    return json.loads(lines[-1][len("LAYERS "):])
+
+
+@pytest.mark.parametrize("command, extra, band, value_range", [
+    ("sun", {"TIME": TIME, "TZ": TZ}, 1, (0, 1)),
+    ("sky", {}, 1, (0, 1)),
+    ("irradiance", {"TIME": TIME, "TZ": TZ}, 4, (0, 1000)),
+    ("sunhours", {"DATE": "2024-06-21", "TZ": TZ}, 1, None),
+])
+def test_a_run_loads_a_layer_named_after_the_command_with_its_style(command, extra, band, value_range, dem,
+                                                                     tmp_path):
+    out = tmp_path / f"{command}.tif"
+    layers = _load_in_qgis(command, dict(extra, INPUT=dem, OUTPUT=str(out)), tmp_path)
+    stem = os.path.splitext(os.path.basename(dem))[0]
+    assert [l["name"] for l in layers] == [f"{command} – {stem}"]
+    assert (layers[0]["renderer"], layers[0]["band"]) == ("singlebandpseudocolor", band)
+    if value_range:
+        assert (layers[0]["min"], layers[0]["max"]) == value_range
+    else:  # the range of the values written
+        info = json.loads(subprocess.run(["gdalinfo", "-json", "-mm", str(out)], capture_output=True, text=True,
+                                         check=True).stdout)
+        lo, hi = info["bands"][band - 1]["computedMin"], info["bands"][band - 1]["computedMax"]
+        assert layers[0]["min"] == pytest.approx(lo, abs=1e-3) and layers[0]["max"] == pytest.approx(hi, abs=1e-3)
+
+
+def test_every_style_draws_the_band_its_table_names():
+    import xml.etree.ElementTree as ET
+    pytest.importorskip("qgis.core")
+    from demlight_processing.styles import BAND_STYLES, style_path
+    for command, (band, value_range, _, _) in BAND_STYLES.items():
+        renderer = ET.parse(style_path(command)).getroot().find(".//rasterrenderer")
+        assert renderer.get("type") == "singlebandpseudocolor", command
+        assert int(renderer.get("band")) == band, command
+        if value_range:
+            assert (float(renderer.get("classificationMin")), float(renderer.get("classificationMax"))) == value_range
+
+
+def test_the_plugin_zip_installs_into_a_fresh_profile(tmp_path):
+    """qgis/package.sh's zip, unpacked into a new profile's plugins folder as QGIS's Install
+    from ZIP does, is a plugin QGIS's installer reads without error, and its provider lists the
+    commands once enabled."""
+    program = qgis_process_program()
+    if program is None:
+        pytest.skip("qgis_process not found: install the Debian packages qgis and python3-qgis")
+    package = tmp_path / "demlight_processing.zip"
+    subprocess.run([os.path.join(REPO, "qgis", "package.sh"), str(package)], check=True, capture_output=True)
+    import zipfile
+    with zipfile.ZipFile(package) as z:
+        names = z.namelist()
+        assert "demlight_processing/metadata.txt" in names and "demlight_processing/styles/sun.qml" in names
+        assert not any("__pycache__" in n or n.endswith("/executable") for n in names), names
+        plugins = tmp_path / "config" / "profiles" / "default" / "python" / "plugins"
+        z.extractall(plugins)
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen", QGIS_CUSTOM_CONFIG_PATH=str(tmp_path / "config"))
+    env[cli.EXECUTABLE_ENV] = demlight_executable()
+    check = subprocess.run(["/usr/bin/python3", "-c", r"""
+import sys
+from qgis.core import QgsApplication
+app = QgsApplication([], False)
+app.initQgis()
+sys.path.insert(0, QgsApplication.pkgDataPath() + "/python")  # QGIS's own pyplugin_installer
+from pyplugin_installer.installer_data import Plugins
+plugin = Plugins().getInstalledPlugin("demlight_processing", sys.argv[1], False)
+print("ERROR=" + repr(plugin["error"]) + " VERSION=" + plugin["version_installed"])
+""", str(plugins / "demlight_processing")], env=env, capture_output=True, text=True, timeout=300)
+    version = next(l.split("=", 1)[1].strip() for l in open(os.path.join(REPO, "qgis", "demlight_processing",
+                                                                         "metadata.txt")) if l.startswith("version="))
+    assert f"ERROR='' VERSION={version}" in check.stdout, check.stdout + check.stderr
+    subprocess.run([program, "plugins", "enable", "demlight_processing"], env=env, capture_output=True, timeout=300)
+    listing = subprocess.run([program, "list"], env=env, capture_output=True, text=True, timeout=300).stdout
+    assert "demlight:sun" in listing, listing
