@@ -23,6 +23,7 @@ struct LightOptions {
     std::string albedoRaster, colorRaster, colorEncoding = "auto", cloudShadow;
     std::optional<std::size_t> skyDirections;
     double sunDiameterDeg = kSunDiameterDeg;
+    CanopyRequest canopy;
 };
 
 LightRequest lightRequest(const LightOptions& o) {
@@ -42,6 +43,7 @@ LightRequest lightRequest(const LightOptions& o) {
     r.cloudShadow = o.cloudShadow;
     r.skyDirections = o.skyDirections;
     r.sunDiameterDeg = o.sunDiameterDeg;
+    r.canopy = o.canopy;
     r.search = o.search.request;
     return r;
 }
@@ -100,6 +102,7 @@ void registerLight(CLI::App& app, CliContext& ctx) {
                           "per-channel albedo for interreflection, and the output is albedo x light in three bands "
                           "reflected_r/g/b; excludes --albedo and --albedo-raster");
     cmd->add_option("--cloud-shadow", o->cloudShadow, "Raster multiplying the sun term (band 1, 0-1)");
+    addCanopyOptions(cmd, o->canopy);
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);

@@ -10,6 +10,7 @@
 #include "demlight/lighting/canopy.h"
 #include "demlight/products/insolation.h"
 #include "demlight/products/irradiance.h"
+#include "demlight/products/light.h"
 #include "demlight/products/point.h"
 #include "demlight/products/sun.h"
 #include "demlight/products/sunhours.h"
@@ -154,7 +155,9 @@ TEST(Canopy, TransmissivityOneIsTheGroundAloneAndZeroMakesCrownsWalls) {
             if (inside(kTree, x, y)) {
                 EXPECT_EQ(o(c, r), 0.0f) << c << "," << r;
                 // The crown's flat top (its edge cells slope as steeply as a wall on the bilinear surface).
-                if (inside(kTree, x - 1, y - 1) && inside(kTree, x + 1, y + 1)) EXPECT_GT(w(c, r), 0.99f) << c << "," << r;
+                if (inside(kTree, x - 1, y - 1) && inside(kTree, x + 1, y + 1)) {
+                    EXPECT_GT(w(c, r), 0.99f) << c << "," << r;
+                }
             } else if (!(x > kTree[0] - 1.5 && x < kTree[1] + 1.5 && y > kTree[2] - 1.5 && y < kTree[3] + 1.5)) {
                 EXPECT_NEAR(o(c, r), w(c, r), 1e-6) << c << "," << r;  // beside the crown the normals differ
             }
@@ -232,6 +235,54 @@ TEST(Canopy, SunhoursUnderTheCrownAreTauOfOpenGround) {
     SunhoursRequest stacked = withCanopy;
     stacked.stackDirections = 64;
     EXPECT_THROW(sunhoursProduct(dsm, dsm.whole(), stacked), FieldError);
+}
+
+// light: tau = 1 is the ground and buildings alone (sun and sky); under the crown, with albedo 0
+// (no interreflection, so the sky term is K itself), tau of open ground's light; the sun term
+// alone is the sun product's irradiance under the same canopy.
+TEST(Canopy, LightUnderTheCrownIsTauOfOpenGroundAndTauOneIsTheGroundAlone) {
+    const Scene scene;
+    const DemSource dsm(demFromArray(scene.dsm, sceneRef(), std::nullopt, "box tree"));
+    const DemSource ground(demFromArray(scene.ground, sceneRef(), std::nullopt, "ground"));
+    const MemoryRaster canopy(scene.canopy, sceneRef(), std::nullopt);
+    LightRequest r;
+    r.time = parseZonedInstant("2024-06-21T12:00", "America/Los_Angeles");
+    r.search.threads = 2;
+    r.search.maxDistanceM = 60;
+    r.skyDirections = 16;
+    const Grid<float> bare = lightProduct(ground, ground.whole(), r).band("light").values;
+    LightRequest clear = r;
+    clear.canopy = {canopy.path(), 1.0};
+    const LightResult a = lightProduct(dsm, dsm.whole(), clear);
+    const Grid<float>& x = a.band("light").values;
+    for (std::size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(x.data()[k], bare.data()[k], 1e-5) << k;
+    EXPECT_EQ(a.metadata.at("DEMLIGHT_CANOPY"), canopy.path());
+
+    LightRequest dark = r;
+    dark.albedo = 0.0;
+    const Grid<float> open = lightProduct(ground, ground.whole(), dark).band("light").values;
+    dark.canopy = {canopy.path(), kTau};
+    const Grid<float> under = lightProduct(dsm, dsm.whole(), dark).band("light").values;
+    EXPECT_GT(open(40, 40), 1.0f);  // a noon sun and the open sky
+    EXPECT_NEAR(under(40, 40), kTau * open(40, 40), 1e-4);
+
+    LightRequest sunOnly = r;
+    sunOnly.skyModel = SkyModel::None;
+    sunOnly.canopy = {canopy.path(), kTau};
+    const Grid<float> light = lightProduct(dsm, dsm.whole(), sunOnly).band("light").values;
+    SunRequest sun;
+    sun.time = r.time;
+    sun.search = r.search;
+    sun.canopy = sunOnly.canopy;
+    const Grid<float> irradiance = sunProduct(dsm, dsm.whole(), sun).band("sun_irradiance").values;
+    for (std::size_t k = 0; k < light.size(); ++k) EXPECT_FLOAT_EQ(light.data()[k], irradiance.data()[k]) << k;
+
+    LightRequest hemisphere = sunOnly;
+    hemisphere.skyModel = SkyModel::Hemisphere;
+    EXPECT_THROW(lightProduct(dsm, dsm.whole(), hemisphere), FieldError);
+    LightRequest aperture = sunOnly;
+    aperture.model = SunModel::Aperture;
+    EXPECT_THROW(lightProduct(dsm, dsm.whole(), aperture), FieldError);
 }
 
 TEST(Canopy, OutOfRangeValuesAndPointQueriesAreRefused) {

@@ -132,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCommand{"UnknownCogOption", "horizon {dem} -o {out} --azimuth 90 --of COG -co NOSUCHKEY=1",
                    "invalid creation option for COG"},
         BadCommand{"MistypedCommand", "horizn {dem} -o {out}", "unknown command 'horizn'"}),
-    [](const ::testing::TestParamInfo<BadCommand>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<BadCommand>& p) { return std::string(p.param.name); });
 
 TEST_F(CliBadInput, TimelapseRefusesAMistypedStep) {
     const auto r = runDemlight("timelapse " + kRocky + " -o " + out() +

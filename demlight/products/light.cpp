@@ -1,6 +1,7 @@
 #include "demlight/products/light.h"
 
 #include "demlight/lighting/aperture.h"
+#include "demlight/lighting/canopy.h"
 #include "demlight/lighting/directions.h"
 #include "demlight/lighting/sky.h"
 #include "demlight/lighting/sun_frame.h"
@@ -41,31 +42,73 @@ LightRasters rastersOnTile(const LightRasters& whole, const Dem& dem) {
     return out;
 }
 
+/// f_sky = K / (1 - C (1 - K)) per cell (skyFactor), with the albedo of each cell or one for all.
+Grid<float> skyFactorOf(const Grid<float>& skyK, const Grid<float>* albedo, double constantAlbedo) {
+    Grid<float> out(skyK.width(), skyK.height());
+    for (std::size_t k = 0; k < skyK.size(); ++k) {
+        const float K = skyK.data()[k];
+        out.data()[k] = std::isnan(K) ? K
+                                      : static_cast<float>(skyFactor(K, albedo ? albedo->data()[k] : constantAlbedo));
+    }
+    return out;
+}
+
+/// The sky K of the full surface under a canopy, blended with the ground's (Q = tau Q_G +
+/// (1 - tau) Q_F): the full surface's horizons are raised to hide everything under a crown.
+Grid<float> canopySkyK(const Terrain& surface, const CanopyTerrain& canopy, const Normals& normals,
+                       std::size_t directions, const HorizonParams& hp, double transmissivity, int threads,
+                       ProgressCounter& counter) {
+    SkyAccumulator full(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
+    Grid<float> hidden;
+    sweepDirections(surface, hp, directions, [&](std::size_t i, const HorizonMap& h) {
+        hidden = h.angleDeg;
+        hideUnderCrown(hidden, canopy.underCrown, 90.0f);
+        full.addDirection(i, hidden);
+    }, &counter);
+    SkyAccumulator ground(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
+    sweepDirections(canopy.ground, hp, directions,
+                    [&](std::size_t i, const HorizonMap& h) { ground.addDirection(i, h.angleDeg); }, &counter);
+    Grid<float> k = std::move(full).finish(0.0).skyK;
+    blendCanopy(k, std::move(ground).finish(0.0).skyK, transmissivity);
+    return k;
+}
+
 LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const SunField& field,
-                         const LightRasters& rasters, const ProgressFn& progress) {
+                         const LightRasters& rasters, const Grid<float>& wholeCanopy, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
     const bool aperture = o.model != SunModel::Horizon;
     const bool colorRaster = !o.colorRaster.empty();
     const bool colour = colorRaster || o.sunColor || o.skyColor;
     const double albedo = o.albedo.value_or(kDefaultAlbedo);
 
-    const Normals normals = computeNormals(t, o.search.threads);
+    std::optional<CanopyTerrain> canopy;
+    if (o.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
+    // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
+    const Terrain& lit = canopy ? canopy->ground : t;
+    const Normals normals = computeNormals(lit, o.search.threads);
     const bool skySweeps = o.skyModel == SkyModel::StewartLanger;
     const std::size_t directions = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t sweeps = skySweeps || aperture ? directions : 0;
     const HorizonParams hp = integralParams(o.search, plan, t, std::max<std::size_t>(directions, 1));
-    ProgressCounter counter(progress, "light", t.heightsM.size() * (sweeps + (aperture ? 0 : 1)));
+    ProgressCounter counter(progress, "light",
+                            t.heightsM.size() * (sweeps + (aperture ? 0 : 1)) * (canopy ? 2 : 1));
 
-    // One pass over the directions feeds the sky and the aperture alike.
+    // One pass over the directions feeds the sky and the aperture alike (without a canopy).
     std::optional<SkyAccumulator> skyAcc;
     std::optional<ApertureAccumulator> apertureAcc;
-    if (skySweeps) skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, o.search.threads);
-    if (aperture) apertureAcc.emplace(normals.east, normals.north, normals.up, directions, o.search.threads);
-    if (sweeps > 0)
-        sweepDirections(t, hp, sweeps, [&](std::size_t i, const HorizonMap& h) {
-            if (skyAcc) skyAcc->addDirection(i, h.angleDeg);
-            if (apertureAcc) apertureAcc->addDirection(i, h.angleDeg);
-        }, &counter);
+    Grid<float> canopyK;
+    if (canopy && skySweeps) {
+        canopyK = canopySkyK(t, *canopy, normals, directions, hp, o.canopy.transmissivity, o.search.threads, counter);
+    } else {
+        if (skySweeps)
+            skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, o.search.threads);
+        if (aperture) apertureAcc.emplace(normals.east, normals.north, normals.up, directions, o.search.threads);
+        if (sweeps > 0)
+            sweepDirections(t, hp, sweeps, [&](std::size_t i, const HorizonMap& h) {
+                if (skyAcc) skyAcc->addDirection(i, h.angleDeg);
+                if (apertureAcc) apertureAcc->addDirection(i, h.angleDeg);
+            }, &counter);
+    }
 
     // Sun term.
     Grid<float> sunIrradiance;
@@ -81,7 +124,11 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
         sunDistanceM = hp.maxDistanceM;  // the aperture is the sky's: the sky's distance
     } else {
         // auto: the distance this sun needs (sunSearchDistanceM); full: the plan's DEM diagonal.
-        SunFrame frame = computeSunFrame(t, normals, field, sunFrameParams(o.search, o.sunDiameterDeg, plan), &counter);
+        const SunFrameParams sp = sunFrameParams(o.search, o.sunDiameterDeg, plan);
+        SunFrame frame = computeSunFrame(t, normals, field, sp, &counter);
+        if (canopy)
+            blendCanopySun(frame, computeSunFrame(lit, normals, field, sp, &counter), canopy->underCrown,
+                           o.canopy.transmissivity);
         sunIrradiance = std::move(frame.light.irradiance);
         sunDistanceM = frame.maxDistanceM;
         sunRegions = frame.sweepRegions;
@@ -91,7 +138,9 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
     std::vector<Grid<float>> sky;
     for (std::size_t c = 0; c < (colorRaster ? 3 : 1); ++c) {
         const Grid<float>* albedoC = colorRaster ? &rasters.color[c] : rasters.albedo.empty() ? nullptr : &rasters.albedo;
-        if (skySweeps) {
+        if (canopy && skySweeps) {
+            sky.push_back(skyFactorOf(canopyK, albedoC, albedo));
+        } else if (skySweeps) {
             sky.push_back((albedoC ? skyAcc->finish(*albedoC) : skyAcc->finish(albedo)).skyFactor);
         } else if (o.skyModel == SkyModel::Hemisphere) {
             HemisphereParams hemi;
@@ -101,7 +150,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
     }
 
     LightTerms terms;
-    terms.heightsM = &t.heightsM;
+    terms.heightsM = &lit.heightsM;
     terms.sunIrradiance = &sunIrradiance;
     terms.cloud = rasters.cloud.empty() ? nullptr : &rasters.cloud;
     for (const auto& s : sky) terms.sky.push_back(&s);
@@ -131,6 +180,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
         {"DEMLIGHT_CLOUD_SHADOW", o.cloudShadow},
         {"DEMLIGHT_SKY_MAX_DISTANCE_M", sweeps > 0 ? metadataDistanceM(t, hp.maxDistanceM) : std::string()},
     });
+    meta.merge(canopyMetadata(o.canopy));
     LightResult out;
     static_cast<ProductResult&>(out) = makeResult(dem, "light", meta);
     out.centreAzimuthDeg = field.centreAzimuthDeg;
@@ -165,6 +215,11 @@ void validateLight(const LightRequest& o) {
                                 " is not a linear radiance >= 0");
     if (o.skyDirections && *o.skyDirections < 1)
         throw FieldError("skyDirections", " " + std::to_string(*o.skyDirections) + ": must be >= 1");
+    validateCanopy(o.canopy);
+    if (o.canopy.any() && o.model != SunModel::Horizon)
+        throw FieldError("canopy", ": applies to the horizon sun model only");
+    if (o.canopy.any() && o.skyModel == SkyModel::Hemisphere)
+        throw FieldError("canopy", ": needs a sky from horizons (the stewart-langer sky, or none), not the hemisphere");
 }
 
 }  // namespace
@@ -196,6 +251,7 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
     // (resampling onto a window's own georeference would round its coordinates differently).
     const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
     const LightRasters rasters = loadRasters(source, request);
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
     std::size_t halo = 0;
     if (!source.isWhole(window)) {
         const double sunDistance =
@@ -207,9 +263,9 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
         halo = haloCellsFor(whole.terrain, std::max(sunDistance, skyDistance));
     }
     return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
-        if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, progress);  // the whole DEM
+        if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, canopy, progress);  // whole DEM
         return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),
-                            progress);
+                            canopy, progress);
     });
 }
 

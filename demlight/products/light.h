@@ -43,6 +43,10 @@ struct LightRequest {
     std::optional<std::size_t> skyDirections;
     double sunDiameterDeg = kSunDiameterDeg;
     Atmosphere atmosphere;
+    /// Vegetation that passes a share of the light (demlight/lighting/canopy.h): the sun and the
+    /// sky are blended from the ground-and-buildings surface and the full one, the sky's K before
+    /// the interreflection. The horizon sun model and the stewart-langer sky only.
+    CanopyRequest canopy;
     SearchRequest search;
 };
 
