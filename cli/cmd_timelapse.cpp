@@ -52,6 +52,7 @@ struct TimelapseOptions {
     ViewCameraOptions camera;
     double sunDiameterDeg = kSunDiameterDeg;
     int fitDegree = 0;
+    CanopyRequest canopy;
     std::size_t maxFrames = 10000;  ///< refuse longer sequences (a typo in --step would write millions)
     bool overwrite = false;         ///< replace the outputs of an earlier time-lapse in the folder
     /// GDAL creation options of every GeoTIFF it writes (--co), over the GTiff defaults.
@@ -283,6 +284,7 @@ TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std:
     r.previews = formats.count("png") || formats.count("mp4") || formats.count("gif");
     r.picture = pictureRequest(o.picture);
     r.fitDegree = o.fitDegree;
+    r.canopy = o.canopy;
     r.search = o.search.request;
     if (o.view) {
         ViewRequest v;
@@ -524,6 +526,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
                     "Also store sun_irradiance as per-cell Legendre polynomials of this degree in "
                     "DIR/sequence_fit.tif (0 = off); read back with demlight sequence")
         ->check(finiteRange(0, 12));
+    addCanopyOptions(cmd, o->canopy);
     addSunDiameterOption(cmd, o->sunDiameterDeg);
     addSearchOptions(cmd, o->search);
     addTilingOptions(cmd, o->tiling);

@@ -14,6 +14,7 @@
 #include "demlight/products/point.h"
 #include "demlight/products/sun.h"
 #include "demlight/products/sunhours.h"
+#include "demlight/products/timelapse.h"
 #include "shared_dem.h"
 #include "demlight/core/angles.h"
 #include "demlight/core/error.h"
@@ -283,6 +284,60 @@ TEST(Canopy, LightUnderTheCrownIsTauOfOpenGroundAndTauOneIsTheGroundAlone) {
     LightRequest aperture = sunOnly;
     aperture.model = SunModel::Aperture;
     EXPECT_THROW(lightProduct(dsm, dsm.whole(), aperture), FieldError);
+}
+
+// timelapse: each frame is the sun product under the same canopy at its instant, and with
+// tau = 1 the sky term is the ground's alone; interpolated horizons refuse a canopy.
+TEST(Canopy, TimelapseFramesAreTheSunProductsAndTauOneSkyIsTheGroundsAlone) {
+    const Scene scene;
+    const DemSource dsm(demFromArray(scene.dsm, sceneRef(), std::nullopt, "box tree"));
+    const DemSource ground(demFromArray(scene.ground, sceneRef(), std::nullopt, "ground"));
+    const MemoryRaster canopy(scene.canopy, sceneRef(), std::nullopt);
+    const ZonedInstant t0 = parseZonedInstant("2024-06-21T08:30", "America/Los_Angeles");
+    TimelapseRequest r;
+    r.frames = instantsBetween(t0, parseZonedInstant("2024-06-21T10:30", "America/Los_Angeles"),
+                               std::chrono::hours(1), 10);
+    r.previews = false;
+    r.search.threads = 2;
+    r.search.maxDistanceM = 60;
+    r.skyDirections = 16;
+    const auto run = [&](const DemSource& dem, const TimelapseRequest& request) {
+        std::vector<ProductResult> frames;
+        Grid<float> skyK;
+        TimelapseSink sink;
+        sink.sky = [&](ProductResult&& s) { skyK = s.bands.at(0).values; };
+        sink.frame = [&](TimelapseFrame&& f) { frames.push_back(std::move(f.lightmap)); };
+        timelapseProduct(dem, dem.whole(), request, sink);
+        return std::pair(std::move(frames), std::move(skyK));
+    };
+    TimelapseRequest withCanopy = r;
+    withCanopy.canopy = {canopy.path(), kTau};
+    const auto [frames, skyK] = run(dsm, withCanopy);
+    ASSERT_EQ(frames.size(), 3u);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        SunRequest sun;
+        sun.time = {r.frames.instants[i], r.frames.zone};
+        sun.search = r.search;
+        sun.canopy = withCanopy.canopy;
+        const SunResult expected = sunProduct(dsm, dsm.whole(), sun);
+        for (const char* band : {"sun_visibility", "sun_irradiance"}) {
+            const Grid<float>& a = frames[i].band(band).values;
+            const Grid<float>& b = expected.band(band).values;
+            for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a.data()[k], b.data()[k]) << i << " " << band << " " << k;
+        }
+        EXPECT_EQ(frames[i].metadata.at("DEMLIGHT_CANOPY"), canopy.path());
+    }
+    EXPECT_NEAR(frames[0].band("sun_visibility").values(40, 40), 0.0, 1e-6 + kTau);  // under the crown
+
+    withCanopy.canopy.transmissivity = 1;
+    const Grid<float> clearSky = run(dsm, withCanopy).second;
+    const Grid<float> bareSky = run(ground, r).second;
+    for (std::size_t k = 0; k < clearSky.size(); ++k) EXPECT_NEAR(clearSky.data()[k], bareSky.data()[k], 1e-6) << k;
+    // Under the crown with tau = 0.2 the sky is tau of the open ground's.
+    EXPECT_NEAR(skyK(40, 40), kTau * bareSky(40, 40), 1e-5);
+
+    withCanopy.stackDirections = 64;
+    EXPECT_THROW(timelapseProduct(dsm, dsm.whole(), withCanopy, TimelapseSink{}), FieldError);
 }
 
 TEST(Canopy, OutOfRangeValuesAndPointQueriesAreRefused) {

@@ -1,5 +1,8 @@
 #include "demlight/products/canopy.h"
 
+#include "demlight/lighting/canopy.h"
+#include "demlight/lighting/directions.h"
+#include "demlight/lighting/sky.h"
 #include "demlight/products/product.h"
 #include "demlight/core/error.h"
 
@@ -21,6 +24,21 @@ CanopyTerrain canopyTerrain(const Terrain& surface, const Grid<float>& wholeCano
     CanopyTerrain out{surface, std::move(g.underCrown)};
     out.ground.heightsM = std::move(g.groundM);
     return out;
+}
+
+Grid<float> canopySkyK(const Terrain& surface, const CanopyTerrain& canopy, const Normals& normals,
+                       std::size_t directions, const HorizonParams& params, double transmissivity,
+                       ProgressCounter* progress) {
+    SkyAccumulator full(normals.east, normals.north, normals.up, directions, SkyPatches{}, params.threads);
+    Grid<float> hidden;
+    sweepDirections(surface, params, directions, [&](std::size_t i, const HorizonMap& h) {
+        hidden = h.angleDeg;
+        hideUnderCrown(hidden, canopy.underCrown, 90.0f);
+        full.addDirection(i, hidden);
+    }, progress);
+    Grid<float> k = std::move(full).finish(0.0).skyK;
+    blendCanopy(k, skyLightK(canopy.ground, normals, directions, params, progress), transmissivity);
+    return k;
 }
 
 std::map<std::string, std::string> canopyMetadata(const CanopyRequest& r) {

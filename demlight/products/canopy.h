@@ -4,8 +4,12 @@
 
 #include "demlight/geo/dem_source.h"
 #include "demlight/lighting/canopy.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/surface.h"
+#include "demlight/core/progress.h"
 #include "demlight/core/terrain.h"
 
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -39,6 +43,13 @@ struct CanopyTerrain {
     Grid<std::uint8_t> underCrown;
 };
 CanopyTerrain canopyTerrain(const Terrain& surface, const Grid<float>& wholeCanopy);
+
+/// The sky light K of a surface under a canopy (Q = tau Q_G + (1 - tau) Q_F): the sky K of the
+/// full surface, its horizons raised to hide everything under a crown, blended with the ground's
+/// (skyLightK on each; `normals` are the ground's). Twice the sweeps of one sky.
+Grid<float> canopySkyK(const Terrain& surface, const CanopyTerrain& canopy, const Normals& normals,
+                       std::size_t directions, const HorizonParams& params, double transmissivity,
+                       ProgressCounter* progress);
 
 /// DEMLIGHT_CANOPY (the raster) and DEMLIGHT_CANOPY_TRANSMISSIVITY; empty without a canopy.
 std::map<std::string, std::string> canopyMetadata(const CanopyRequest& request);

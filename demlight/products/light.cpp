@@ -53,26 +53,6 @@ Grid<float> skyFactorOf(const Grid<float>& skyK, const Grid<float>* albedo, doub
     return out;
 }
 
-/// The sky K of the full surface under a canopy, blended with the ground's (Q = tau Q_G +
-/// (1 - tau) Q_F): the full surface's horizons are raised to hide everything under a crown.
-Grid<float> canopySkyK(const Terrain& surface, const CanopyTerrain& canopy, const Normals& normals,
-                       std::size_t directions, const HorizonParams& hp, double transmissivity, int threads,
-                       ProgressCounter& counter) {
-    SkyAccumulator full(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
-    Grid<float> hidden;
-    sweepDirections(surface, hp, directions, [&](std::size_t i, const HorizonMap& h) {
-        hidden = h.angleDeg;
-        hideUnderCrown(hidden, canopy.underCrown, 90.0f);
-        full.addDirection(i, hidden);
-    }, &counter);
-    SkyAccumulator ground(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
-    sweepDirections(canopy.ground, hp, directions,
-                    [&](std::size_t i, const HorizonMap& h) { ground.addDirection(i, h.angleDeg); }, &counter);
-    Grid<float> k = std::move(full).finish(0.0).skyK;
-    blendCanopy(k, std::move(ground).finish(0.0).skyK, transmissivity);
-    return k;
-}
-
 LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const SunField& field,
                          const LightRasters& rasters, const Grid<float>& wholeCanopy, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;
@@ -98,7 +78,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
     std::optional<ApertureAccumulator> apertureAcc;
     Grid<float> canopyK;
     if (canopy && skySweeps) {
-        canopyK = canopySkyK(t, *canopy, normals, directions, hp, o.canopy.transmissivity, o.search.threads, counter);
+        canopyK = canopySkyK(t, *canopy, normals, directions, hp, o.canopy.transmissivity, &counter);
     } else {
         if (skySweeps)
             skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, o.search.threads);

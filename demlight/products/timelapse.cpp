@@ -3,6 +3,7 @@
 #include "demlight/core/timing.h"
 
 #include "demlight/geo/solar_position.h"
+#include "demlight/lighting/canopy.h"
 #include "demlight/lighting/sequence_fit.h"
 #include "demlight/lighting/sky.h"
 #include "demlight/lighting/sun_frame.h"
@@ -58,11 +59,12 @@ struct SkyTerm {
 };
 
 SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan, const TimelapseRequest& r,
-                std::size_t skyDirections, ProgressCounter& counter) {
+                std::size_t skyDirections, const CanopyTerrain* canopy, ProgressCounter& counter) {
     SkyTerm out;
     out.params = skyTermParams(t, plan, r, skyDirections);
     if (r.stackDirections == 0) {
-        out.skyK = skyLightK(t, normals, skyDirections, out.params, &counter);
+        out.skyK = canopy ? canopySkyK(t, *canopy, normals, skyDirections, out.params, r.canopy.transmissivity, &counter)
+                          : skyLightK(t, normals, skyDirections, out.params, &counter);
         return out;
     }
     out.stack = computeHorizonStack(t, r.stackDirections, out.params, &counter);
@@ -180,10 +182,14 @@ namespace {
 /// DEM when the window is).
 TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const CellWindow& read,
                                  const CellWindow& window, const ScenePlan& plan, std::size_t skyDirections,
-                                 const TimelapseRequest& request, const TimelapseSink& sink,
-                                 const ProgressFn& progress) {
+                                 const TimelapseRequest& request, const Grid<float>& wholeCanopy,
+                                 const TimelapseSink& sink, const ProgressFn& progress) {
     const auto& instants = request.frames.instants;
     const Terrain& t = dem.terrain;
+    std::optional<CanopyTerrain> canopy;
+    if (request.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
+    // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
+    const Terrain& lit = canopy ? canopy->ground : t;
     const bool whole = source.isWhole(window);
     // Onto the window's cells and georeference (a no-op for the whole DEM).
     const CellWindow local{window.col0 - read.col0, window.row0 - read.row0, window.col1 - read.col0,
@@ -201,9 +207,9 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
 
     const auto tStart = Clock::now();
     const std::size_t n = instants.size();
-    ProgressCounter counter(progress, "timelapse", t.heightsM.size() * (skyDirections + n));
-    const Normals normals = computeNormals(t, request.search.threads);
-    const SkyTerm sky = skyTerm(t, normals, plan, request, skyDirections, counter);
+    ProgressCounter counter(progress, "timelapse", t.heightsM.size() * (skyDirections + n) * (canopy ? 2 : 1));
+    const Normals normals = computeNormals(lit, request.search.threads);
+    const SkyTerm sky = skyTerm(t, normals, plan, request, skyDirections, canopy ? &*canopy : nullptr, counter);
 
     TimelapseResult result;
     result.frames = n;
@@ -218,6 +224,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
             {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(t, sky.params.maxDistanceM)},
             {"DEMLIGHT_REFRACTION", formatNumber(sky.params.refraction)},
         });
+        meta.merge(canopyMetadata(request.canopy));
         ProductResult skyResult = makeResult(dem, "timelapse sky", meta);
         skyResult.bands.push_back({"sky_k", "normalised sky irradiance K under a unit uniform sky (0-1)", sky.skyK, {}});
         toWindow(skyResult);
@@ -259,6 +266,9 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
         } else {
             frame = computeSunFrame(t, normals, field, sp, &counter, &buffers);
             out.sunUp = frame.sweepRegions > 0;
+            if (canopy)
+                blendCanopySun(frame, computeSunFrame(lit, normals, field, sp, &counter, &buffers), canopy->underCrown,
+                               request.canopy.transmissivity);
         }
         counter.throwIfCancelled();
         result.sunUp.push_back(out.sunUp);
@@ -325,6 +335,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
                 {"DEMLIGHT_SKY_DIRECTIONS", std::to_string(skyDirections)},
                 {"DEMLIGHT_SKY_MAX_DISTANCE_M", metadataDistanceM(t, sky.params.maxDistanceM)},
             });
+            meta.merge(canopyMetadata(request.canopy));
             out.lightmap = makeResult(dem, "timelapse frame", meta);
             // The same band order as the sun product: visibility, then irradiance.
             out.lightmap.bands = movedBands(
@@ -354,6 +365,9 @@ TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& wind
         throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
     validatePicture(request.picture);
     validateSun(request.sunDiameterDeg, Atmosphere{});
+    validateCanopy(request.canopy);
+    if (request.canopy.any() && request.stackDirections != 0)
+        throw FieldError("canopy", ": needs exact horizons (a sweep per frame on each surface), not interpolated ones");
     source.checkWindow(window);
     if (request.previews && !source.isWhole(window))
         throw FieldError("previews", ": pictures are of the whole DEM; a window or tile of it gets lightmaps only");
@@ -361,13 +375,15 @@ TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& wind
     const std::size_t skyDirections = request.stackDirections > 0
                                           ? request.stackDirections
                                           : request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const Grid<float> canopy = loadCanopy(request.canopy, source);
     if (source.isWhole(window)) {
         const std::shared_ptr<const Dem> dem = source.readWhole();
-        return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, sink, progress);
+        return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, canopy, sink, progress);
     }
     const CellWindow read =
         source.withHalo(window, haloCellsFor(source.geometry().terrain, reachM(source, plan, request, skyDirections)));
-    return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, sink, progress);
+    return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, canopy, sink,
+                            progress);
 }
 
 std::size_t timelapseGridsPerCell(const TimelapseRequest& request) {

@@ -8,6 +8,7 @@
 
 #include "demlight/geo/time.h"
 #include "demlight/lighting/preview.h"
+#include "demlight/products/canopy.h"
 #include "demlight/products/product.h"
 #include "demlight/products/render.h"
 #include "demlight/products/view.h"
@@ -55,6 +56,10 @@ struct TimelapseRequest {
     std::optional<ViewRequest> view;
     /// > 0: also fit sun_irradiance over the frames with per-cell Legendre polynomials.
     int fitDegree = 0;
+    /// Vegetation that passes a share of the light (demlight/lighting/canopy.h): every frame's sun
+    /// and the sky term blended from the ground-and-buildings surface and the full one. Exact
+    /// horizons only (stackDirections 0).
+    CanopyRequest canopy;
     SearchRequest search;
 };
 
