@@ -432,6 +432,17 @@ TEST_P(CanopyOnDsm, LimitsAndTilesHold) {
     const Grid<float> expected = cropGrid(l, w);
     const Grid<float>& got = part.band("sun_visibility").values;
     EXPECT_EQ(std::memcmp(expected.data(), got.data(), expected.size() * sizeof(float)), 0);
+
+    // light's sun and sky under the canopy: the window's bits too.
+    LightRequest light;
+    light.time = r.time;
+    light.search = r.search;
+    light.canopy = r.canopy;
+    light.skyDirections = 8;
+    const Grid<float> wholeLight = lightProduct(dsm, dsm.whole(), light).band("light").values;
+    const Grid<float> partLight = lightProduct(dsm, w, light).band("light").values;
+    const Grid<float> expectedLight = cropGrid(wholeLight, w);
+    EXPECT_EQ(std::memcmp(expectedLight.data(), partLight.data(), expectedLight.size() * sizeof(float)), 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedDems, CanopyOnDsm,
