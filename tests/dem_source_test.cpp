@@ -14,8 +14,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -162,6 +165,105 @@ TEST(DemSource, SharedDemWindowsAreTheDemLoadedWhole) {
     EXPECT_EQ(streamed.meanHeightM(), held.meanHeightM());
     const CellWindow win{1234, 2000, 2345, 3601};
     expectSameDem(streamed.read(win), held.read(win), "N48W125 window");
+}
+
+
+// The opening pass's results kept for later processes (demlight/geo/opening_cache.h): the same
+// bits from the file as from the pass; a changed DEM, a VRT's changed source, other height
+// options or a damaged file run the pass again; small DEMs are not kept.
+class OpeningCacheTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("demlight_opening_cache_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "dem");
+        dem_ = (dir_ / "dem" / "rocky.tif").string();
+        fs::copy_file(kRocky, dem_);
+        cache_.folder = (dir_ / "cache").string();
+        cache_.minCells = 0;
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::vector<fs::path> cacheFiles() const {
+        std::vector<fs::path> out;
+        if (fs::exists(cache_.folder))
+            for (const auto& e : fs::directory_iterator(cache_.folder)) out.push_back(e.path());
+        return out;
+    }
+    /// Rewrites the cache file's "valid" line: a source opened from the file shows the value.
+    void plantValidCount(std::size_t valid) const {
+        const fs::path file = cacheFiles().at(0);
+        std::ifstream in(file);
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string s = text.str();
+        const std::size_t at = s.find("\nvalid ") + 7;
+        s.replace(at, s.find('\n', at) - at, std::to_string(valid));
+        std::ofstream(file, std::ios::trunc) << s;
+    }
+    fs::path dir_;
+    std::string dem_;
+    OpeningCache cache_;
+};
+
+TEST_F(OpeningCacheTest, TheKeptPassGivesThePassBitsAndAChangedDemRunsItAgain) {
+    const DemSource first = DemSource::open(dem_, {}, {}, cache_);
+    ASSERT_EQ(cacheFiles().size(), 1u);
+    EXPECT_EQ(fs::status(cache_.folder).permissions() & fs::perms::all, fs::perms::owner_all);
+    const DemSource second = DemSource::open(dem_, {}, {}, cache_);
+    EXPECT_EQ(std::memcmp(&first.frame()->lowM, &second.frame()->lowM, sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(&first.frame()->highM, &second.frame()->highM, sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(&first.frame()->steepStepShare, &second.frame()->steepStepShare, sizeof(double)), 0);
+    const double meanFirst = first.meanHeightM(), meanSecond = second.meanHeightM();
+    EXPECT_EQ(std::memcmp(&meanFirst, &meanSecond, sizeof(double)), 0);
+    EXPECT_EQ(first.validCells(), second.validCells());
+    EXPECT_EQ(first.geometry().band.nodataCount, second.geometry().band.nodataCount);
+    // Read from the file, not passed again: a planted count shows.
+    plantValidCount(first.validCells() - 7);
+    EXPECT_EQ(DemSource::open(dem_, {}, {}, cache_).validCells(), first.validCells() - 7);
+    // Other height options are another key; no cache, the pass.
+    EXPECT_EQ(DemSource::open(dem_, {"ft", 0}, {}, cache_).validCells(), first.validCells());
+    EXPECT_EQ(DemSource::open(dem_, {}, {}, OpeningCache{}).validCells(), first.validCells());
+    // A DEM written since: its modification time changes the key, and the pass runs again.
+    fs::last_write_time(dem_, fs::last_write_time(dem_) + std::chrono::seconds(5));
+    EXPECT_EQ(DemSource::open(dem_, {}, {}, cache_).validCells(), first.validCells());
+}
+
+TEST_F(OpeningCacheTest, ADamagedFileOrAChangedVrtSourceRunsThePassAgain) {
+    const DemSource first = DemSource::open(dem_, {}, {}, cache_);
+    plantValidCount(first.validCells() - 7);
+    {
+        const fs::path file = cacheFiles().at(0);
+        std::ifstream in(file);
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string s = text.str();
+        s.replace(s.find("\nmean ") + 6, 4, "zz!!");
+        std::ofstream(file, std::ios::trunc) << s;
+    }
+    EXPECT_EQ(DemSource::open(dem_, {}, {}, cache_).validCells(), first.validCells());
+
+    const std::string vrt = (dir_ / "dem" / "mosaic.vrt").string();
+    ASSERT_EQ(std::system(("gdalbuildvrt -q '" + vrt + "' '" + dem_ + "'").c_str()), 0);
+    fs::remove_all(cache_.folder);
+    EXPECT_EQ(DemSource::open(vrt, {}, {}, cache_).validCells(), first.validCells());
+    plantValidCount(first.validCells() - 7);
+    EXPECT_EQ(DemSource::open(vrt, {}, {}, cache_).validCells(), first.validCells() - 7);
+    fs::last_write_time(dem_, fs::last_write_time(dem_) + std::chrono::seconds(5));  // the source, not the VRT
+    EXPECT_EQ(DemSource::open(vrt, {}, {}, cache_).validCells(), first.validCells());
+}
+
+TEST_F(OpeningCacheTest, SmallDemsAndNoFolderKeepNothing) {
+    cache_.minCells = 1u << 30;
+    DemSource::open(dem_, {}, {}, cache_);
+    EXPECT_TRUE(cacheFiles().empty());
+    ::setenv("DEMLIGHT_CACHE_DIR", "", 1);
+    EXPECT_TRUE(OpeningCache::fromEnvironment().folder.empty());
+    ::setenv("DEMLIGHT_CACHE_DIR", "/somewhere", 1);
+    EXPECT_EQ(OpeningCache::fromEnvironment().folder, "/somewhere");
+    ::setenv("DEMLIGHT_CACHE", "off", 1);
+    EXPECT_TRUE(OpeningCache::fromEnvironment().folder.empty());
+    ::unsetenv("DEMLIGHT_CACHE");
+    ::unsetenv("DEMLIGHT_CACHE_DIR");
 }
 
 }  // namespace

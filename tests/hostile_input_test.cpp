@@ -202,8 +202,9 @@ TEST_F(HostileInput, ASignalWhileOpeningAVastDemIsAnsweredAtOnce) {
         EXPECT_EQ(WEXITSTATUS(status), 130) << readText(path("err.txt"));
         EXPECT_NE(readText(path("err.txt")).find("demlight: cancelled"), std::string::npos);
         EXPECT_LT(answeredS, kDeadlineS);
-        if (!underAddressSanitizer())
+        if (!underAddressSanitizer()) {
             EXPECT_LT(static_cast<double>(usage.ru_maxrss) * 1024.0, 400e6) << "peak resident set";
+        }
         EXPECT_FALSE(fs::exists(path("out.tif")));
     }
 }

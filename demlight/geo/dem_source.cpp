@@ -1,5 +1,7 @@
 #include "demlight/geo/dem_source.h"
 
+#include "demlight/geo/opening_cache.h"
+
 #include "demlight/core/error.h"
 
 #include <algorithm>
@@ -7,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 
 namespace demlight {
 
@@ -100,8 +103,11 @@ NodeHeights DemSource::nodeHeights(std::size_t stepCells) const {
     });
 }
 
-DemSource DemSource::open(const std::string& path, const HeightOptions& heights, const ProgressFn& progress) {
-    Dem dem = openDem(path, heights, progress);
+namespace {
+
+/// The pass over the heights in strips of rows: their range, valid count and mean, and the
+/// share of steep steps.
+OpeningPass passOverHeights(const std::string& path, const Dem& dem, const ProgressFn& progress) {
     const std::size_t width = dem.band.width, height = dem.band.height;
     HeightStats stats;
     SteepSteps steps;
@@ -115,15 +121,30 @@ DemSource DemSource::open(const std::string& path, const HeightOptions& heights,
             !progress(static_cast<double>(strip.row1) / static_cast<double>(height), "reading DEM"))
             throw Cancelled();
     }
-    if (stats.valid == 0) throw Error("'" + path + "' holds no heights: every cell is nodata");
+    return {width, height, stats.lo, stats.hi, stats.valid, stats.mean(), steps.share()};
+}
+
+}  // namespace
+
+DemSource DemSource::open(const std::string& path, const HeightOptions& heights, const ProgressFn& progress,
+                          const OpeningCache& cache) {
+    Dem dem = openDem(path, heights, progress);
+    const std::size_t width = dem.band.width, height = dem.band.height;
+    std::optional<OpeningPass> pass = cache.find(path, heights);
+    if (pass && (pass->width != width || pass->height != height)) pass.reset();
+    if (!pass) {
+        pass = passOverHeights(path, dem, progress);
+        if (pass->validCells > 0) cache.keep(path, heights, *pass);
+    }
+    if (pass->validCells == 0) throw Error("'" + path + "' holds no heights: every cell is nodata");
     DemSource s;
     s.derived_ = std::make_shared<Derived>();
     const Terrain& t = dem.terrain;
-    s.frame_ = std::make_shared<const GridFrame>(
-        GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence, stats.lo, stats.hi, steps.share()});
-    s.meanHeightM_ = stats.mean();
-    s.validCells_ = stats.valid;
-    dem.band.nodataCount = width * height - stats.valid;
+    s.frame_ = std::make_shared<const GridFrame>(GridFrame{width, height, t.cellWidthM, t.cellHeightM, t.convergence,
+                                                           pass->lowM, pass->highM, pass->steepStepShare});
+    s.meanHeightM_ = pass->meanHeightM;
+    s.validCells_ = pass->validCells;
+    dem.band.nodataCount = width * height - pass->validCells;
     s.geometry_ = geometryOf(std::move(dem), s.frame_);
     return s;
 }

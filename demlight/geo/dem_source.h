@@ -5,6 +5,7 @@
 #pragma once
 
 #include "demlight/geo/dem.h"
+#include "demlight/geo/opening_cache.h"
 #include "demlight/core/grid.h"
 #include "demlight/core/progress.h"
 
@@ -32,8 +33,10 @@ public:
     /// and mean; the file must stay readable while the source is used. Throws what loadDem
     /// throws (a DEM with no valid cell included). `progress` hears of the opening (openDem) and
     /// of the pass ("reading DEM") when it takes more than one strip (8 Mi cells), and stops
-    /// either (Cancelled) by returning false.
-    static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {});
+    /// either (Cancelled) by returning false. `cache` keeps the pass's results for later
+    /// processes opening the same, unchanged DEM (demlight/geo/opening_cache.h): they skip the pass.
+    static DemSource open(const std::string& path, const HeightOptions& heights = {}, const ProgressFn& progress = {},
+                          const OpeningCache& cache = OpeningCache::fromEnvironment());
     /// Opens the DEM as `open` does but without the pass over its heights, for callers that read
     /// a few small windows with a search distance of their own (point queries given a distance):
     /// the height range is unknown (frame lowM > highM, the relief of a DEM without heights, so

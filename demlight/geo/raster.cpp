@@ -815,6 +815,15 @@ void writeRaster(const std::string& path, const std::vector<OutputBand>& bands,
     RasterWrite(path, bands, options, type, co).run(driver, ref);
 }
 
+std::vector<std::string> rasterFiles(const std::string& path) {
+    const DatasetPtr ds = openRaster(path);
+    std::vector<std::string> out;
+    char** files = ds->GetFileList();
+    for (char** f = files; f && *f; ++f) out.emplace_back(*f);
+    CSLDestroy(files);
+    return out;
+}
+
 std::string blockSizeProblem(const std::string& option) {
     const std::size_t eq = option.find('=');
     if (eq == std::string::npos) return {};

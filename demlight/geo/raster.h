@@ -56,6 +56,11 @@ RasterBand readRasterHeader(const std::string& path);
 /// (NaN for nodata and +-inf). Counts the window's nodata cells into *nodataCount when given.
 Grid<float> readRasterWindow(const std::string& path, const CellWindow& window, std::size_t* nodataCount = nullptr);
 
+/// The files GDAL reads for the raster at `path` (GDALDataset::GetFileList: the file itself, its
+/// sidecars, and a VRT's sources); empty for a dataset that names none (a virtual path GDAL
+/// keeps in memory).
+std::vector<std::string> rasterFiles(const std::string& path);
+
 struct RasterSummary;
 
 /// A one-band Float32 GeoTIFF in GDAL's memory file system (/vsimem/): `values` on `ref`, with
