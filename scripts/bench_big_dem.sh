@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The DEM-larger-than-memory benchmark (docs/performance.md, "A DEM larger than memory"): one
-# whole tiled run of PRODUCT on the 40 000^2 VRT (scripts/make_big_vrt.sh), measured with
+# whole tiled run of PRODUCT on a SIZE^2 VRT (scripts/make_big_vrt.sh; 40 000^2 by default), measured with
 # /usr/bin/time -v, while the one-piece yardstick on the 3601^2 tile the VRT repeats runs in turn
 # beside it, so that both see the same machine. Prints peak RSS, wall, CPU (user + sys) and CPU
 # per cell of each, the yardstick as the median of its runs, and their ratio (the tiling overhead).
@@ -8,7 +8,8 @@
 # Usage: scripts/bench_big_dem.sh sky|sun [OUT_DIR] [extra demlight options...]
 #   e.g. scripts/bench_big_dem.sh sky /tmp/big --memory-limit 4000
 # Environment: DEMLIGHT (the binary; default build/release/cli/demlight), TILE (default
-# ../shared/data/dem/N48W125_srtm1.tif), TIME (the sun's instant; default 2024-06-21T18:00:00Z).
+# ../shared/data/dem/N48W125_srtm1.tif), TIME (the sun's instant; default 2024-06-21T18:00:00Z),
+# SIZE (the VRT's side in cells; default 40000; e.g. SIZE=100000 for a 10^10-cell DEM).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 product=${1:?usage: bench_big_dem.sh sky|sun [OUT_DIR] [options...]}
@@ -18,8 +19,10 @@ if [[ $# -gt 0 && $1 != -* ]]; then out=$1; shift; fi  # OUT_DIR, unless the opt
 demlight=$(realpath "${DEMLIGHT:-build/release/cli/demlight}")
 tile=$(realpath "${TILE:-../shared/data/dem/N48W125_srtm1.tif}")
 instant=${TIME:-2024-06-21T18:00:00Z}
+size=${SIZE:-40000}
+vrt="$out/big$size.vrt"
 mkdir -p "$out"
-[ -f "$out/big40k.vrt" ] || scripts/make_big_vrt.sh "$tile" "$out/big40k.vrt"
+[ -f "$vrt" ] || scripts/make_big_vrt.sh "$tile" "$vrt" "$size"
 args=()
 [ "$product" = sun ] && args=(--time "$instant")
 
@@ -32,7 +35,7 @@ measure() {
               END {printf "%.2f %.1f %d\n", u+s, w, m}' "$log"
 }
 
-measure "$out/whole.log" "$demlight" "$product" "$out/big40k.vrt" "${args[@]}" "$@" -o "$out/${product}40k.tif" \
+measure "$out/whole.log" "$demlight" "$product" "$vrt" "${args[@]}" "$@" -o "$out/${product}$size.tif" \
   >"$out/whole.txt" &
 whole=$!
 : >"$out/one.txt"
@@ -46,7 +49,7 @@ while [ "$(wc -l <"$out/one.txt")" -lt 3 ]; do
 done
 
 read -r cpu wall rss <"$out/whole.txt"
-cells=$((40000 * 40000))
+cells=$((size * size))
 one_cells=$((3601 * 3601))
 sort -n "$out/one.txt" | awk -v n="$(wc -l <"$out/one.txt")" 'NR == int((n + 1) / 2) {print}' >"$out/one_median.txt"
 read -r ocpu owall orss <"$out/one_median.txt"
@@ -54,7 +57,7 @@ grep -m1 "tiles of up to" "$out/whole.log" || true
 awk -v c="$cpu" -v w="$wall" -v r="$rss" -v n="$cells" -v oc="$ocpu" -v ow="$owall" -v orr="$orss" \
     -v on="$one_cells" -v runs="$(wc -l <"$out/one.txt")" -v p="$product" 'BEGIN {
   printf "| run | peak RSS | wall | CPU (user + sys) | CPU per cell |\n|---|---|---|---|---|\n"
-  printf "| %s, 40 000^2, tiled | %.2f GB | %.0f s | %.0f s | %.0f ns |\n", p, r * 1024 / 1e9, w, c, c / n * 1e9
+  printf "| %s, %d^2, tiled | %.2f GB | %.0f s | %.0f s | %.0f ns |\n", p, sqrt(n), r * 1024 / 1e9, w, c, c / n * 1e9
   printf "| %s, 3601^2 tile, one piece (median of %d) | %.0f MB | %.1f s | %.2f s | %.0f ns |\n", p, runs,
          orr * 1024 / 1e6, ow, oc, oc / on * 1e9
   printf "tiling overhead (CPU per cell): %.2fx\n", (c / n) / (oc / on)
