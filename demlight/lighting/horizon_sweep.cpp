@@ -89,8 +89,13 @@ struct AzimuthTarget {
     double operator()(double col, double row) const { return field ? field(col, row) : azimuthDeg; }
 };
 
+/// Splits w (see sweepRegions) and appends the regions that meet `wanted`; parts of w outside
+/// it are not split further (a region's split depends on the region alone, so the regions that
+/// meet `wanted` are those of splitting the whole of w).
 void splitRegion(const FullGridRef& t, const AzimuthTarget& target, double toleranceDeg, const CellWindow& w,
-                 std::vector<SweepRegion>& out) {
+                 const CellWindow& wanted, std::vector<SweepRegion>& out, std::size_t& examined) {
+    if (w.col1 <= wanted.col0 || wanted.col1 <= w.col0 || w.row1 <= wanted.row0 || wanted.row1 <= w.row0) return;
+    ++examined;
     const double c0 = static_cast<double>(w.col0), c1 = static_cast<double>(w.col1 - 1);
     const double r0 = static_cast<double>(w.row0), r1 = static_cast<double>(w.row1 - 1);
     const double cm = 0.5 * (c0 + c1), rm = 0.5 * (r0 + r1);
@@ -134,8 +139,8 @@ void splitRegion(const FullGridRef& t, const AzimuthTarget& target, double toler
     } else {
         a.row1 = b.row0 = w.row0 + h_ / 2;
     }
-    splitRegion(t, target, toleranceDeg, a, out);
-    splitRegion(t, target, toleranceDeg, b, out);
+    splitRegion(t, target, toleranceDeg, a, wanted, out, examined);
+    splitRegion(t, target, toleranceDeg, b, wanted, out, examined);
 }
 
 /// The output window on the full grid.
@@ -153,11 +158,13 @@ std::vector<SweepRegion> fullGridRegions(const Terrain& terrain, const HorizonPa
 }  // namespace
 
 std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const HorizonParams& params,
-                                                const CellWindow& out) {
+                                                const CellWindow& out, std::size_t* examined) {
     const FullGridRef g = fullGrid(terrain);
     std::vector<SweepRegion> all;
+    std::size_t count = 0;
     splitRegion(g, AzimuthTarget{wrapAzimuthDeg(params.azimuthDeg), params.azimuthAtDeg},
-                effectiveDirectionToleranceDeg(terrain, params), CellWindow{0, 0, g.width, g.height}, all);
+                effectiveDirectionToleranceDeg(terrain, params), CellWindow{0, 0, g.width, g.height}, out, all, count);
+    if (examined) *examined = count;
     std::vector<SweepRegion> clipped;
     for (SweepRegion r : all) {
         r.window = {std::max(r.window.col0, out.col0), std::max(r.window.row0, out.row0),
