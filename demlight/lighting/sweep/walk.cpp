@@ -18,7 +18,7 @@ namespace {
 
 /// How many line steps ahead a block prefetches its heights and output cells (sweepBlock): a
 /// step of a block costs about one memory latency
-/// (docs/measurements.md#lightinghorizon_sweepcpp-kprefetchsteps).
+/// (docs/measurements.md#demlightlightingsweepwalkcpp-kprefetchsteps).
 constexpr long kPrefetchSteps = 4;
 constexpr long kFloatsPerCacheLine = 16;
 
@@ -244,7 +244,7 @@ void sweepBlock(const Terrain& t, const LineGeometry& geo, double invR, double m
         // Fetch the heights and output cells of a step kPrefetchSteps ahead. Along rows (Y-major)
         // each step lands on a new row, a page or more away, which the hardware prefetchers do
         // not follow: without this the sweep spends much of its time waiting on that load
-        // (docs/measurements.md#lightinghorizon_sweepcpp-kprefetchsteps).
+        // (docs/measurements.md#demlightlightingsweepwalkcpp-kprefetchsteps).
         if (const long ahead = m + mStep * kPrefetchSteps; ahead >= mLo && ahead < geo.majorHi) {
             const long aheadBase = geo.base[static_cast<std::size_t>(ahead)];
             const long j0 = std::max(nLo, kBegin + aheadBase - 1);
