@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace demlight::sweep {
@@ -256,6 +260,138 @@ void nearPointRowReweighted(const float* h0, const float* t0, const float* t1, c
     onWidestPath([&]() DEMLIGHT_INLINE { nearPointRowReweightedLoop<Taps>(h0, t0, t1, t2, t3, p, best, begin, end); });
 }
 
+/// A row's taps of the near field: the cell heights h0 of the window's columns and the rows of
+/// each point's taps, with the point's tap count as a constant (on a grid line the taps with
+/// weight are the first two).
+struct RowTaps {
+    const float* h0;
+    long width;
+    void of(const NearPoint& p, const float** tap) const {
+        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * width + p.tapCol[k];
+    }
+    template <class Pass>
+    void pass(const NearPoint& p, Pass&& run) const {
+        const float* tap[4];
+        of(p, tap);
+        if (p.taps == 2) {
+            run(std::integral_constant<int, 2>{}, tap);
+        } else {
+            run(std::integral_constant<int, 4>{}, tap);
+        }
+    }
+};
+
+/// Consecutive points with the same taps (and so the same range) go in one pass, up to four.
+bool sameTaps(const NearPoint& a, const NearPoint& b) {
+    if (a.taps != b.taps) return false;
+    for (int k = 0; k < a.taps; ++k) {
+        if (a.tapCol[k] != b.tapCol[k] || a.tapRow[k] != b.tapRow[k]) return false;
+    }
+    return true;
+}
+
+/// Every point of the stencil over the window columns of its range (ranges[q]) whose taps are
+/// all valid: the vectorised loops, points with the same taps grouped, a lone point paired
+/// with the next lone one where both ranges hold the cell. Cells with a void among a point's
+/// taps are flagged.
+void pointPasses(const RowTaps& taps, const std::vector<NearPoint>& stencil,
+                 const std::vector<std::pair<long, long>>& ranges, float* __restrict best,
+                 std::uint8_t* __restrict flag) {
+    const float* h0 = taps.h0;
+    const auto groupEnd = [&](std::size_t q) {
+        std::size_t next = q + 1;
+        while (next < stencil.size() && next - q < 4 && sameTaps(stencil[q], stencil[next])) ++next;
+        return next;
+    };
+    for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
+        next = groupEnd(q);
+        // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
+        const long begin = ranges[q].first;
+        const long end = ranges[q].second;
+        const NearPoint& p = stencil[q];
+        const std::size_t group = next - q;
+        // A point alone, followed by another alone with as many taps: the two in one pass where
+        // both ranges hold the cell, each alone on the rest of its range (in the same order).
+        if (group == 1 && next < stencil.size() && groupEnd(next) == next + 1 && stencil[next].taps == p.taps) {
+            const NearPoint& pb = stencil[next];
+            const long beginB = ranges[next].first, endB = ranges[next].second;
+            const long both0 = std::max(begin, beginB), both1 = std::max(both0, std::min(end, endB));
+            // One point alone on [b0, b1).
+            const auto single = [&](const NearPoint& pt, long b0, long b1) {
+                if (b0 >= b1) return;
+                taps.pass(pt, [&](auto n, const float* const* tap) {
+                    nearPointRow<decltype(n)::value>(h0, tap[0], tap[1], tap[2], tap[3], &pt, best, flag, b0, b1);
+                });
+            };
+            // Cells before the shared range, then the shared range, then after it: a cell's
+            // points still come a then b.
+            single(p, begin, std::min(end, both0));
+            single(pb, beginB, std::min(endB, both0));
+            if (both0 < both1) {
+                const float* ta[4];
+                const float* tb[4];
+                taps.of(p, ta);
+                taps.of(pb, tb);
+                if (p.taps == 2) {
+                    nearPointPairRow<2>(h0, ta, tb, p, pb, best, flag, both0, both1);
+                } else {
+                    nearPointPairRow<4>(h0, ta, tb, p, pb, best, flag, both0, both1);
+                }
+            }
+            single(p, std::max(begin, both1), end);
+            single(pb, std::max(beginB, both1), endB);
+            next = next + 1;
+            continue;
+        }
+        if (begin >= end) continue;
+        taps.pass(p, [&](auto n, const float* const* tap) {
+            constexpr int kTaps = decltype(n)::value;
+            switch (group) {
+            case 1: nearPointRow<kTaps>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 2: nearPointRow<kTaps, 2>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            case 3: nearPointRow<kTaps, 3>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            default: nearPointRow<kTaps, 4>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
+            }
+        });
+    }
+}
+
+/// Cells of [fastBegin, fastEnd) (inside every point's range) with a void among their taps:
+/// every point again by the reference's rule, vectorised over runs of such cells (a run bridges
+/// up to kRunGap unflagged cells, whose values it does not use). A nodata cell is flagged by its
+/// own height; it has no horizon, so it is no part of a run.
+void reweightVoidRuns(const RowTaps& taps, const std::vector<NearPoint>& stencil, long fastBegin, long fastEnd,
+                      std::size_t cols, std::uint8_t* __restrict flag, std::vector<float>& out) {
+    const float* h0 = taps.h0;
+    for (long i = fastBegin; i < fastEnd; ++i) flag[i] = flag[i] && h0[i] == h0[i];
+    thread_local std::vector<float> reweighted;
+    reweighted.resize(cols);
+    float* __restrict rwBest = reweighted.data();
+    constexpr long kRunGap = 16;
+    for (long i = fastBegin; i < fastEnd; ++i) {
+        // Most cells have no void among their taps: skip their flags eight at a time (a flag at a
+        // time cost the dune-edge surface model's near field 1.48 -> 1.57x at 37 deg, measured).
+        for (std::uint64_t eight; i + 8 <= fastEnd && (std::memcpy(&eight, flag + i, 8), eight == 0);) i += 8;
+        if (i == fastEnd) break;  // flag[fastEnd] is an edge cell's (or past the row)
+        if (!flag[i]) continue;
+        long last = i;
+        for (long c = i + 1; c < fastEnd && c - last <= kRunGap; ++c) {
+            if (flag[c]) last = c;
+        }
+        const long runEnd = last + 1;
+        std::fill(rwBest + i, rwBest + runEnd, -std::numeric_limits<float>::infinity());
+        for (const NearPoint& p : stencil) {
+            taps.pass(p, [&](auto n, const float* const* tap) {
+                nearPointRowReweighted<decltype(n)::value>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
+            });
+        }
+        for (long c = i; c < runEnd; ++c) {
+            if (flag[c]) out[static_cast<std::size_t>(c)] = rwBest[c];
+        }
+        i = last;
+    }
+}
+
 }  // namespace
 
 /// Near-field slopes of the window cells [w.col0, w.col1) of full-grid row `row` into `out`
@@ -296,117 +432,10 @@ void nearFieldRow(const Terrain& t, const FullGridRef& g, const CellWindow& cell
         fastEnd = std::min(fastEnd, end);
     }
     fastEnd = std::max(fastEnd, fastBegin);
-    float* __restrict best = out.data();
-    std::uint8_t* __restrict flag = bad.data();
-    // Runs `pass` for point p with its taps' rows and its tap count as a constant (on a grid line
-    // the taps with weight are the first two).
-    const auto tapsOf = [&](const NearPoint& p, const float** tap) {
-        for (int k = 0; k < 4; ++k) tap[k] = h0 + p.tapRow[k] * static_cast<long>(W) + p.tapCol[k];
-    };
-    const auto pointPass = [&](const NearPoint& p, auto&& pass) {
-        const float* tap[4];
-        tapsOf(p, tap);
-        if (p.taps == 2) {
-            pass(std::integral_constant<int, 2>{}, tap);
-        } else {
-            pass(std::integral_constant<int, 4>{}, tap);
-        }
-    };
-    // Consecutive points with the same taps (and so the same range) in one pass, up to four.
-    const auto sameTaps = [](const NearPoint& a, const NearPoint& b) {
-        if (a.taps != b.taps) return false;
-        for (int k = 0; k < a.taps; ++k) {
-            if (a.tapCol[k] != b.tapCol[k] || a.tapRow[k] != b.tapRow[k]) return false;
-        }
-        return true;
-    };
-    const auto groupEnd = [&](std::size_t q) {
-        std::size_t next = q + 1;
-        while (next < stencil.size() && next - q < 4 && sameTaps(stencil[q], stencil[next])) ++next;
-        return next;
-    };
-    for (std::size_t q = 0, next = 0; q < stencil.size(); q = next) {
-        next = groupEnd(q);
-        // Plain names, not a structured binding: clang 14 (the sanitizer build) cannot capture one.
-        const long begin = ranges[q].first;
-        const long end = ranges[q].second;
-        const NearPoint& p = stencil[q];
-        const std::size_t group = next - q;
-        // A point alone, followed by another alone with as many taps: the two in one pass where
-        // both ranges hold the cell, each alone on the rest of its range (in the same order).
-        if (group == 1 && next < stencil.size() && groupEnd(next) == next + 1 && stencil[next].taps == p.taps) {
-            const NearPoint& pb = stencil[next];
-            const long beginB = ranges[next].first, endB = ranges[next].second;
-            const long both0 = std::max(begin, beginB), both1 = std::max(both0, std::min(end, endB));
-            // One point alone on [b0, b1).
-            const auto single = [&](const NearPoint& pt, long b0, long b1) {
-                if (b0 >= b1) return;
-                pointPass(pt, [&](auto taps, const float* const* tap) {
-                    nearPointRow<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], &pt, best, flag, b0, b1);
-                });
-            };
-            // Cells before the shared range, then the shared range, then after it: a cell's
-            // points still come a then b.
-            single(p, begin, std::min(end, both0));
-            single(pb, beginB, std::min(endB, both0));
-            if (both0 < both1) {
-                const float* ta[4];
-                const float* tb[4];
-                tapsOf(p, ta);
-                tapsOf(pb, tb);
-                if (p.taps == 2) {
-                    nearPointPairRow<2>(h0, ta, tb, p, pb, best, flag, both0, both1);
-                } else {
-                    nearPointPairRow<4>(h0, ta, tb, p, pb, best, flag, both0, both1);
-                }
-            }
-            single(p, std::max(begin, both1), end);
-            single(pb, std::max(beginB, both1), endB);
-            next = next + 1;
-            continue;
-        }
-        if (begin >= end) continue;
-        pointPass(p, [&](auto taps, const float* const* tap) {
-            constexpr int kTaps = decltype(taps)::value;
-            switch (group) {
-            case 1: nearPointRow<kTaps>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            case 2: nearPointRow<kTaps, 2>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            case 3: nearPointRow<kTaps, 3>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            default: nearPointRow<kTaps, 4>(h0, tap[0], tap[1], tap[2], tap[3], &p, best, flag, begin, end); break;
-            }
-        });
-    }
-    // Cells inside every point's range with a void among their taps: every point again by the
-    // reference's rule, vectorised over runs of such cells (a run bridges up to kRunGap unflagged
-    // cells, whose values it does not use). A nodata cell is flagged by its own height; it has
-    // no horizon, so it is no part of a run.
-    for (long i = fastBegin; i < fastEnd; ++i) flag[i] = flag[i] && h0[i] == h0[i];
-    thread_local std::vector<float> reweighted;
-    reweighted.resize(cols);
-    float* __restrict rwBest = reweighted.data();
-    constexpr long kRunGap = 16;
-    for (long i = fastBegin; i < fastEnd; ++i) {
-        // Most cells have no void among their taps: skip their flags eight at a time (a flag at a
-        // time cost the dune-edge surface model's near field 1.48 -> 1.57x at 37 deg, measured).
-        for (std::uint64_t eight; i + 8 <= fastEnd && (std::memcpy(&eight, flag + i, 8), eight == 0);) i += 8;
-        if (i == fastEnd) break;  // flag[fastEnd] is an edge cell's (or past the row)
-        if (!flag[i]) continue;
-        long last = i;
-        for (long c = i + 1; c < fastEnd && c - last <= kRunGap; ++c) {
-            if (flag[c]) last = c;
-        }
-        const long runEnd = last + 1;
-        std::fill(rwBest + i, rwBest + runEnd, -std::numeric_limits<float>::infinity());
-        for (const NearPoint& p : stencil) {
-            pointPass(p, [&](auto taps, const float* const* tap) {
-                nearPointRowReweighted<decltype(taps)::value>(h0, tap[0], tap[1], tap[2], tap[3], p, rwBest, i, runEnd);
-            });
-        }
-        for (long c = i; c < runEnd; ++c) {
-            if (flag[c]) out[static_cast<std::size_t>(c)] = rwBest[c];
-        }
-        i = last;
-    }
+    const RowTaps taps{h0, static_cast<long>(W)};
+    std::uint8_t* flag = bad.data();
+    pointPasses(taps, stencil, ranges, out.data(), flag);
+    reweightVoidRuns(taps, stencil, fastBegin, fastEnd, cols, flag, out);
     // The cells outside [fastBegin, fastEnd), near the DEM's edge: the points whose taps leave
     // the terrain by the reference's rule (clamped, ending where the ray leaves the grid), the
     // others as taken above; next to a void, every point by that rule.
