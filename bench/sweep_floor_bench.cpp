@@ -36,7 +36,7 @@
 #include <vector>
 
 #if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
-// As in demlight/lighting/horizon_sweep.cpp: GCC 12 reports its intrinsics' deliberately undefined start
+// As in demlight/core/avx512.h: GCC 12 reports its intrinsics' deliberately undefined start
 // values as maybe uninitialized where they are inlined.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -120,6 +122,23 @@ TEST(ParallelFor, VisitsEveryIndexOnce) {
     std::vector<std::atomic<int>> hits(1000);
     parallelFor(0, hits.size(), 2, [&](std::size_t i) { hits[i]++; });
     for (const auto& h : hits) EXPECT_EQ(h.load(), 1);
+}
+
+// A run enters its thread pool once (withThreads); loops inside it run on that pool's threads,
+// not on a pool of their own per loop.
+TEST(ParallelFor, RunsOnTheThreadsOfTheRunItIsCalledIn) {
+    if (resolveThreadCount(0) < 2) GTEST_SKIP() << "needs two cores";
+    for (const int asked : {0, 2}) {
+        std::atomic<int> onOtherThreads{0};
+        withThreads(1, [&] {
+            const std::thread::id caller = std::this_thread::get_id();
+            parallelFor(0, 64, asked, [&](std::size_t) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                if (std::this_thread::get_id() != caller) ++onOtherThreads;
+            });
+        });
+        EXPECT_EQ(onOtherThreads.load(), 0) << asked;
+    }
 }
 
 TEST(ProgressCounter, CancelStopsWork) {

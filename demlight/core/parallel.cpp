@@ -25,13 +25,31 @@ void parallelFor(std::size_t begin, std::size_t end, int threads,
         for (std::size_t i = begin; i < end; ++i) body(i);
         return;
     }
-    tbb::task_arena arena(n);
-    arena.execute([&] {
+    const auto loop = [&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, std::max<std::size_t>(grain, 1)),
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               for (std::size_t i = r.begin(); i < r.end(); ++i) body(i);
                           });
-    });
+    };
+    // The caller's arena (the process's default one, or one a run entered once for its thread
+    // count) when it runs no more threads than asked: an arena made per call costs its set-up
+    // and its workers' start on every loop, and a sweep runs two loops per region.
+    if (n >= tbb::this_task_arena::max_concurrency()) {
+        loop();
+        return;
+    }
+    tbb::task_arena arena(n);
+    arena.execute(loop);
+}
+
+void withThreads(int threads, const std::function<void()>& run) {
+    const int n = std::min(resolveThreadCount(threads), tbb::info::default_concurrency());
+    if (n == tbb::this_task_arena::max_concurrency()) {
+        run();
+        return;
+    }
+    tbb::task_arena arena(n);
+    arena.execute(run);
 }
 
 }  // namespace demlight

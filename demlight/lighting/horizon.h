@@ -168,11 +168,13 @@ std::vector<SweepRegion> sweepRegions(const Terrain& terrain, const HorizonParam
 
 /// The regions of a terrain's full grid (Terrain::frame, or the terrain itself): the full grid
 /// split as a whole (so that every tile cut from it gives each cell the same direction) and
-/// clipped to `window`, all in full-grid coordinates. sweepRegions() is this for the output
-/// window, moved to the terrain's coordinates; the sweep runs on these. Plans that must not
-/// depend on the tile (estimateSweepSteps) use it directly.
+/// clipped to `window`, all in full-grid coordinates. Only the parts of the split that meet
+/// `window` are split further, so a window's regions cost its own extent, not the full grid's
+/// (`examined`, when given, receives the number of regions whose error was evaluated).
+/// sweepRegions() is this for the output window, moved to the terrain's coordinates; the sweep
+/// runs on these. Plans that must not depend on the tile (estimateSweepSteps) use it directly.
 std::vector<SweepRegion> sweepRegionsOnFullGrid(const Terrain& terrain, const HorizonParams& params,
-                                                const CellWindow& window);
+                                                const CellWindow& window, std::size_t* examined = nullptr);
 
 /// The fast method: upper-convex-hull sweeps along lines parallel to the azimuth (Dozier 1981;
 /// Timonen & Westerholm 2010), O(cells) per region.

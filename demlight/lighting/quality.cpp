@@ -1,6 +1,7 @@
 #include "demlight/lighting/quality.h"
 
 #include "demlight/lighting/directions.h"
+#include "demlight/lighting/sweep/row_steps.h"
 #include "demlight/core/angles.h"
 #include "demlight/core/error.h"
 
@@ -314,10 +315,11 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
     // On the full grid, so that every tile of a DEM makes the same choices from it.
     const FullGridRef g = fullGrid(terrain);
     const CellWindow window = params.window ? *params.window : CellWindow{0, 0, g.width, g.height};
-    double steps = 0;
+    const RowStepBounds steps(g.cellWidthM, g.cellHeightM);
+    double total = 0;
     for (const SweepRegion& region : sweepRegionsOnFullGrid(terrain, params, window)) {
         const CellWindow& w = region.window;
-        steps += static_cast<double>((w.col1 - w.col0) * (w.row1 - w.row0));  // combine pass
+        total += static_cast<double>((w.col1 - w.col0) * (w.row1 - w.row0));  // combine pass
         // Line geometry: one step per cell along the major axis; a line k lies at minor
         // coordinate k + slope * m.
         const bool xMajor = std::abs(region.dirCol) >= std::abs(region.dirRow);
@@ -331,10 +333,7 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
         const double a1 = static_cast<double>(xMajor ? w.col1 : w.row1) - 1;
         const double b0 = static_cast<double>(xMajor ? w.row0 : w.col0);
         const double b1 = static_cast<double>(xMajor ? w.row1 : w.col1) - 1;
-        double minStepM = std::numeric_limits<double>::infinity();
-        for (std::size_t r = 0; r < g.height; ++r)
-            minStepM = std::min(minStepM, std::hypot((xMajor ? 1.0 : slope) * g.cellWidthM[r],
-                                                     (xMajor ? slope : 1.0) * g.cellHeightM[r]));
+        const double minStepM = steps.range(xMajor ? 1.0 : slope, xMajor ? slope : 1.0).first;
         const double extension = std::isfinite(params.maxDistanceM)
                                      ? std::min(majorSize, std::ceil(params.maxDistanceM / minStepM) + 1)
                                      : majorSize;
@@ -365,10 +364,10 @@ double estimateSweepSteps(const Terrain& terrain, const HorizonParams& params) {
             within(k, -1, minorSize - 1, g0, g1);
             m0 = std::max({m0, std::ceil(g0), 0.0});
             m1 = std::min({m1, std::floor(g1), majorSize - 1});
-            if (m1 >= m0) steps += m1 - m0 + 1;
+            if (m1 >= m0) total += m1 - m0 + 1;
         }
     }
-    return steps;
+    return total;
 }
 
 bool rangeLimitPays(const Terrain& terrain, const HorizonParams& params) {

@@ -138,33 +138,28 @@ const char* sunSweepStrategyName(SunSweepStrategy s) {
     return "cheapest";
 }
 
-SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
-                         const SunFrameParams& params, ProgressCounter* progress, SweepBuffers* sharedBuffers) {
-    SunFrame frame;
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    frame.light.visibility = Grid<float>(t.width(), t.height(), nan);
-    frame.light.irradiance = frame.light.visibility;
-    const auto [lowestSun, highestSun] = field.elevationRange();
-    frame.maxDistanceM = params.maxDistanceM > 0
-                             ? params.maxDistanceM
-                             : sunSearchDistanceM(t, lowestSun, params.sunDiameterDeg);
+namespace {
 
-    if (highestSun <= -params.sunDiameterDeg / 2) {
-        // The whole disk is below the horizon everywhere: night (rows on every thread).
-        const std::size_t w = t.width();
-        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
-            const float* h = t.heightsM.rowPtr(row);
-            float* vis = frame.light.visibility.rowPtr(row);
-            float* irr = frame.light.irradiance.rowPtr(row);
-            for (std::size_t c = 0; c < w; ++c)
-                if (!std::isnan(h[c])) vis[c] = irr[c] = 0.0f;
-        }, 16);
-        if (progress) progress->advance(t.heightsM.size());
-        return frame;
-    }
+/// One sweep of the interpolating strategy: at azimuths[azimuthIndex], over params.window.
+struct FixedSweep {
+    std::size_t azimuthIndex;
+    HorizonParams params;
+};
 
-    // The following strategy's sweep (below); the interpolating one's sweeps copy it.
-    HorizonParams hp;
+/// The sweeps of a frame: the following strategy's one sweep (its params), or the
+/// interpolating strategy's sweeps (fixedSweeps, non-empty) at their azimuths.
+struct SunSweepPlan {
+    HorizonParams following;
+    std::vector<double> azimuths;
+    std::vector<FixedSweep> fixedSweeps;
+};
+
+/// Chooses the frame's sweeps (and sets frame.maxDistanceM to the whole DEM's diagonal where the
+/// whole DEM is searched).
+SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFrameParams& params, SunFrame& frame) {
+    SunSweepPlan plan;
+    // The following strategy's sweep; the interpolating one's sweeps copy it.
+    HorizonParams& hp = plan.following;
     hp.refraction = params.refraction;
     hp.curvature = params.curvature;
     hp.threads = params.threads;
@@ -196,13 +191,10 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     //    only), and each cell's horizon linear in azimuth between the two bracketing sweeps.
     // Chosen on the DEM's full grid (windows in its coordinates), so every tile chooses alike.
     const FullGridRef full = fullGrid(t);
-    const std::vector<double> azimuths = sunSweepAzimuthsDeg(field, full.width, full.height);
+    plan.azimuths = sunSweepAzimuthsDeg(field, full.width, full.height);
+    const std::vector<double>& azimuths = plan.azimuths;
     const std::vector<CellWindow> windows = sweepWindows(field, azimuths, full.width, full.height);
-    struct FixedSweep {
-        std::size_t azimuthIndex;
-        HorizonParams params;
-    };
-    std::vector<FixedSweep> fixedSweeps;
+    std::vector<FixedSweep>& fixedSweeps = plan.fixedSweeps;
     if (azimuths.size() > 1 && params.strategy != SunSweepStrategy::Following) {
         double interpolatingSteps = 0;
         for (std::size_t i = 0; i < azimuths.size(); ++i) {
@@ -226,6 +218,40 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         if (params.strategy == SunSweepStrategy::Cheapest && interpolatingSteps >= estimateSweepSteps(t, hp))
             fixedSweeps.clear();
     }
+    return plan;
+}
+
+}  // namespace
+
+SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
+                         const SunFrameParams& params, ProgressCounter* progress, SweepBuffers* sharedBuffers) {
+    SunFrame frame;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    frame.light.visibility = Grid<float>(t.width(), t.height(), nan);
+    frame.light.irradiance = frame.light.visibility;
+    const auto [lowestSun, highestSun] = field.elevationRange();
+    frame.maxDistanceM = params.maxDistanceM > 0
+                             ? params.maxDistanceM
+                             : sunSearchDistanceM(t, lowestSun, params.sunDiameterDeg);
+
+    if (highestSun <= -params.sunDiameterDeg / 2) {
+        // The whole disk is below the horizon everywhere: night (rows on every thread).
+        const std::size_t w = t.width();
+        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+            const float* h = t.heightsM.rowPtr(row);
+            float* vis = frame.light.visibility.rowPtr(row);
+            float* irr = frame.light.irradiance.rowPtr(row);
+            for (std::size_t c = 0; c < w; ++c)
+                if (!std::isnan(h[c])) vis[c] = irr[c] = 0.0f;
+        }, 16);
+        if (progress) progress->advance(t.heightsM.size());
+        return frame;
+    }
+
+    SunSweepPlan plan = planSunSweeps(t, field, params, frame);
+    const HorizonParams& hp = plan.following;
+    const std::vector<double>& azimuths = plan.azimuths;
+    std::vector<FixedSweep>& fixedSweeps = plan.fixedSweeps;
     frame.strategy = fixedSweeps.empty() ? SunSweepStrategy::Following : SunSweepStrategy::Interpolating;
     std::vector<HorizonMap> horizons(fixedSweeps.empty() ? 1 : azimuths.size());
     SweepBuffers ownBuffers;
