@@ -25,10 +25,12 @@
 #include "bench/bench_timing.h"
 #include "demlight/geo/dem.h"
 #include "demlight/lighting/horizon.h"
+#include "demlight/lighting/hull_lanes.h"
 #include "demlight/core/error.h"
 #include "demlight/core/parallel.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -59,6 +61,7 @@ struct Lines {
     long width, height;
     std::vector<double> sigma;  // distance of each row from the north edge (metres)
     double invR;
+    demlight::HullGeometry geometry;  // the same distances for the library's hull kernel
 };
 
 void prefetchRow(const Lines& l, float* out, long row, long c0, long n) {
@@ -231,7 +234,7 @@ void floatBlock(const Lines& l, float* out, long c0, std::vector<double>& hullD)
 }
 #endif
 
-enum class Kernel { scalar, doubleLanes, floatLanes };
+enum class Kernel { scalar, doubleLanes, floatLanes, hullLanes };
 
 /// Every column, blocks spread over `threads`; the vector kernels take the full blocks, the
 /// scalar one the rest.
@@ -241,6 +244,12 @@ void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
         thread_local std::vector<double> hull;
         hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
         const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);
+        if (kernel == Kernel::hullLanes) {  // the library's float kernel of hull_lanes.h, ragged blocks too
+            thread_local demlight::HullScratch scratch;
+            return demlight::hullSlopesVector(
+                l.geometry, {l.heights + c0, out + c0, static_cast<std::size_t>(l.width), static_cast<std::size_t>(n)},
+                scratch);
+        }
 #ifdef FLOOR_AVX512
         if (kernel == Kernel::doubleLanes && n == kBlock) return simdBlock(l, out, c0, hull);
         if (kernel == Kernel::floatLanes && n == kBlock) return floatBlock(l, out, c0, hull);
@@ -270,6 +279,57 @@ void compare(const std::vector<float>& slopes, const demlight::HorizonMap& ref, 
     }
 }
 
+#ifdef FLOOR_AVX512
+/// Angle differences of `slopes` from the double kernels' `exact` (degrees), printed.
+void reportAgainst(const std::vector<float>& slopes, const std::vector<float>& exact, const char* name) {
+    std::vector<double> diffs;
+    for (std::size_t i = 0; i < slopes.size(); ++i) {
+        if (!std::isfinite(slopes[i]) || !std::isfinite(exact[i])) continue;
+        diffs.push_back(std::abs(std::atan(static_cast<double>(slopes[i])) - std::atan(static_cast<double>(exact[i]))) *
+                        180.0 / M_PI);
+    }
+    if (diffs.empty()) return;
+    std::sort(diffs.begin(), diffs.end());
+    std::printf("%s against the double kernels: median %.1e, p99 %.1e, p99.9 %.1e, max %.1e deg over %zu cells\n", name,
+                diffs[diffs.size() / 2], diffs[diffs.size() * 99 / 100], diffs[diffs.size() * 999 / 1000],
+                diffs.back(), diffs.size());
+}
+
+/// One thread, the kernels timed in turn within each round (the order rotating between rounds),
+/// each round's times divided by the float kernel's: medians and ranges of those ratios, so that
+/// a machine busy with other work moves every kernel of a round alike.
+void ratioRounds(const Lines& l, float* out, int runs) {
+    const Kernel kernels[] = {Kernel::floatLanes, Kernel::doubleLanes, Kernel::hullLanes};
+    const char* names[] = {"float kernel (16 lines, gathers)", "double kernel (8 lines, gathers)",
+                           "hull_lanes.h kernel (16 lines, no gathers)"};
+    constexpr int kKernels = 3;
+    const int rounds = std::max(3, 2 * runs + 1);
+    std::vector<double> seconds[kKernels], ratios[kKernels];
+    for (int round = 0; round < rounds; ++round) {
+        double t[kKernels];
+        for (int j = 0; j < kKernels; ++j) {
+            const int k = (j + round) % kKernels;
+            const auto t0 = std::chrono::steady_clock::now();
+            sweepColumns(l, out, 1, kernels[k]);
+            t[k] = demlight::bench::secondsSince(t0);
+        }
+        for (int k = 0; k < kKernels; ++k) {
+            seconds[k].push_back(t[k]);
+            ratios[k].push_back(t[k] / t[0]);
+        }
+    }
+    const double cells = static_cast<double>(l.width * l.height);
+    std::printf("one thread, %d alternating rounds: ratio to the float kernel, median [min, max]; ns/cell median\n",
+                rounds);
+    for (int k = 0; k < kKernels; ++k) {
+        std::sort(ratios[k].begin(), ratios[k].end());
+        std::sort(seconds[k].begin(), seconds[k].end());
+        std::printf("  %-44s %6.3f [%.3f, %.3f] %8.2f\n", names[k], ratios[k][ratios[k].size() / 2], ratios[k].front(),
+                    ratios[k].back(), seconds[k][seconds[k].size() / 2] / cells * 1e9);
+    }
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -283,11 +343,12 @@ int main(int argc, char** argv) {
         const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
         demlight::HorizonParams p;  // azimuth 0, whole DEM, no near field
         p.azimuthDeg = 0.0;
-        Lines lines{t.heightsM.data(), static_cast<long>(t.width()), static_cast<long>(t.height()), {}, 0.0};
+        Lines lines{t.heightsM.data(), static_cast<long>(t.width()), static_cast<long>(t.height()), {}, 0.0, {}};
         // The library's distances along a column: the sum of the row heights walked (its sigmaAt).
         lines.sigma.assign(t.height(), 0.0);
         for (std::size_t r = 1; r < t.height(); ++r) lines.sigma[r] = lines.sigma[r - 1] + t.cellHeightM[r - 1];
         lines.invR = demlight::inverseEffectiveRadius(p);
+        lines.geometry = {lines.sigma, lines.invR};
         const int all = demlight::resolveThreadCount(0);
         const double cells = static_cast<double>(t.width() * t.height());
         std::vector<float> slopes(t.width() * t.height());
@@ -339,6 +400,11 @@ int main(int argc, char** argv) {
         if (!diffs.empty())
             std::printf("float kernel against the double kernels: median %.1e, p99 %.1e, max %.1e deg over %zu cells\n",
                         diffs[diffs.size() / 2], diffs[diffs.size() * 99 / 100], maxDeg, diffs.size());
+        if (demlight::hullVectorKernelAvailable()) {
+            row("hull_lanes.h kernel (16 lines, no gathers)", kernel(Kernel::hullLanes), true);
+            reportAgainst(slopes, doubleSlopes, "hull_lanes.h kernel");
+            ratioRounds(lines, slopes.data(), runs);
+        }
 #else
         std::printf("(AVX-512 not compiled in: no vector kernel)\n");
 #endif
