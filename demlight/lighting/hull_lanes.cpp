@@ -128,58 +128,65 @@ DEMLIGHT_AVX512 inline float testDistance1(float rf, float row, float offR, floa
     return k;
 }
 
-/// The lanes of `lanes` whose pops reached the window's last vertex while the hull goes on below
-/// it: each continues popping along the links (the same test as the vector code), then its window
-/// is refilled from the links. S/Q/O: the windows after the vector pops (slots 1..4), U: rows under
-/// them, g: the new points.
+/// The lanes of `walk` popped down to the window's last vertex while the hull goes on below it:
+/// each continues popping along the links (the same test as the vector code). Those lanes, and
+/// the lanes of `refill` (windows of two vertices or fewer over more hull), then take the top four
+/// vertices of their hull into slots 1..4 from the links, so that they walk again later or not at
+/// all. S/Q/O: the windows after the vector pops (slots 1..4), U: rows under them, g: the new
+/// points.
 template <bool kVarying>
-DEMLIGHT_AVX512 void walkLanes(__mmask16 lanes, std::size_t r, const RowTables& t, const GroupPoints& points,
-                               __m512 g, __m512 (&S)[4], __m512 (&Q)[4], __m512 (&O)[4], __m512& U) {
+DEMLIGHT_AVX512 void walkLanes(__mmask16 walk, __mmask16 refill, std::size_t r, const RowTables& t,
+                               const GroupPoints& points, __m512 g, __m512 (&S)[4], __m512 (&Q)[4], __m512 (&O)[4],
+                               __m512& U) {
     alignas(64) float gs[kLanes], s[4][kLanes], q[4][kLanes], o[4][kLanes], u[kLanes];
     _mm512_store_ps(gs, g);
     _mm512_store_ps(u, U);
-    for (int j = 0; j < 4; ++j) {
-        _mm512_store_ps(s[j], S[j]);
-        _mm512_store_ps(q[j], Q[j]);
-        _mm512_store_ps(o[j], O[j]);
-    }
+    _mm512_store_ps(s[0], S[0]);
+    _mm512_store_ps(s[1], S[1]);
+    _mm512_store_ps(q[0], Q[0]);
+    _mm512_store_ps(q[1], Q[1]);
     const float rf = static_cast<float>(r), offR = t.offset[r];
-    for (unsigned m = lanes; m; m &= m - 1) {
+    refill |= walk;
+    for (unsigned m = refill; m; m &= m - 1) {
         const int l = __builtin_ctz(m);
-        float gc = s[0][l], rowC = q[0][l], offC = o[0][l];
+        // The vertices the window keeps (one where the lane walks, one or two otherwise), then the
+        // ones below through the links.
+        int kept = std::isnan(s[1][l]) ? 1 : 2;
         float below = u[l];
-        while (below >= 0.0f) {
-            const auto b = static_cast<std::size_t>(below);
-            const float gb = points.g[b * kLanes + l], offB = t.offset[b];
-            const float dc = testDistance1<kVarying>(rf, rowC, offR, offC, t.spacing);
-            const float db = testDistance1<kVarying>(rf, below, offR, offB, t.spacing);
-            if (!((gb - gs[l]) * dc >= (gc - gs[l]) * db)) break;
-            gc = gb;
-            rowC = below;
-            offC = offB;
-            below = points.link[b * kLanes + l];
+        if (walk & (1u << l)) {
+            float gc = s[0][l], rowC = q[0][l];
+            while (below >= 0.0f) {
+                const auto b = static_cast<std::size_t>(below);
+                const float gb = points.g[b * kLanes + l];
+                const float dc = testDistance1<kVarying>(rf, rowC, offR, t.offset[static_cast<std::size_t>(rowC)], t.spacing);
+                const float db = testDistance1<kVarying>(rf, below, offR, t.offset[b], t.spacing);
+                if (!((gb - gs[l]) * dc >= (gc - gs[l]) * db)) break;
+                gc = gb;
+                rowC = below;
+                below = points.link[b * kLanes + l];
+            }
+            s[0][l] = gc;
+            q[0][l] = rowC;
         }
-        s[0][l] = gc;
-        q[0][l] = rowC;
-        o[0][l] = offC;
-        for (int j = 1; j < 4; ++j) {
+        for (int j = kept; j < 4; ++j) {
             if (below >= 0.0f) {
                 const auto b = static_cast<std::size_t>(below);
                 s[j][l] = points.g[b * kLanes + l];
                 q[j][l] = below;
-                o[j][l] = t.offset[b];
                 below = points.link[b * kLanes + l];
             } else {
                 s[j][l] = std::numeric_limits<float>::quiet_NaN();
+                q[j][l] = -1.0f;
             }
         }
         u[l] = below;
+        for (int j = 0; j < 4; ++j) o[j][l] = q[j][l] < 0.0f ? 0.0f : t.offset[static_cast<std::size_t>(q[j][l])];
     }
-    U = _mm512_load_ps(u);
+    U = _mm512_mask_load_ps(U, refill, u);
     for (int j = 0; j < 4; ++j) {
-        S[j] = _mm512_load_ps(s[j]);
-        Q[j] = _mm512_load_ps(q[j]);
-        O[j] = _mm512_load_ps(o[j]);
+        S[j] = _mm512_mask_load_ps(S[j], refill, s[j]);
+        Q[j] = _mm512_mask_load_ps(Q[j], refill, q[j]);
+        if constexpr (kVarying) O[j] = _mm512_mask_load_ps(O[j], refill, o[j]);
     }
 }
 
@@ -255,10 +262,10 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
             }
         }
         const __mmask16 topLeft = _mm512_cmp_ps_mask(S[0], S[0], _CMP_ORD_Q);
-        const __mmask16 walk = valid & topLeft & _mm512_cmp_ps_mask(S[1], S[1], _CMP_UNORD_Q) &
-                               _mm512_cmp_ps_mask(U, zero, _CMP_GE_OQ);
+        const __mmask16 more = valid & topLeft & _mm512_cmp_ps_mask(U, zero, _CMP_GE_OQ);
+        const __mmask16 walk = more & _mm512_cmp_ps_mask(S[1], S[1], _CMP_UNORD_Q);
         if (walk) [[unlikely]]
-            walkLanes<kVarying>(walk, r, t, points, g, S, Q, Os, U);
+            walkLanes<kVarying>(walk, more & _mm512_cmp_ps_mask(S[2], S[2], _CMP_UNORD_Q), r, t, points, g, S, Q, Os, U);
 
         // The slope to the top vertex: a reciprocal estimate (2^-14) and one Newton step.
         const __m512 k1 = _mm512_sub_ps(rf, Q[0]);
