@@ -128,25 +128,29 @@ DEMLIGHT_AVX512 inline float testDistance1(float rf, float row, float offR, floa
     return k;
 }
 
+/// A group's registers in memory for walkLanes: the new points' g, the rows under the windows,
+/// and slots 1..4 of the windows after the vector pops (g, row, offset).
+struct alignas(64) WalkLanes {
+    float g[kLanes], u[kLanes];
+    float s[4][kLanes], q[4][kLanes], o[4][kLanes];
+};
+
 /// The lanes of `walk` popped down to the window's last vertex while the hull goes on below it:
 /// each continues popping along the links (the same test as the vector code). Those lanes, and
 /// the lanes of `refill` (windows of two vertices or fewer over more hull), then take the top four
 /// vertices of their hull into slots 1..4 from the links, so that they walk again later or not at
-/// all. S/Q/O: the windows after the vector pops (slots 1..4), U: rows under them, g: the new
-/// points.
+/// all. w holds slots 1 and 2 on entry, all four (and u) of these lanes on return. Kept out of line:
+/// the vector loop keeps its registers.
 template <bool kVarying>
-DEMLIGHT_AVX512 void walkLanes(__mmask16 walk, __mmask16 refill, std::size_t r, const RowTables& t,
-                               const GroupPoints& points, __m512 g, __m512 (&S)[4], __m512 (&Q)[4], __m512 (&O)[4],
-                               __m512& U) {
-    alignas(64) float gs[kLanes], s[4][kLanes], q[4][kLanes], o[4][kLanes], u[kLanes];
-    _mm512_store_ps(gs, g);
-    _mm512_store_ps(u, U);
-    _mm512_store_ps(s[0], S[0]);
-    _mm512_store_ps(s[1], S[1]);
-    _mm512_store_ps(q[0], Q[0]);
-    _mm512_store_ps(q[1], Q[1]);
+DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned refill, std::size_t r,
+                                                        const RowTables& t, const GroupPoints& points,
+                                                        WalkLanes& w) {
+    auto& gs = w.g;
+    auto& u = w.u;
+    auto& s = w.s;
+    auto& q = w.q;
+    auto& o = w.o;
     const float rf = static_cast<float>(r), offR = t.offset[r];
-    refill |= walk;
     for (unsigned m = refill; m; m &= m - 1) {
         const int l = __builtin_ctz(m);
         // The vertices the window keeps (one where the lane walks, one or two otherwise), then the
@@ -182,12 +186,6 @@ DEMLIGHT_AVX512 void walkLanes(__mmask16 walk, __mmask16 refill, std::size_t r, 
         u[l] = below;
         for (int j = 0; j < 4; ++j) o[j][l] = q[j][l] < 0.0f ? 0.0f : t.offset[static_cast<std::size_t>(q[j][l])];
     }
-    U = _mm512_mask_load_ps(U, refill, u);
-    for (int j = 0; j < 4; ++j) {
-        S[j] = _mm512_mask_load_ps(S[j], refill, s[j]);
-        Q[j] = _mm512_mask_load_ps(Q[j], refill, q[j]);
-        if constexpr (kVarying) O[j] = _mm512_mask_load_ps(O[j], refill, o[j]);
-    }
 }
 
 /// Rows [r0, r1) of the group of lines at column col0 (lanes: the lines that exist).
@@ -206,24 +204,33 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
     const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
     const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
     const __m512 spacing = _mm512_set1_ps(t.spacing);
+    // Locals, so that the stores below cannot make the compiler read them again.
+    const float* const heights = block.heightsM;
+    float* const outBase = block.out;
+    const std::size_t stride = block.stride;
+    const float* const drop = t.drop;
+    const float* const curve = t.curve;
+    const float* const offsets = t.offset;
+    float* const pointG = points.g;
+    float* const pointLink = points.link;
     for (std::size_t r = r0; r < r1; ++r) {
         if (r + kPrefetchRows < n) {
-            const std::size_t ahead = (r + kPrefetchRows) * block.stride + col0;
-            _mm_prefetch(reinterpret_cast<const char*>(block.heightsM + ahead), _MM_HINT_T0);
-            _mm_prefetch(reinterpret_cast<const char*>(block.heightsM + ahead + kLanes - 1), _MM_HINT_T0);
-            __builtin_prefetch(block.out + ahead, 1);
-            __builtin_prefetch(block.out + ahead + kLanes - 1, 1);
+            const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
+            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
+            __builtin_prefetch(outBase + ahead, 1);
+            __builtin_prefetch(outBase + ahead + kLanes - 1, 1);
         }
-        float* out = block.out + r * block.stride + col0;
-        const __m512 h = _mm512_mask_loadu_ps(nan, lanes, block.heightsM + r * block.stride + col0);
+        float* out = outBase + r * stride + col0;
+        const __m512 h = _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
         const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
         if (!valid) {  // nodata only (sea): every hull stays as it is
             _mm512_mask_storeu_ps(out, lanes, h);
             continue;
         }
         const __m512 rf = _mm512_set1_ps(static_cast<float>(r));
-        const __m512 offR = _mm512_set1_ps(t.offset[r]);
-        const __m512 g = _mm512_sub_ps(h, _mm512_set1_ps(t.drop[r]));
+        const __m512 offR = _mm512_set1_ps(offsets[r]);
+        const __m512 g = _mm512_sub_ps(h, _mm512_set1_ps(drop[r]));
 
         // Pop test j (vertex j of the window, 0 on top): pop it unless the slope to vertex j + 1
         // is under the slope to vertex j. NaN (no vertex, or no data) compares false: no pop.
@@ -237,7 +244,9 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
             pop[j] = _mm512_cmp_ps_mask(_mm512_mul_ps(a[j + 1], d[j]), _mm512_mul_ps(a[j], d[j + 1]), _CMP_GE_OQ);
         // On a convex chain the pops are a leading run: lanes in m[k] pop at least k + 1 vertices.
         __mmask16 m[kWindow - 1];
-        m[0] = pop[0];
+        // A lane without data at this row pops its top and pushes it back: the window stays, and
+        // the push below needs no mask but the top's.
+        m[0] = pop[0] | static_cast<__mmask16>(~valid);
         for (int j = 1; j < kWindow - 1; ++j) m[j] = m[j - 1] & pop[j];
 
         // The vertex that falls off the window's bottom at the push (no pop, full window) is the
@@ -264,8 +273,23 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         const __mmask16 topLeft = _mm512_cmp_ps_mask(S[0], S[0], _CMP_ORD_Q);
         const __mmask16 more = valid & topLeft & _mm512_cmp_ps_mask(U, zero, _CMP_GE_OQ);
         const __mmask16 walk = more & _mm512_cmp_ps_mask(S[1], S[1], _CMP_UNORD_Q);
-        if (walk) [[unlikely]]
-            walkLanes<kVarying>(walk, more & _mm512_cmp_ps_mask(S[2], S[2], _CMP_UNORD_Q), r, t, points, g, S, Q, Os, U);
+        if (walk) [[unlikely]] {
+            const __mmask16 refill = walk | (more & _mm512_cmp_ps_mask(S[2], S[2], _CMP_UNORD_Q));
+            WalkLanes w;
+            _mm512_store_ps(w.g, g);
+            _mm512_store_ps(w.u, U);
+            for (int j = 0; j < 2; ++j) {
+                _mm512_store_ps(w.s[j], S[j]);
+                _mm512_store_ps(w.q[j], Q[j]);
+            }
+            walkLanes<kVarying>(walk, refill, r, t, points, w);
+            U = _mm512_mask_load_ps(U, refill, w.u);
+            for (int j = 0; j < 4; ++j) {
+                S[j] = _mm512_mask_load_ps(S[j], refill, w.s[j]);
+                Q[j] = _mm512_mask_load_ps(Q[j], refill, w.q[j]);
+                if constexpr (kVarying) Os[j] = _mm512_mask_load_ps(Os[j], refill, w.o[j]);
+            }
+        }
 
         // The slope to the top vertex: a reciprocal estimate (2^-14) and one Newton step.
         const __m512 k1 = _mm512_sub_ps(rf, Q[0]);
@@ -273,18 +297,18 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
                                    : _mm512_mul_ps(k1, spacing);
         __m512 inv = _mm512_rcp14_ps(d1);
         inv = _mm512_mul_ps(inv, _mm512_fnmadd_ps(d1, inv, two));
-        __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(t.curve[r]));
+        __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(curve[r]));
         slope = _mm512_mask_blend_ps(topLeft, noHorizon, slope);
         _mm512_mask_storeu_ps(out, lanes, _mm512_mask_blend_ps(valid, h, slope));
 
         // Push: the point's height and the row of the vertex below it, stored whole (slots of
         // points that never become vertices are never read).
-        _mm512_storeu_ps(points.g + r * kLanes, g);
-        _mm512_storeu_ps(points.link + r * kLanes, _mm512_mask_blend_ps(topLeft, none, Q[0]));
+        _mm512_storeu_ps(pointG + r * kLanes, g);
+        _mm512_storeu_ps(pointLink + r * kLanes, _mm512_mask_blend_ps(topLeft, none, Q[0]));
         for (int j = kWindow - 1; j >= 1; --j) {
-            G[j] = _mm512_mask_mov_ps(G[j], valid, S[j - 1]);
-            R[j] = _mm512_mask_mov_ps(R[j], valid, Q[j - 1]);
-            if constexpr (kVarying) O[j] = _mm512_mask_mov_ps(O[j], valid, Os[j - 1]);
+            G[j] = S[j - 1];
+            R[j] = Q[j - 1];
+            if constexpr (kVarying) O[j] = Os[j - 1];
         }
         G[0] = _mm512_mask_mov_ps(G[0], valid, g);
         R[0] = _mm512_mask_mov_ps(R[0], valid, rf);
