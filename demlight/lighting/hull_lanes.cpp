@@ -78,6 +78,12 @@ namespace {
 constexpr int kLanes = 16;
 /// Hull vertices kept in registers per lane.
 constexpr int kWindow = 5;
+/// Window slots that hold over the push (the bottom one falls off).
+constexpr int kSlots = kWindow - 1;
+/// When a lane walks, the lanes whose windows keep this many vertices or fewer after their pops
+/// refill them in the same call.
+constexpr int kRefillKept = 2;
+static_assert(kSlots > kRefillKept);
 /// Rows one group of lanes walks before the next group of the block takes the same rows: the
 /// block's rows then stay in the caches (and their pages in the TLB) while its groups pass.
 constexpr std::size_t kRowsPerChunk = 32;
@@ -132,7 +138,7 @@ DEMLIGHT_AVX512 inline float testDistance1(float rf, float row, float offR, floa
 /// and slots 1..4 of the windows after the vector pops (g, row, offset).
 struct alignas(64) WalkLanes {
     float g[kLanes], u[kLanes];
-    float s[4][kLanes], q[4][kLanes], o[4][kLanes];
+    float s[kSlots][kLanes], q[kSlots][kLanes], o[kSlots][kLanes];
 };
 
 /// The lanes of `walk` popped down to the window's last vertex while the hull goes on below it:
@@ -155,7 +161,8 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
         const int l = __builtin_ctz(m);
         // The vertices the window keeps (one where the lane walks, one or two otherwise), then the
         // ones below through the links.
-        int kept = std::isnan(s[1][l]) ? 1 : 2;
+        int kept = 1;
+        while (kept < kRefillKept && !std::isnan(s[kept][l])) ++kept;
         float below = u[l];
         if (walk & (1u << l)) {
             float gc = s[0][l], rowC = q[0][l];
@@ -172,7 +179,7 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
             s[0][l] = gc;
             q[0][l] = rowC;
         }
-        for (int j = kept; j < 4; ++j) {
+        for (int j = kept; j < kSlots; ++j) {
             if (below >= 0.0f) {
                 const auto b = static_cast<std::size_t>(below);
                 s[j][l] = points.g[b * kLanes + l];
@@ -184,7 +191,7 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
             }
         }
         u[l] = below;
-        for (int j = 0; j < 4; ++j) o[j][l] = q[j][l] < 0.0f ? 0.0f : t.offset[static_cast<std::size_t>(q[j][l])];
+        for (int j = 0; j < kSlots; ++j) o[j][l] = q[j][l] < 0.0f ? 0.0f : t.offset[static_cast<std::size_t>(q[j][l])];
     }
 }
 
@@ -254,8 +261,8 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         U = _mm512_mask_mov_ps(U, valid & ~m[0] & _mm512_cmp_ps_mask(G[kWindow - 1], G[kWindow - 1], _CMP_ORD_Q),
                                R[kWindow - 1]);
         // Slot j after k pops holds old slot j + k, NaN past the window.
-        __m512 S[4], Q[4], Os[4];
-        for (int j = 0; j < 4; ++j) {
+        __m512 S[kSlots], Q[kSlots], Os[kSlots];
+        for (int j = 0; j < kSlots; ++j) {
             S[j] = G[j];
             Q[j] = R[j];
             Os[j] = O[j];
@@ -274,17 +281,17 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         const __mmask16 more = valid & topLeft & _mm512_cmp_ps_mask(U, zero, _CMP_GE_OQ);
         const __mmask16 walk = more & _mm512_cmp_ps_mask(S[1], S[1], _CMP_UNORD_Q);
         if (walk) [[unlikely]] {
-            const __mmask16 refill = walk | (more & _mm512_cmp_ps_mask(S[2], S[2], _CMP_UNORD_Q));
+            const __mmask16 refill = walk | (more & _mm512_cmp_ps_mask(S[kRefillKept], S[kRefillKept], _CMP_UNORD_Q));
             WalkLanes w;
             _mm512_store_ps(w.g, g);
             _mm512_store_ps(w.u, U);
-            for (int j = 0; j < 2; ++j) {
+            for (int j = 0; j < kRefillKept; ++j) {
                 _mm512_store_ps(w.s[j], S[j]);
                 _mm512_store_ps(w.q[j], Q[j]);
             }
             walkLanes<kVarying>(walk, refill, r, t, points, w);
             U = _mm512_mask_load_ps(U, refill, w.u);
-            for (int j = 0; j < 4; ++j) {
+            for (int j = 0; j < kSlots; ++j) {
                 S[j] = _mm512_mask_load_ps(S[j], refill, w.s[j]);
                 Q[j] = _mm512_mask_load_ps(Q[j], refill, w.q[j]);
                 if constexpr (kVarying) Os[j] = _mm512_mask_load_ps(Os[j], refill, w.o[j]);
