@@ -1,7 +1,8 @@
 // The hull sweep's floor on this machine: what the bare upper-hull kernel costs per cell and
 // direction, beside the library's sweep on the same lines, in one run.
 //
-// Usage: demlight_sweep_floor_bench DEM [runs]   (default 5 runs, medians printed)
+// Usage: demlight_sweep_floor_bench DEM [runs] [ratios]   (default 5 runs, medians printed; "ratios":
+// only the alternating rounds of the vector kernels, one thread)
 //
 // The lines are the DEM's columns walked from the north edge (azimuth 0, the sweep's cheapest
 // case: every line runs through cell centres, one region, no range limit, no near field). Each
@@ -25,14 +26,18 @@
 #include "bench/bench_timing.h"
 #include "demlight/geo/dem.h"
 #include "demlight/lighting/horizon.h"
+#include "demlight/lighting/hull_lanes.h"
 #include "demlight/core/error.h"
 #include "demlight/core/parallel.h"
 
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <string>
 #include <vector>
 
 #if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
@@ -59,6 +64,8 @@ struct Lines {
     long width, height;
     std::vector<double> sigma;  // distance of each row from the north edge (metres)
     double invR;
+    demlight::HullGeometry geometry;  // the same distances for the library's hull kernel
+    demlight::HullGeometry uniform;   // the mean spacing on every row (timing only: not the DEM's distances)
 };
 
 void prefetchRow(const Lines& l, float* out, long row, long c0, long n) {
@@ -231,7 +238,7 @@ void floatBlock(const Lines& l, float* out, long c0, std::vector<double>& hullD)
 }
 #endif
 
-enum class Kernel { scalar, doubleLanes, floatLanes };
+enum class Kernel { scalar, doubleLanes, floatLanes, hullLanes, hullLanesUniform, copyOnly };
 
 /// Every column, blocks spread over `threads`; the vector kernels take the full blocks, the
 /// scalar one the rest.
@@ -241,6 +248,19 @@ void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
         thread_local std::vector<double> hull;
         hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
         const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);
+        if (kernel == Kernel::hullLanes || kernel == Kernel::hullLanesUniform) {  // hull_lanes.h, ragged blocks too
+            thread_local demlight::HullScratch scratch;
+            return demlight::hullSlopesVector(
+                kernel == Kernel::hullLanes ? l.geometry : l.uniform,
+                {l.heights + c0, out + c0, static_cast<std::size_t>(l.width), static_cast<std::size_t>(n)}, scratch);
+        }
+        if (kernel == Kernel::copyOnly) {  // what every kernel does besides the hull: read, write
+            for (long r = 0; r < l.height; ++r) {
+                prefetchRow(l, out, r + kPrefetchRows, c0, n);
+                std::copy_n(l.heights + r * l.width + c0, n, out + r * l.width + c0);
+            }
+            return;
+        }
 #ifdef FLOOR_AVX512
         if (kernel == Kernel::doubleLanes && n == kBlock) return simdBlock(l, out, c0, hull);
         if (kernel == Kernel::floatLanes && n == kBlock) return floatBlock(l, out, c0, hull);
@@ -270,11 +290,74 @@ void compare(const std::vector<float>& slopes, const demlight::HorizonMap& ref, 
     }
 }
 
+#ifdef FLOOR_AVX512
+/// Angle differences of `slopes` from the double kernels' `exact` (degrees), printed.
+void reportAgainst(const std::vector<float>& slopes, const std::vector<float>& exact, const char* name) {
+    std::vector<double> diffs;
+    for (std::size_t i = 0; i < slopes.size(); ++i) {
+        if (!std::isfinite(slopes[i]) || !std::isfinite(exact[i])) continue;
+        diffs.push_back(std::abs(std::atan(static_cast<double>(slopes[i])) - std::atan(static_cast<double>(exact[i]))) *
+                        180.0 / M_PI);
+    }
+    if (diffs.empty()) return;
+    std::sort(diffs.begin(), diffs.end());
+    std::printf("%s against the double kernels: median %.1e, p99 %.1e, p99.9 %.1e, max %.1e deg over %zu cells\n", name,
+                diffs[diffs.size() / 2], diffs[diffs.size() * 99 / 100], diffs[diffs.size() * 999 / 1000],
+                diffs.back(), diffs.size());
+}
+
+/// CPU time of the calling thread spent in f (seconds): time the scheduler gives to other
+/// processes of a busy machine is not counted.
+template <class F>
+double threadSeconds(F&& f) {
+    timespec a{}, b{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &a);
+    f();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
+    return static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec);
+}
+
+/// One thread, the kernels timed in turn within each round (the order rotating between rounds),
+/// each round's times divided by the float kernel's: medians and ranges of those ratios, so that
+/// a machine busy with other work moves every kernel of a round alike.
+void ratioRounds(const Lines& l, float* out, int runs) {
+    const Kernel kernels[] = {Kernel::floatLanes, Kernel::doubleLanes, Kernel::hullLanes, Kernel::hullLanesUniform,
+                              Kernel::copyOnly};
+    const char* names[] = {"float kernel (16 lines, gathers)", "double kernel (8 lines, gathers)",
+                           "hull_lanes.h kernel (16 lines, no gathers)", "  the same, uniform spacing (timing only)",
+                           "only reading heights, writing the output"};
+    constexpr int kKernels = 5;
+    const int rounds = std::max(3, 2 * runs + 1);
+    std::vector<double> seconds[kKernels], ratios[kKernels];
+    for (int round = 0; round < rounds; ++round) {
+        double t[kKernels];
+        for (int j = 0; j < kKernels; ++j) {
+            const int k = (j + round) % kKernels;
+            t[k] = threadSeconds([&] { sweepColumns(l, out, 1, kernels[k]); });
+        }
+        for (int k = 0; k < kKernels; ++k) {
+            seconds[k].push_back(t[k]);
+            ratios[k].push_back(t[k] / t[0]);
+        }
+    }
+    const double cells = static_cast<double>(l.width * l.height);
+    std::printf("one thread, %d alternating rounds, thread CPU time: ratio to the float kernel, median [min, max]; "
+                "ns/cell median\n",
+                rounds);
+    for (int k = 0; k < kKernels; ++k) {
+        std::sort(ratios[k].begin(), ratios[k].end());
+        std::sort(seconds[k].begin(), seconds[k].end());
+        std::printf("  %-44s %6.3f [%.3f, %.3f] %8.2f\n", names[k], ratios[k][ratios[k].size() / 2], ratios[k].front(),
+                    ratios[k].back(), seconds[k][seconds[k].size() / 2] / cells * 1e9);
+    }
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s DEM [runs]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s DEM [runs] [ratios]\n", argv[0]);
         return 2;
     }
     try {
@@ -283,15 +366,32 @@ int main(int argc, char** argv) {
         const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
         demlight::HorizonParams p;  // azimuth 0, whole DEM, no near field
         p.azimuthDeg = 0.0;
-        Lines lines{t.heightsM.data(), static_cast<long>(t.width()), static_cast<long>(t.height()), {}, 0.0};
+        Lines lines{t.heightsM.data(), static_cast<long>(t.width()), static_cast<long>(t.height()), {}, 0.0, {}, {}};
         // The library's distances along a column: the sum of the row heights walked (its sigmaAt).
         lines.sigma.assign(t.height(), 0.0);
         for (std::size_t r = 1; r < t.height(); ++r) lines.sigma[r] = lines.sigma[r - 1] + t.cellHeightM[r - 1];
         lines.invR = demlight::inverseEffectiveRadius(p);
+        lines.geometry = {lines.sigma, lines.invR};
+        lines.uniform = lines.geometry;
+        for (std::size_t r = 0; r < t.height(); ++r)
+            lines.uniform.sigmaM[r] = lines.sigma.back() * static_cast<double>(r) / static_cast<double>(t.height() - 1);
+        // "ratios" as a third argument: only the alternating rounds (and the kernel's error).
+        const bool ratiosOnly = argc > 3 && std::string(argv[3]) == "ratios";
         const int all = demlight::resolveThreadCount(0);
         const double cells = static_cast<double>(t.width() * t.height());
         std::vector<float> slopes(t.width() * t.height());
         demlight::HorizonMap ref;
+#ifdef FLOOR_AVX512
+        if (ratiosOnly && demlight::hullVectorKernelAvailable()) {
+            std::printf("%s: %zu x %zu cells, azimuth 0, whole DEM\n", argv[1], t.width(), t.height());
+            sweepColumns(lines, slopes.data(), 1, Kernel::doubleLanes);
+            const std::vector<float> doubleSlopes = slopes;
+            sweepColumns(lines, slopes.data(), 1, Kernel::hullLanes);
+            reportAgainst(slopes, doubleSlopes, "hull_lanes.h kernel");
+            ratioRounds(lines, slopes.data(), runs);
+            return 0;
+        }
+#endif
 
         // On a projected grid true north turns against the columns (meridian convergence): the
         // library's lines at azimuth 0 are not the columns, and the angles are not compared.
@@ -339,6 +439,11 @@ int main(int argc, char** argv) {
         if (!diffs.empty())
             std::printf("float kernel against the double kernels: median %.1e, p99 %.1e, max %.1e deg over %zu cells\n",
                         diffs[diffs.size() / 2], diffs[diffs.size() * 99 / 100], maxDeg, diffs.size());
+        if (demlight::hullVectorKernelAvailable()) {
+            row("hull_lanes.h kernel (16 lines, no gathers)", kernel(Kernel::hullLanes), true);
+            reportAgainst(slopes, doubleSlopes, "hull_lanes.h kernel");
+            ratioRounds(lines, slopes.data(), runs);
+        }
 #else
         std::printf("(AVX-512 not compiled in: no vector kernel)\n");
 #endif

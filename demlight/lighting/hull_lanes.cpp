@@ -1,0 +1,404 @@
+#include "demlight/lighting/hull_lanes.h"
+
+#include "demlight/core/avx512.h"
+#include "demlight/core/error.h"
+#include "demlight/core/simd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace demlight {
+
+namespace {
+
+constexpr float kNoHorizon = -std::numeric_limits<float>::infinity();
+
+void checkBlock(const HullGeometry& geometry, const HullBlock& block) {
+    if (block.lines > block.stride)
+        throw Error("hull kernel: a block of " + std::to_string(block.lines) + " lines in rows of " +
+                    std::to_string(block.stride) + " samples");
+    if (!geometry.sigmaM.empty() && geometry.sigmaM.front() != 0.0)
+        throw Error("hull kernel: sigmaM[0] must be 0, not " + std::to_string(geometry.sigmaM.front()));
+}
+
+}  // namespace
+
+void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    checkBlock(geometry, block);
+    const std::size_t n = geometry.sigmaM.size();
+    // Line b's hull: (sigma, g) pairs from its bottom vertex up, at hullD[2 * b * n].
+    scratch.hullD.resize(2 * n * block.lines);
+    std::vector<std::size_t> top(block.lines, 0);
+    const double invR = geometry.invRadius;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double s = geometry.sigmaM[i];
+        const double drop = 0.5 * s * s * invR;
+        const float* h = block.heightsM + i * block.stride;
+        float* out = block.out + i * block.stride;
+        for (std::size_t b = 0; b < block.lines; ++b) {
+            if (std::isnan(h[b])) {
+                out[b] = h[b];
+                continue;
+            }
+            double* v = scratch.hullD.data() + 2 * b * n;
+            std::size_t t = top[b];
+            const double g = static_cast<double>(h[b]) - drop;
+            // Pop the top vertex v1 unless the slope to v2 (below it, farther) is under the slope
+            // to v1: then v1 stands above the sight line to v2 and stays on the hull.
+            while (t >= 2 && !((v[2 * t - 3] - g) * (s - v[2 * t - 2]) < (v[2 * t - 1] - g) * (s - v[2 * t - 4]))) --t;
+            out[b] = t >= 1 ? static_cast<float>((v[2 * t - 1] - g) / (s - v[2 * t - 2]) - s * invR) : kNoHorizon;
+            v[2 * t] = s;
+            v[2 * t + 1] = g;
+            top[b] = t + 1;
+        }
+    }
+}
+
+HullSlopeBound hullSlopeErrorBound(const HullGeometry& geometry, double maxAbsGM) {
+    const std::size_t n = geometry.sigmaM.size();
+    if (n < 2) return {};
+    const auto ulp = [](double x) { return x > 0.0 ? std::ldexp(1.0, std::ilogb(x) - 23) : 0.0; };
+    double dMin = std::numeric_limits<double>::infinity(), offMax = 0.0;
+    const double spacing = geometry.sigmaM.back() / static_cast<double>(n - 1);
+    for (std::size_t i = 1; i < n; ++i) {
+        dMin = std::min(dMin, geometry.sigmaM[i] - geometry.sigmaM[i - 1]);
+        offMax = std::max(offMax, std::abs(geometry.sigmaM[i] - static_cast<double>(i) * spacing));
+    }
+    const double relative = std::ldexp(1.0, -20) + 2.0 * ulp(offMax) / dMin;
+    const double curve = geometry.sigmaM.back() * geometry.invRadius;
+    return {2.0 * (2.0 * 3.0 * ulp(maxAbsGM) / dMin + relative * 2.0 * curve), 2.0 * relative};
+}
+
+#ifdef DEMLIGHT_HAS_AVX512_KERNELS
+
+namespace {
+
+constexpr int kLanes = 16;
+/// Hull vertices kept in registers per lane.
+constexpr int kWindow = 5;
+/// Window slots that hold over the push (the bottom one falls off).
+constexpr int kSlots = kWindow - 1;
+/// When a lane walks, the lanes whose windows keep this many vertices or fewer after their pops
+/// refill them in the same call.
+constexpr int kRefillKept = 2;
+static_assert(kSlots > kRefillKept);
+/// Rows one group of lanes walks before the next group of the block takes the same rows: the
+/// block's rows then stay in the caches (and their pages in the TLB) while its groups pass.
+constexpr std::size_t kRowsPerChunk = 32;
+/// How far ahead the heights and the output are prefetched (rows of one group).
+constexpr std::size_t kPrefetchRows = 12;
+
+/// Per-sample floats shared by every line: the drop sigma^2 / (2 R), the curvature term sigma / R,
+/// and the offset of sigma from a uniform spacing (sigma - i * spacing).
+struct RowTables {
+    const float* drop;
+    const float* curve;
+    const float* offset;
+    float spacing;
+};
+
+/// One group's registers between row chunks: each lane's window of hull vertices (dropped height
+/// g, row, offset; g NaN where the window holds no vertex) and the row of the vertex under the
+/// window's lowest one (-1: none, the window holds the whole hull).
+struct alignas(64) GroupState {
+    float g[kWindow][kLanes];
+    float row[kWindow][kLanes];
+    float offset[kWindow][kLanes];
+    float under[kLanes];
+};
+
+/// A group's scratch: each point's dropped height and the row of the hull vertex below it when it
+/// was pushed (-1: none), at [row * kLanes + lane].
+struct GroupPoints {
+    float* g;
+    float* link;
+};
+
+/// Distance from a vertex at `row` (with `offset`) to the sample at rf (with offR), in the units the
+/// pop tests compare: samples where the spacing is uniform (it cancels from the tests), metres
+/// otherwise. The integer difference is exact; the offsets are small, so the sum keeps float's
+/// relative precision.
+template <bool kVarying>
+DEMLIGHT_AVX512 inline __m512 testDistance(__m512 rf, __m512 row, __m512 offR, __m512 offset, __m512 spacing) {
+    const __m512 k = _mm512_sub_ps(rf, row);
+    if constexpr (kVarying) return _mm512_fmadd_ps(k, spacing, _mm512_sub_ps(offR, offset));
+    return k;
+}
+
+template <bool kVarying>
+DEMLIGHT_AVX512 inline float testDistance1(float rf, float row, float offR, float offset, float spacing) {
+    const float k = rf - row;
+    if constexpr (kVarying) return __builtin_fmaf(k, spacing, offR - offset);
+    return k;
+}
+
+/// A group's registers in memory for walkLanes: the new points' g, the rows under the windows,
+/// and slots 1..4 of the windows after the vector pops (g, row, offset).
+struct alignas(64) WalkLanes {
+    float g[kLanes], u[kLanes];
+    float s[kSlots][kLanes], q[kSlots][kLanes], o[kSlots][kLanes];
+};
+
+/// The lanes of `walk` popped down to the window's last vertex while the hull goes on below it:
+/// each continues popping along the links (the same test as the vector code). Those lanes, and
+/// the lanes of `refill` (windows of two vertices or fewer over more hull), then take the top four
+/// vertices of their hull into slots 1..4 from the links, so that they walk again later or not at
+/// all. w holds slots 1 and 2 on entry, all four (and u) of these lanes on return. Kept out of line:
+/// the vector loop keeps its registers.
+template <bool kVarying>
+DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned refill, std::size_t r,
+                                                        const RowTables& t, const GroupPoints& points,
+                                                        WalkLanes& w) {
+    auto& gs = w.g;
+    auto& u = w.u;
+    auto& s = w.s;
+    auto& q = w.q;
+    auto& o = w.o;
+    const float rf = static_cast<float>(r), offR = t.offset[r];
+    for (unsigned m = refill; m; m &= m - 1) {
+        const int l = __builtin_ctz(m);
+        // The vertices the window keeps (one where the lane walks, one or two otherwise), then the
+        // ones below through the links.
+        int kept = 1;
+        while (kept < kRefillKept && !std::isnan(s[kept][l])) ++kept;
+        float below = u[l];
+        if (walk & (1u << l)) {
+            float gc = s[0][l], rowC = q[0][l];
+            while (below >= 0.0f) {
+                const auto b = static_cast<std::size_t>(below);
+                const float gb = points.g[b * kLanes + l];
+                const float dc = testDistance1<kVarying>(rf, rowC, offR, t.offset[static_cast<std::size_t>(rowC)], t.spacing);
+                const float db = testDistance1<kVarying>(rf, below, offR, t.offset[b], t.spacing);
+                if (!((gb - gs[l]) * dc >= (gc - gs[l]) * db)) break;
+                gc = gb;
+                rowC = below;
+                below = points.link[b * kLanes + l];
+            }
+            s[0][l] = gc;
+            q[0][l] = rowC;
+        }
+        for (int j = kept; j < kSlots; ++j) {
+            if (below >= 0.0f) {
+                const auto b = static_cast<std::size_t>(below);
+                s[j][l] = points.g[b * kLanes + l];
+                q[j][l] = below;
+                below = points.link[b * kLanes + l];
+            } else {
+                s[j][l] = std::numeric_limits<float>::quiet_NaN();
+                q[j][l] = -1.0f;
+            }
+        }
+        u[l] = below;
+        for (int j = 0; j < kSlots; ++j) o[j][l] = q[j][l] < 0.0f ? 0.0f : t.offset[static_cast<std::size_t>(q[j][l])];
+    }
+}
+
+/// Rows [r0, r1) of the group of lines at column col0 (lanes: the lines that exist).
+template <bool kVarying>
+DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask16 lanes, const RowTables& t,
+                               const GroupPoints& points, std::size_t r0, std::size_t r1, std::size_t n,
+                               GroupState& state) {
+    __m512 G[kWindow], R[kWindow], O[kWindow];
+    for (int j = 0; j < kWindow; ++j) {
+        G[j] = _mm512_load_ps(state.g[j]);
+        R[j] = _mm512_load_ps(state.row[j]);
+        O[j] = _mm512_load_ps(state.offset[j]);
+    }
+    __m512 U = _mm512_load_ps(state.under);
+    const __m512 nan = _mm512_set1_ps(std::numeric_limits<float>::quiet_NaN());
+    const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
+    const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
+    const __m512 spacing = _mm512_set1_ps(t.spacing);
+    // Locals, so that the stores below cannot make the compiler read them again.
+    const float* const heights = block.heightsM;
+    float* const outBase = block.out;
+    const std::size_t stride = block.stride;
+    const float* const drop = t.drop;
+    const float* const curve = t.curve;
+    const float* const offsets = t.offset;
+    float* const pointG = points.g;
+    float* const pointLink = points.link;
+    for (std::size_t r = r0; r < r1; ++r) {
+        if (r + kPrefetchRows < n) {
+            const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
+            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
+            __builtin_prefetch(outBase + ahead, 1);
+            __builtin_prefetch(outBase + ahead + kLanes - 1, 1);
+        }
+        float* out = outBase + r * stride + col0;
+        const __m512 h = _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+        const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
+        if (!valid) {  // nodata only (sea): every hull stays as it is
+            _mm512_mask_storeu_ps(out, lanes, h);
+            continue;
+        }
+        const __m512 rf = _mm512_set1_ps(static_cast<float>(r));
+        const __m512 offR = _mm512_set1_ps(offsets[r]);
+        const __m512 g = _mm512_sub_ps(h, _mm512_set1_ps(drop[r]));
+
+        // Pop test j (vertex j of the window, 0 on top): pop it unless the slope to vertex j + 1
+        // is under the slope to vertex j. NaN (no vertex, or no data) compares false: no pop.
+        __m512 a[kWindow], d[kWindow];
+        for (int j = 0; j < kWindow; ++j) {
+            a[j] = _mm512_sub_ps(G[j], g);
+            d[j] = testDistance<kVarying>(rf, R[j], offR, O[j], spacing);
+        }
+        __mmask16 pop[kWindow - 1];
+        for (int j = 0; j < kWindow - 1; ++j)
+            pop[j] = _mm512_cmp_ps_mask(_mm512_mul_ps(a[j + 1], d[j]), _mm512_mul_ps(a[j], d[j + 1]), _CMP_GE_OQ);
+        // On a convex chain the pops are a leading run: lanes in m[k] pop at least k + 1 vertices.
+        __mmask16 m[kWindow - 1];
+        // A lane without data at this row pops its top and pushes it back: the window stays, and
+        // the push below needs no mask but the top's.
+        m[0] = pop[0] | static_cast<__mmask16>(~valid);
+        for (int j = 1; j < kWindow - 1; ++j) m[j] = m[j - 1] & pop[j];
+
+        // The vertex that falls off the window's bottom at the push (no pop, full window) is the
+        // one under the new bottom.
+        U = _mm512_mask_mov_ps(U, valid & ~m[0] & _mm512_cmp_ps_mask(G[kWindow - 1], G[kWindow - 1], _CMP_ORD_Q),
+                               R[kWindow - 1]);
+        // Slot j after k pops holds old slot j + k, NaN past the window.
+        __m512 S[kSlots], Q[kSlots], Os[kSlots];
+        for (int j = 0; j < kSlots; ++j) {
+            S[j] = G[j];
+            Q[j] = R[j];
+            Os[j] = O[j];
+            for (int k = 1; k <= kWindow - 1; ++k) {
+                if (j + k < kWindow) {
+                    S[j] = _mm512_mask_mov_ps(S[j], m[k - 1], G[j + k]);
+                    Q[j] = _mm512_mask_mov_ps(Q[j], m[k - 1], R[j + k]);
+                    if constexpr (kVarying) Os[j] = _mm512_mask_mov_ps(Os[j], m[k - 1], O[j + k]);
+                } else {
+                    S[j] = _mm512_mask_mov_ps(S[j], m[k - 1], nan);
+                    break;
+                }
+            }
+        }
+        const __mmask16 topLeft = _mm512_cmp_ps_mask(S[0], S[0], _CMP_ORD_Q);
+        const __mmask16 more = valid & topLeft & _mm512_cmp_ps_mask(U, zero, _CMP_GE_OQ);
+        const __mmask16 walk = more & _mm512_cmp_ps_mask(S[1], S[1], _CMP_UNORD_Q);
+        if (walk) [[unlikely]] {
+            const __mmask16 refill = walk | (more & _mm512_cmp_ps_mask(S[kRefillKept], S[kRefillKept], _CMP_UNORD_Q));
+            WalkLanes w;
+            _mm512_store_ps(w.g, g);
+            _mm512_store_ps(w.u, U);
+            for (int j = 0; j < kRefillKept; ++j) {
+                _mm512_store_ps(w.s[j], S[j]);
+                _mm512_store_ps(w.q[j], Q[j]);
+            }
+            walkLanes<kVarying>(walk, refill, r, t, points, w);
+            U = _mm512_mask_load_ps(U, refill, w.u);
+            for (int j = 0; j < kSlots; ++j) {
+                S[j] = _mm512_mask_load_ps(S[j], refill, w.s[j]);
+                Q[j] = _mm512_mask_load_ps(Q[j], refill, w.q[j]);
+                if constexpr (kVarying) Os[j] = _mm512_mask_load_ps(Os[j], refill, w.o[j]);
+            }
+        }
+
+        // The slope to the top vertex: a reciprocal estimate (2^-14) and one Newton step.
+        const __m512 k1 = _mm512_sub_ps(rf, Q[0]);
+        const __m512 d1 = kVarying ? _mm512_fmadd_ps(k1, spacing, _mm512_sub_ps(offR, Os[0]))
+                                   : _mm512_mul_ps(k1, spacing);
+        __m512 inv = _mm512_rcp14_ps(d1);
+        inv = _mm512_mul_ps(inv, _mm512_fnmadd_ps(d1, inv, two));
+        __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(curve[r]));
+        slope = _mm512_mask_blend_ps(topLeft, noHorizon, slope);
+        _mm512_mask_storeu_ps(out, lanes, _mm512_mask_blend_ps(valid, h, slope));
+
+        // Push: the point's height and the row of the vertex below it, stored whole (slots of
+        // points that never become vertices are never read).
+        _mm512_storeu_ps(pointG + r * kLanes, g);
+        _mm512_storeu_ps(pointLink + r * kLanes, _mm512_mask_blend_ps(topLeft, none, Q[0]));
+        for (int j = kWindow - 1; j >= 1; --j) {
+            G[j] = S[j - 1];
+            R[j] = Q[j - 1];
+            if constexpr (kVarying) O[j] = Os[j - 1];
+        }
+        G[0] = _mm512_mask_mov_ps(G[0], valid, g);
+        R[0] = _mm512_mask_mov_ps(R[0], valid, rf);
+        if constexpr (kVarying) O[0] = _mm512_mask_mov_ps(O[0], valid, offR);
+    }
+    for (int j = 0; j < kWindow; ++j) {
+        _mm512_store_ps(state.g[j], G[j]);
+        _mm512_store_ps(state.row[j], R[j]);
+        _mm512_store_ps(state.offset[j], O[j]);
+    }
+    _mm512_store_ps(state.under, U);
+}
+
+template <bool kVarying>
+DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const RowTables& t, HullScratch& scratch) {
+    const std::size_t groups = (block.lines + kLanes - 1) / kLanes;
+    scratch.pointG.resize(groups * n * kLanes);
+    scratch.pointLink.resize(groups * n * kLanes);
+    std::vector<GroupState> states(groups);
+    for (GroupState& s : states) {
+        std::fill(&s.g[0][0], &s.g[0][0] + kWindow * kLanes, std::numeric_limits<float>::quiet_NaN());
+        std::fill(&s.row[0][0], &s.row[0][0] + kWindow * kLanes, -1.0f);
+        std::fill(&s.offset[0][0], &s.offset[0][0] + kWindow * kLanes, 0.0f);
+        std::fill(s.under, s.under + kLanes, -1.0f);
+    }
+    for (std::size_t r0 = 0; r0 < n; r0 += kRowsPerChunk) {
+        const std::size_t r1 = std::min(n, r0 + kRowsPerChunk);
+        for (std::size_t q = 0; q < groups; ++q) {
+            const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
+            const auto lanes = static_cast<__mmask16>((1u << count) - 1u);
+            const GroupPoints points{scratch.pointG.data() + q * n * kLanes, scratch.pointLink.data() + q * n * kLanes};
+            groupRows<kVarying>(block, col0, lanes, t, points, r0, r1, n, states[q]);
+        }
+    }
+}
+
+}  // namespace
+
+bool hullVectorKernelAvailable() { return processorHasAvx512(); }
+
+void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
+    checkBlock(geometry, block);
+    const std::size_t n = geometry.sigmaM.size();
+    if (n == 0 || block.lines == 0) return;
+    if (n >= (std::size_t{1} << 24))
+        throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
+    // The uniform spacing the row differences are scaled by, and each sample's offset from it.
+    const double spacing = n > 1 ? geometry.sigmaM.back() / static_cast<double>(n - 1) : 1.0;
+    scratch.rowTables.resize(3 * n);
+    float* drop = scratch.rowTables.data();
+    float* curve = drop + n;
+    float* offset = curve + n;
+    bool varying = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double s = geometry.sigmaM[i];
+        drop[i] = static_cast<float>(0.5 * s * s * geometry.invRadius);
+        curve[i] = static_cast<float>(s * geometry.invRadius);
+        const double off = s - static_cast<double>(i) * spacing;
+        // Offsets below float's rounding of a distance are none: the row differences are exact.
+        offset[i] = std::abs(off) > std::ldexp(spacing, -24) ? static_cast<float>(off) : 0.0f;
+        varying = varying || offset[i] != 0.0f;
+    }
+    const RowTables t{drop, curve, offset, static_cast<float>(spacing)};
+    if (varying)
+        vectorBlock<true>(block, n, t, scratch);
+    else
+        vectorBlock<false>(block, n, t, scratch);
+}
+
+#else
+
+bool hullVectorKernelAvailable() { return false; }
+
+void hullSlopesVector(const HullGeometry&, const HullBlock&, HullScratch&) {
+    throw Error("hull kernel: this build has no AVX-512 kernels");
+}
+
+#endif
+
+void hullSlopes(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    if (simdPath() == SimdPath::Avx512) return hullSlopesVector(geometry, block, scratch);
+    hullSlopesReference(geometry, block, scratch);
+}
+
+}  // namespace demlight

@@ -1,0 +1,90 @@
+// The upper-hull horizon kernel over a block of parallel lines (Dozier 1981; Timonen & Westerholm
+// 2010): walking each line from its first sample, a sample's horizon on the side already walked is
+// the steepest sight line to an earlier sample, and that sample is the vertex below the new point
+// on the upper convex hull of the earlier ones, once the vertices the new point hides are popped.
+//
+// The earth's curvature enters as a drop of every height by sigma^2 / (2 R) (sigma: distance along
+// the line); the hull of the dropped heights g is the hull of the curved problem, and the tangent
+// from the new point at sigma to a vertex at sigma_v is (g_v - g) / (sigma - sigma_v) - sigma / R
+// (the drop's two parts, sigma^2 - sigma_v^2 = (sigma - sigma_v)(sigma + sigma_v), cancel into the
+// last term exactly).
+//
+// Two kernels compute it:
+// - hullSlopesReference: the exact hull in double precision, one line at a time (pop while the new
+//   point does not see the top vertex above the one below it). The portable path.
+// - an AVX-512 kernel in single precision, sixteen lines a vector, without gathers or scatters:
+//   each lane keeps the top five vertices of its hull in registers, all four pop tests of the
+//   window are evaluated at once and the pops are their leading run; the hull is a linked list
+//   through the points (each point's slot holds the row of the vertex below it), so a push is one
+//   vector store; a lane that pops its whole window walks the links in scalar code. Distances are
+//   integer sample differences times the spacing (plus each sample's small offset from a uniform
+//   spacing), so they stay exact where a float distance from the line's start would not; the
+//   tangent's division is a reciprocal estimate and one Newton step.
+// hullSlopes runs the AVX-512 kernel where simdPath() allows it, the reference elsewhere. The two
+// agree within hullSlopeErrorBound (derived there); tests hold them to it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace demlight {
+
+/// Where the samples of a set of parallel lines lie along them, the same on every line.
+struct HullGeometry {
+    /// Distance of sample i from the lines' first sample (metres), increasing, sigmaM[0] = 0.
+    std::vector<double> sigmaM;
+    /// 1 / effective earth radius (1/m), refraction included; 0 for a flat earth.
+    double invRadius = 0.0;
+};
+
+/// A block of lines in a row-major array: sample i of line b is at heightsM[i * stride + b] (metres,
+/// NaN nodata), and its slope is written to out[i * stride + b]. lines <= stride.
+struct HullBlock {
+    const float* heightsM = nullptr;
+    float* out = nullptr;
+    std::size_t stride = 0;
+    std::size_t lines = 0;
+};
+
+/// Reusable scratch of the kernels (grows to what a block needs, never shrinks).
+struct HullScratch {
+    std::vector<double> hullD;
+    std::vector<float> pointG, pointLink, rowTables;
+};
+
+/// The horizon slope (tangent of the elevation angle, curvature included) of every sample of the
+/// block's lines towards their first sample: -inf where no earlier sample has data, NaN at nodata.
+/// Runs the vector kernel where simdPath() allows it (AVX-512), the reference elsewhere.
+void hullSlopes(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch);
+
+/// The exact hull in double precision (the portable path).
+void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch);
+
+/// Whether this build and processor run the vector kernel (and hullSlopesVector may be called).
+bool hullVectorKernelAvailable();
+
+/// The AVX-512 kernel, whatever simdPath() says (for tests and benchmarks); throws Error where
+/// hullVectorKernelAvailable() is false.
+void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch);
+
+/// A bound on |slope(vector kernel) - slope(reference)|: absolute + relative * |slope(reference)|.
+struct HullSlopeBound {
+    double absolute = 0.0, relative = 0.0;
+    double at(double slopeRef) const { return absolute + relative * (slopeRef < 0 ? -slopeRef : slopeRef); }
+};
+
+/// The bound for lines whose heights, drops sigma^2 / (2 R) and dropped heights g stay below
+/// maxAbsGM in magnitude (metres). With u_G one float ulp at maxAbsGM and d_min the smallest
+/// distance between samples:
+/// - the vector kernel rounds each g to float (the drop and the difference, half an ulp each) and
+///   the rise g_v - g once more: a slope to any earlier sample moves by at most 3 u_G / d_min, so
+///   the hull's maximum moves by no more; the pop tests' own rounding only swaps vertices whose
+///   slopes lie as close, which at most doubles it;
+/// - a distance is exact in samples, times the spacing (one rounding) plus the difference of two
+///   offsets from the uniform spacing (one ulp of the largest offset, over d_min), and the
+///   reciprocal estimate after its Newton step, the product and the subtraction of sigma / R add a
+///   few float roundings: together under 2^-20 + 2 ulp(offset) / d_min of |slope| + 2 sigma_max / R.
+/// The whole doubled for margin.
+HullSlopeBound hullSlopeErrorBound(const HullGeometry& geometry, double maxAbsGM);
+
+}  // namespace demlight

@@ -1,0 +1,287 @@
+// The hull kernel of a block of parallel lines (demlight/lighting/hull_lanes.h): the double
+// reference against a brute-force maximum over every earlier sample, and the AVX-512 float
+// kernel against the reference within hullSlopeErrorBound, on profiles built to stress its window
+// (deep pops past the five vertices it keeps, plateaus, nodata runs, ragged blocks) and on the
+// columns of real DEMs.
+#include "demlight/core/simd.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/hull_lanes.h"
+#include "shared_dem.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace demlight {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+/// Lines as a row-major array: sample i of line b at heights[i * stride + b].
+struct Profiles {
+    HullGeometry geometry;
+    std::vector<float> heights;
+    std::size_t stride = 0, lines = 0;
+
+    std::size_t samples() const { return geometry.sigmaM.size(); }
+    float& at(std::size_t i, std::size_t b) { return heights[i * stride + b]; }
+};
+
+/// n samples `spacingM` apart, or (varying) with spacings growing by `growth` per sample, as a
+/// geographic grid's rows do along a meridian.
+HullGeometry geometry(std::size_t n, double spacingM, double growth, double invRadius) {
+    HullGeometry g;
+    g.invRadius = invRadius;
+    g.sigmaM.assign(n, 0.0);
+    for (std::size_t i = 1; i < n; ++i)
+        g.sigmaM[i] = g.sigmaM[i - 1] + spacingM * (1.0 + growth * static_cast<double>(i));
+    return g;
+}
+
+std::vector<float> run(const Profiles& p, bool vector) {
+    std::vector<float> out(p.heights.size(), 7.0f);
+    HullScratch scratch;
+    const HullBlock block{p.heights.data(), out.data(), p.stride, p.lines};
+    if (vector)
+        hullSlopesVector(p.geometry, block, scratch);
+    else
+        hullSlopesReference(p.geometry, block, scratch);
+    return out;
+}
+
+/// The largest |h|, drop and |h - drop| of the profiles (the bound's maxAbsGM).
+double maxAbsG(const Profiles& p) {
+    double m = 0.0;
+    for (std::size_t i = 0; i < p.samples(); ++i) {
+        const double s = p.geometry.sigmaM[i], drop = 0.5 * s * s * p.geometry.invRadius;
+        for (std::size_t b = 0; b < p.lines; ++b) {
+            const double h = p.heights[i * p.stride + b];
+            if (!std::isnan(h)) m = std::max({m, std::abs(h), drop, std::abs(h - drop)});
+        }
+    }
+    return m;
+}
+
+struct Agreement {
+    double maxDeg = 0.0;     // largest angle difference
+    double maxOfBound = 0.0; // largest difference as a share of the cell's bound
+    std::size_t cells = 0;   // cells with a horizon in both
+};
+
+/// The vector kernel against the reference on p: nodata and no-horizon cells alike, every other
+/// cell within the bound; the samples outside the block's lines untouched.
+Agreement expectVectorMatchesReference(const Profiles& p, const std::string& what) {
+    const std::vector<float> ref = run(p, false), vec = run(p, true);
+    const HullSlopeBound limit = hullSlopeErrorBound(p.geometry, maxAbsG(p));
+    Agreement a;
+    std::size_t failures = 0;
+    for (std::size_t i = 0; i < p.samples(); ++i)
+        for (std::size_t b = 0; b < p.stride; ++b) {
+            const std::size_t k = i * p.stride + b;
+            if (b >= p.lines) {
+                EXPECT_EQ(vec[k], 7.0f) << what << ": sample " << i << " of column " << b << " is no line's";
+                continue;
+            }
+            const float x = vec[k], y = ref[k];
+            if (std::isnan(y) || std::isinf(y) || std::isnan(x) || std::isinf(x)) {
+                const bool same = (std::isnan(x) && std::isnan(y)) || x == y;
+                if (!same && ++failures <= 5)
+                    ADD_FAILURE() << what << ": line " << b << " sample " << i << ": vector " << x << ", reference " << y;
+                continue;
+            }
+            const double diff = std::abs(static_cast<double>(x) - y);
+            const double bound = limit.at(y);
+            if (diff > bound && ++failures <= 5)
+                ADD_FAILURE() << what << ": line " << b << " sample " << i << ": vector " << x << ", reference " << y
+                              << ", off by " << diff << " > bound " << bound;
+            a.maxOfBound = std::max(a.maxOfBound, diff / bound);
+            a.maxDeg = std::max(a.maxDeg, std::abs(std::atan(static_cast<double>(x)) - std::atan(static_cast<double>(y))) *
+                                              180.0 / M_PI);
+            ++a.cells;
+        }
+    EXPECT_EQ(failures, 0u) << what;
+    return a;
+}
+
+#define SKIP_WITHOUT_VECTOR_KERNEL() \
+    if (!hullVectorKernelAvailable()) GTEST_SKIP() << "no AVX-512 on this processor: the vector kernel cannot run"
+
+/// Concave ramps (every sample stays on the hull) each ended by a peak that hides the whole ramp:
+/// the vector kernel's pops run far past its window. Lanes have ramps of different lengths, so
+/// their deep pops fall on different rows.
+Profiles rampsAndPeaks(std::size_t lines, std::size_t n, const HullGeometry& geo) {
+    Profiles p{geo, std::vector<float>(n * (lines + 3), 0.0f), lines + 3, lines};
+    for (std::size_t b = 0; b < lines; ++b) {
+        const std::size_t period = 7 + 13 * b % 61;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t phase = i % period;
+            const double x = static_cast<double>(phase) / static_cast<double>(period);
+            p.at(i, b) = phase + 1 == period ? static_cast<float>(900.0 + 3.0 * b) : static_cast<float>(400.0 * std::sqrt(x));
+        }
+    }
+    return p;
+}
+
+TEST(HullLanes, ReferenceIsTheMaximumOverEveryEarlierSample) {
+    std::mt19937 rng(43);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int trial = 0; trial < 40; ++trial) {
+        const std::size_t n = 20 + trial * 7, lines = 1 + trial % 5;
+        const double invR = trial % 3 == 0 ? 0.0 : 1.0 / 7.3e6 * (1.0 + trial);
+        Profiles p{geometry(n, 5.0 + trial, trial % 2 ? 1e-3 : 0.0, invR), std::vector<float>(n * lines), lines, lines};
+        for (float& h : p.heights) {
+            const double u = uniform(rng);
+            // Nodata, plateaus (whole metres repeat) and rough ground.
+            h = u < 0.1 ? kNaN : u < 0.4 ? std::round(static_cast<float>(20.0 * uniform(rng))) : static_cast<float>(300.0 * uniform(rng));
+        }
+        const std::vector<float> ref = run(p, false);
+        for (std::size_t b = 0; b < lines; ++b)
+            for (std::size_t i = 0; i < n; ++i) {
+                const float h = p.at(i, b), got = ref[i * lines + b];
+                const std::string where = "trial " + std::to_string(trial) + " line " + std::to_string(b) +
+                                          " sample " + std::to_string(i);
+                if (std::isnan(h)) {
+                    EXPECT_TRUE(std::isnan(got)) << where;
+                    continue;
+                }
+                // The steepest sight line to an earlier sample: rise over distance, less the
+                // curvature's drop over that distance (d^2 / 2R, over d).
+                double best = -std::numeric_limits<double>::infinity();
+                for (std::size_t j = 0; j < i; ++j) {
+                    if (std::isnan(p.at(j, b))) continue;
+                    const double d = p.geometry.sigmaM[i] - p.geometry.sigmaM[j];
+                    best = std::max(best, (static_cast<double>(p.at(j, b)) - h) / d - 0.5 * d * invR);
+                }
+                if (std::isinf(best))
+                    EXPECT_EQ(got, best) << where;
+                else
+                    EXPECT_NEAR(got, best, 1e-6 * std::abs(best) + 1e-12) << where;
+            }
+    }
+}
+
+TEST(HullLanes, VectorMatchesReferenceOnDeepPops) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    for (const double growth : {0.0, 2e-6}) {
+        const Profiles p = rampsAndPeaks(40, 3000, geometry(3000, 30.0, growth, 1.0 / 7.3e6));
+        expectVectorMatchesReference(p, growth > 0 ? "ramps, varying spacing" : "ramps, uniform spacing");
+    }
+}
+
+TEST(HullLanes, VectorMatchesReferenceOnPlateausAndNodataRuns) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const std::size_t n = 2500, lines = 33;
+    Profiles p{geometry(n, 25.0, 0.0, 1.0 / 7.3e6), std::vector<float>(n * 48), 48, lines};
+    for (std::size_t b = 0; b < lines; ++b) {
+        float level = 100.0f;
+        std::size_t run = 0;
+        bool nodata = b % 4 == 0;  // some lines start without data
+        for (std::size_t i = 0; i < n; ++i) {
+            if (run == 0) {
+                run = 1 + static_cast<std::size_t>(200.0 * uniform(rng));
+                nodata = !nodata && uniform(rng) < 0.3;
+                level = static_cast<float>(std::round(600.0 * uniform(rng)));
+            }
+            --run;
+            p.at(i, b) = nodata ? kNaN : level;
+        }
+    }
+    // Rows with no data on any line (a sea), and a plateau held by every line.
+    for (std::size_t i = 1000; i < 1040; ++i)
+        for (std::size_t b = 0; b < lines; ++b) p.at(i, b) = kNaN;
+    for (std::size_t i = 1500; i < 1700; ++i)
+        for (std::size_t b = 0; b < lines; ++b) p.at(i, b) = 250.0f;
+    expectVectorMatchesReference(p, "plateaus and nodata");
+    // A flat earth: plateaus are exactly collinear, every tie pops.
+    p.geometry.invRadius = 0.0;
+    expectVectorMatchesReference(p, "plateaus and nodata, flat earth");
+}
+
+TEST(HullLanes, VectorMatchesReferenceOnRoughGround) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    std::mt19937 rng(11);
+    std::normal_distribution<double> step(0.0, 4.0);
+    const std::size_t n = 4000, lines = 64;
+    Profiles p{geometry(n, 30.0, 1e-6, 1.0 / 7.3e6), std::vector<float>(n * lines), lines, lines};
+    for (std::size_t b = 0; b < lines; ++b) {
+        double h = 500.0;
+        for (std::size_t i = 0; i < n; ++i) p.at(i, b) = static_cast<float>(h += step(rng));
+    }
+    const Agreement a = expectVectorMatchesReference(p, "random walk");
+    EXPECT_GT(a.cells, n * lines / 2);
+}
+
+/// Every full block of 64 columns of a DEM walked from its north edge, distances the sum of the
+/// rows' heights as the sweep lays them at azimuth 0.
+Agreement expectColumnsMatch(const Terrain& t, const std::string& name) {
+    Profiles p;
+    p.geometry.sigmaM.assign(t.height(), 0.0);
+    for (std::size_t r = 1; r < t.height(); ++r) p.geometry.sigmaM[r] = p.geometry.sigmaM[r - 1] + t.cellHeightM[r - 1];
+    p.geometry.invRadius = inverseEffectiveRadius(HorizonParams{});
+    p.stride = t.width();
+    p.lines = t.width();
+    p.heights.assign(t.heightsM.data(), t.heightsM.data() + t.width() * t.height());
+    const Agreement a = expectVectorMatchesReference(p, name);
+    std::printf("%s: %zu cells, vector kernel within %.2f of its bound, max %.1e deg from the reference\n",
+                name.c_str(), a.cells, a.maxOfBound, a.maxDeg);
+    return a;
+}
+
+TEST(HullLanes, VectorMatchesReferenceOnSampleDems) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    for (const char* file : {"rocky_mountain_np_dem.tif", "luxembourg_elev_terra.tif", "harlem_dsm_trees_1m.tif"}) {
+        const Terrain t = loadDem(std::string(DEMLIGHT_SAMPLES_DIR) + "/" + file).terrain;
+        EXPECT_GT(expectColumnsMatch(t, file).cells, 0u) << file;
+    }
+}
+
+TEST(HullLanes, VectorMatchesReferenceOnSharedDems) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    std::size_t found = 0;
+    for (const char* file : {"N44W072.hgt", "N48W125_srtm1.tif"}) {
+        // A band of columns across the whole height keeps the test short.
+        const std::optional<Terrain> t = sharedTerrain(file);
+        if (!t) continue;
+        ++found;
+        const Terrain band = cropTerrainCentre(*t, 256, t->height());
+        expectColumnsMatch(band, file);
+    }
+    if (found == 0) GTEST_SKIP() << "shared DEMs not found in " << DEMLIGHT_SHARED_DEM_DIR;
+}
+
+TEST(HullLanes, DispatchFollowsSimdPath) {
+    const Profiles p = rampsAndPeaks(20, 500, geometry(500, 10.0, 0.0, 1.0 / 7.3e6));
+    const auto viaDispatch = [&] {
+        std::vector<float> out(p.heights.size(), 7.0f);
+        HullScratch scratch;
+        hullSlopes(p.geometry, HullBlock{p.heights.data(), out.data(), p.stride, p.lines}, scratch);
+        return out;
+    };
+    const auto sameBits = [](const std::vector<float>& a, const std::vector<float>& b) {
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](float x, float y) {
+                   return std::memcmp(&x, &y, sizeof x) == 0;
+               });
+    };
+    {
+        detail::ScopedSimdPath portable(SimdPath::Portable);
+        EXPECT_TRUE(sameBits(viaDispatch(), run(p, false)));
+    }
+    if (!hullVectorKernelAvailable()) GTEST_SKIP() << "no AVX-512 on this processor: only the portable path checked";
+    detail::ScopedSimdPath avx512(SimdPath::Avx512);
+    const std::vector<float> vec = run(p, true);
+    EXPECT_TRUE(sameBits(viaDispatch(), vec));
+    EXPECT_FALSE(sameBits(vec, run(p, false))) << "the float kernel should round differently from the double one";
+}
+
+}  // namespace
+}  // namespace demlight
