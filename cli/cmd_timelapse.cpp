@@ -201,7 +201,7 @@ public:
         OutputOptions out;
         out.path = (fs::path(o_.outDir) / name).string();
         out.creationOptions = o_.creationOptions;
-        writeResult(r, out, ctx_, o_.dem.path);
+        writeResult(r, out, runContext(ctx_), o_.dem.path);
     }
 
 private:
@@ -217,7 +217,7 @@ private:
         if (previous_ && dark && *previous_ == *dark) {
             // From the file that was encoded, not from a copy: each copy appends a directory.
             copyRasterWithMetadata((fs::path(o_.outDir) / previous_->name).string(),
-                                   (fs::path(o_.outDir) / name).string(), resultMetadata(lightmap, ctx_));
+                                   (fs::path(o_.outDir) / name).string(), resultMetadata(lightmap, runContext(ctx_)));
             return;
         }
         write(lightmap, name);
@@ -365,7 +365,7 @@ TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const 
                          const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx) {
     const std::size_t n = request.frames.instants.size();
     const std::size_t fitTarget = 1 + n;
-    TiledWriter writer(run, targets, ctx, o.dem.path);
+    TiledWriter writer(run, targets, runContext(ctx), o.dem.path);
     FrameIndex index(o.outDir);
     std::optional<TimelapseResult> total;
     runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
@@ -408,7 +408,7 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     checkCreationOptions("GTiff", o.creationOptions);  // before the work, not at the first file
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), runContext(ctx));
     const bool tiled = run.tiles.size() > 1;
     if (request.previews && !dem.isWhole(run.tiles.front()))
         throw Error("--formats " + o.formats + ": png, gif and mp4 are pictures of whole frames of the DEM, and this run is " +
