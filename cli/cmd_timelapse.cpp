@@ -408,7 +408,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     checkCreationOptions("GTiff", o.creationOptions);  // before the work, not at the first file
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), runContext(ctx));
+    const RasterRun run = planRasterRun(dem, o.tiling, timelapseHaloCells(dem, request),
+                                        productTileBytes(timelapseGridsPerCell(request)), runContext(ctx));
     const bool tiled = run.tiles.size() > 1;
     if (request.previews && !dem.isWhole(run.tiles.front()))
         throw Error("--formats " + o.formats + ": png, gif and mp4 are pictures of whole frames of the DEM, and this run is " +

@@ -242,10 +242,7 @@ std::vector<const ProductResult*> pointers(const std::vector<std::shared_ptr<Ras
 struct PyCall {
     RasterWork work;
 
-    std::size_t halo(const PyDem& dem) const {
-        const Terrain& terrain = dem.geometry().terrain;
-        return haloCellsFor(terrain, planFor(work.search, terrain).maxDistanceM);
-    }
+    std::size_t halo(const PyDem& dem) const { return work.halo(*dem.source); }
     /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them; the
     /// messages about srcwin and tile_size name them as keywords.
     RasterRun plan(const PyDem& dem) const {

@@ -29,6 +29,13 @@ constexpr std::size_t kInsolationBands = 5;
 /// Bands of the sunhours output: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
 constexpr std::size_t kSunhoursBands = 5;
 
+/// A work's halo: the product's own declaration (xxxHaloCells) for `request`.
+template <class Request>
+std::function<std::size_t(const DemSource&)> haloOf(std::size_t (*halo)(const DemSource&, const Request&),
+                                                   const Request& request) {
+    return [halo, request](const DemSource& dem) { return halo(dem, request); };
+}
+
 }  // namespace
 
 HorizonRequest horizonRequest(const HorizonParameters& p, bool point) {
@@ -49,7 +56,7 @@ ProductWork<HorizonResult> horizonWork(const HorizonRequest& request, const Hori
     work.command = "horizon";
     work.heights = p.heights;
     work.tiling = p.tiling;
-    work.search = request.search;
+    work.halo = haloOf(horizonHaloCells, request);
     // Memory of a window per cell: a horizon and a mask band per azimuth.
     work.tileBytes = productTileBytes(2 * request.azimuthsDeg.size());
     work.compute = [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
@@ -83,11 +90,11 @@ SunRequest sunRequest(const SunParameters& p) {
 }
 
 ProductWork<SunResult> sunWork(const SunRequest& request, const SunParameters& p) {
-    return singleRasterWork<SunResult>("sun", p.heights, p.tiling, p.search, productTileBytes(kSunBands),
-                                       [request](const DemSource& dem, const CellWindow& w,
-                                                                 const ProgressFn& progress) {
-                                           return sunProduct(dem, w, request, progress);
-                                       });
+    return singleRasterWork<SunResult>(
+        "sun", p.heights, p.tiling, haloOf(sunHaloCells, request), productTileBytes(kSunBands),
+        [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
+            return sunProduct(dem, w, request, progress);
+        });
 }
 
 SkyRequest skyRequest(const SkyParameters& p) {
@@ -105,7 +112,7 @@ SkyRequest skyRequest(const SkyParameters& p) {
 
 ProductWork<SkyResult> skyWork(const SkyRequest& request, const SkyParameters& p) {
     return singleRasterWork<SkyResult>(
-        "sky", p.heights, p.tiling, request.search, skyTileBytes(request),
+        "sky", p.heights, p.tiling, haloOf(skyHaloCells, request), skyTileBytes(request),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return skyProduct(dem, w, request, progress);
         });
@@ -120,7 +127,7 @@ ApertureRequest apertureRequest(const ApertureParameters& p) {
 
 ProductWork<ApertureResult> apertureWork(const ApertureRequest& request, const ApertureParameters& p) {
     return singleRasterWork<ApertureResult>(
-        "aperture", p.heights, p.tiling, p.search, apertureTileBytes(),
+        "aperture", p.heights, p.tiling, haloOf(apertureHaloCells, request), apertureTileBytes(),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return apertureProduct(dem, w, request, progress);
         });
@@ -149,7 +156,7 @@ LightRequest lightRequest(const LightParameters& p) {
 
 ProductWork<LightResult> lightWork(const LightRequest& request, const LightParameters& p) {
     return singleRasterWork<LightResult>(
-        "light", p.heights, p.tiling, p.search, productTileBytes(kLightBands),
+        "light", p.heights, p.tiling, haloOf(lightHaloCells, request), productTileBytes(kLightBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return lightProduct(dem, w, request, progress);
         });
@@ -175,7 +182,7 @@ IrradianceRequest irradianceRequest(const IrradianceParameters& p) {
 
 ProductWork<IrradianceResult> irradianceWork(const IrradianceRequest& request, const IrradianceParameters& p) {
     return singleRasterWork<IrradianceResult>(
-        "irradiance", p.heights, p.tiling, p.search, productTileBytes(kIrradianceBands),
+        "irradiance", p.heights, p.tiling, haloOf(irradianceHaloCells, request), productTileBytes(kIrradianceBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return irradianceProduct(dem, w, request, progress);
         });
@@ -206,7 +213,7 @@ InsolationRequest insolationRequest(const InsolationParameters& p) {
 
 ProductWork<InsolationResult> insolationWork(const InsolationRequest& request, const InsolationParameters& p) {
     return singleRasterWork<InsolationResult>(
-        "insolation", p.heights, p.tiling, p.search, productTileBytes(kInsolationBands),
+        "insolation", p.heights, p.tiling, haloOf(insolationHaloCells, request), productTileBytes(kInsolationBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return insolationProduct(dem, w, request, progress);
         });
@@ -234,27 +241,43 @@ ProductWork<SunhoursResult> sunhoursWork(const SunhoursRequest& request, const S
     // Grids per cell a window holds (for tile sizes): the bands, and the stack's directions (under
     // `auto` those of a stack wherever the period may take one: the plan is not made yet).
     return singleRasterWork<SunhoursResult>(
-        "sunhours", p.heights, p.tiling, p.search,
+        "sunhours", p.heights, p.tiling, haloOf(sunhoursHaloCells, request),
         productTileBytes(kSunhoursBands + sunhoursStackDirectionsAtMost(request)),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return sunhoursProduct(dem, w, request, progress);
         });
 }
 
-ProductWork<HorizonResult> horizonWork(const HorizonParameters& p) { return horizonWork(horizonRequest(p), p); }
+ProductWork<HorizonResult> horizonWork(const HorizonParameters& p) {
+    return horizonWork(horizonRequest(p), p);
+}
 
-ProductWork<SunResult> sunWork(const SunParameters& p) { return sunWork(sunRequest(p), p); }
+ProductWork<SunResult> sunWork(const SunParameters& p) {
+    return sunWork(sunRequest(p), p);
+}
 
-ProductWork<SkyResult> skyWork(const SkyParameters& p) { return skyWork(skyRequest(p), p); }
+ProductWork<SkyResult> skyWork(const SkyParameters& p) {
+    return skyWork(skyRequest(p), p);
+}
 
-ProductWork<ApertureResult> apertureWork(const ApertureParameters& p) { return apertureWork(apertureRequest(p), p); }
+ProductWork<ApertureResult> apertureWork(const ApertureParameters& p) {
+    return apertureWork(apertureRequest(p), p);
+}
 
-ProductWork<LightResult> lightWork(const LightParameters& p) { return lightWork(lightRequest(p), p); }
+ProductWork<LightResult> lightWork(const LightParameters& p) {
+    return lightWork(lightRequest(p), p);
+}
 
-ProductWork<IrradianceResult> irradianceWork(const IrradianceParameters& p) { return irradianceWork(irradianceRequest(p), p); }
+ProductWork<IrradianceResult> irradianceWork(const IrradianceParameters& p) {
+    return irradianceWork(irradianceRequest(p), p);
+}
 
-ProductWork<InsolationResult> insolationWork(const InsolationParameters& p) { return insolationWork(insolationRequest(p), p); }
+ProductWork<InsolationResult> insolationWork(const InsolationParameters& p) {
+    return insolationWork(insolationRequest(p), p);
+}
 
-ProductWork<SunhoursResult> sunhoursWork(const SunhoursParameters& p) { return sunhoursWork(sunhoursRequest(p), p); }
+ProductWork<SunhoursResult> sunhoursWork(const SunhoursParameters& p) {
+    return sunhoursWork(sunhoursRequest(p), p);
+}
 
 }  // namespace demlight

@@ -1,7 +1,7 @@
 // The raster commands (horizon, sun, sky, aperture, light, irradiance, insolation, sunhours) as
 // works: each command's parameters as a front end sets them, and one function per command that
-// builds the product's work (demlight/run/runner.h) from them (xxxWork(parameters); a front end
-// that needs the request for its own notes builds it first and passes it with the parameters). The command line and the Python
+// builds the product's work (demlight/run/runner.h) from them: xxxWork(parameters), or, for a
+// front end that needs the request for its own notes, xxxWork(xxxRequest(parameters), parameters). The command line and the Python
 // module both build their runs here, so a command's requests, tiles and outputs are made once.
 #pragma once
 

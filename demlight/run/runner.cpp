@@ -60,7 +60,7 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Ru
     writeRaster(out.path, bands, result.ref, w, inputPath);
 }
 
-RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
+RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::size_t halo,
                         const TileBytes& bytes, const RunContext& ctx) {
     RasterRun run;
     run.extent = dem.whole();
@@ -74,7 +74,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const
         run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
     }
     TileShape tile;
-    const std::size_t halo = haloCellsFor(dem.geometry().terrain, planFor(search, dem.geometry().terrain).maxDistanceM);
+    run.haloCells = halo;
     const double limit = tiling.memoryLimitMB > 0 ? tiling.memoryLimitMB * 1e6 : defaultMemoryLimitBytes();
     setRasterCacheBytes(rasterCacheBytes(limit));  // streamed outputs' blocks count in the budget
     if (tiling.tileSize == "auto") {

@@ -60,11 +60,14 @@ struct RasterRun {
     CellWindow extent;
     GeoReference ref;  ///< of the extent
     std::vector<CellWindow> tiles;
+    /// Cells the product reads around each tile (its xxxHaloCells), which the tiles are sized for.
+    std::size_t haloCells = 0;
 };
 
 /// Chooses the tiles: a tile size of N cells, or auto (one piece unless extent + halo exceeds the
-/// memory limit for a tile holding `bytes`). Throws Error naming the option on bad values.
-RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
+/// memory limit for a tile holding `bytes` and reading `haloCells` around it: the product's own
+/// halo). Throws Error naming the option on bad values.
+RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::size_t haloCells,
                         const TileBytes& bytes, const RunContext& ctx);
 
 /// The metadata a written result carries: its own items, DEMLIGHT_COMMAND and `extra`.
@@ -115,7 +118,9 @@ struct ProductWork {
     std::string command;
     HeightOptions heights;  ///< how the DEM is to be opened
     TilingOptions tiling;
-    SearchRequest search;   ///< what the halo and the tiles are planned from (planRasterRun)
+    /// The cells the product reads around a window of a DEM (the product's xxxHaloCells): what
+    /// the tiles are planned with.
+    std::function<std::size_t(const DemSource&)> halo;
     TileBytes tileBytes;    ///< of planRasterRun
     /// The product on one window of a source.
     std::function<Result(const DemSource&, const CellWindow&, const ProgressFn&)> compute;
@@ -125,7 +130,7 @@ struct ProductWork {
     std::function<std::vector<RasterTarget>(const OutputOptions&)> targets;
 
     RasterRun plan(const DemSource& dem, const RunContext& ctx) const {
-        return planRasterRun(dem, tiling, search, tileBytes, ctx);
+        return planRasterRun(dem, tiling, halo(dem), tileBytes, ctx);
     }
 };
 
@@ -140,7 +145,7 @@ RasterWork rasterWork(const ProductWork<Result>& work) {
     out.command = work.command;
     out.heights = work.heights;
     out.tiling = work.tiling;
-    out.search = work.search;
+    out.halo = work.halo;
     out.tileBytes = work.tileBytes;
     out.compute = [compute = work.compute, parts = work.parts](const DemSource& dem, const CellWindow& w,
                                                                const ProgressFn& p) {
@@ -162,13 +167,13 @@ RasterWork rasterWork(const ProductWork<Result>& work) {
 /// A work whose result is one raster written to the output as it is.
 template <class Result>
 ProductWork<Result> singleRasterWork(std::string command, const HeightOptions& heights, const TilingOptions& tiling,
-                                     const SearchRequest& search, const TileBytes& tileBytes,
+                                     std::function<std::size_t(const DemSource&)> halo, const TileBytes& tileBytes,
                                      std::function<Result(const DemSource&, const CellWindow&, const ProgressFn&)> compute) {
     ProductWork<Result> work;
     work.command = std::move(command);
     work.heights = heights;
     work.tiling = tiling;
-    work.search = search;
+    work.halo = std::move(halo);
     work.tileBytes = tileBytes;
     work.compute = std::move(compute);
     work.parts = [](const Result& r) { return std::vector<const ProductResult*>{&r}; };
