@@ -16,13 +16,9 @@ struct ApertureOptions {
 };
 
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
     const ApertureRequest request = apertureRequest(o.p);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const ApertureResult result = runWork(apertureWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
+    const auto [result, cells, readSeconds, seconds] =
+        runRasterCommand(apertureWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
                   std::to_string(result.directions) + " directions, " + formatSeconds(seconds) + " compute");
 }

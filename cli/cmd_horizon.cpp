@@ -88,17 +88,10 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
     const HorizonRequest request = horizonRequest(o.p);
     const ProductWork<HorizonResult> work = horizonWork(request, o.p);
     const std::vector<RasterTarget> targets = work.targets(o.out);
-    checkOutputPath(targets[0].out, o.demPath);
-    checkOutputPath(targets[1].out.path, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-
-    const auto start = std::chrono::steady_clock::now();
-    const HorizonResult result = runWork(work, dem, targets, ctx, o.demPath);
-    const double seconds = secondsSince(start);
-
+    const auto [result, cells, readSeconds, seconds] =
+        runRasterCommand(work, o.demPath, targets, &request.search, o.verbose, ctx);
     const std::size_t bands = request.azimuthsDeg.size();
-    const double nsPerCellDir = seconds * 1e9 / static_cast<double>(dem.width() * dem.height() * bands);
+    const double nsPerCellDir = seconds * 1e9 / static_cast<double>(cells * bands);
     note(ctx, "wrote " + o.out.path + " (" + std::to_string(bands) + (bands == 1 ? " horizon band" : " horizon bands") +
                   (o.p.dataType == "Int16" ? ", degrees in 16-bit fixed point" : ", degrees") + ") and " + targets[1].out.path + " (truncation mask); max distance " +
                   formatDistance(result.maxDistanceM) + "; " + formatSeconds(seconds) + " compute, " +

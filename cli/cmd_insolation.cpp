@@ -62,15 +62,12 @@ void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
     if (const auto spec = pointOf(o.point)) return printInsolationAt(o, *spec, ctx);
     requireOutputOrPoint(o.out, o.point);
     const InsolationRequest request = insolationRequest(o.p);
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const InsolationResult r = runWork(insolationWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(insolationWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in kWh/m2, sun_hours; diffuse model " +
                   o.p.sky.diffuseModel + "): " + std::to_string(r.instants) + " instants every " + o.p.step + " in " +
                   std::to_string(r.bins) + " bins of " + std::to_string(r.directions) + " azimuth sectors, " +
-                  formatSeconds(secondsSince(start)) + " compute");
+                  formatSeconds(seconds) + " compute");
 }
 
 }  // namespace

@@ -64,12 +64,8 @@ void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
     const IrradianceRequest request = irradianceRequest(o.p);
     if (request.diffuseModel == DiffuseModel::RSun && o.p.skyDirections)
         note(ctx, "note: --sky-directions is used by --diffuse-model visible-sky only; rsun sweeps the sun's azimuth");
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const IrradianceResult r = runWork(irradianceWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(irradianceWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "sun at DEM centre: azimuth " + formatNumber(r.centreAzimuthDeg) + " deg, elevation " +
                   formatNumber(r.centreElevationDeg) + " deg (" + formatInstant(request.time.utc, std::string()) +
                   "); extraterrestrial " + formatNumber(std::round(r.extraterrestrialWm2 * 10) / 10) + " W/m2, Linke " +

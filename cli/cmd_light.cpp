@@ -19,12 +19,8 @@ struct LightOptions {
 
 void runLight(const LightOptions& o, const CliContext& ctx) {
     const LightRequest request = lightRequest(o.p);
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const LightResult result = runWork(lightWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
+    const auto [result, cells, readSeconds, seconds] =
+        runRasterCommand(lightWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     std::string names;
     for (const auto& b : result.bands) names += (names.empty() ? "" : ", ") + b.name;
     note(ctx, "wrote " + o.out.path + " (" + names + "; " + o.p.model + " sun + " + o.p.skyModel + " sky), " +

@@ -18,17 +18,12 @@ struct SkyOptions {
 };
 
 void runSky(const SkyOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out, o.demPath);
     const SkyRequest request = skyRequest(o.p);
-    const auto loadStart = std::chrono::steady_clock::now();
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    const double loadSeconds = secondsSince(loadStart);
-    if (request.model == SkyModel::StewartLanger) notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-
-    const auto start = std::chrono::steady_clock::now();
-    const SkyResult result = runWork(skyWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
-    if (o.verbose && request.model == SkyModel::StewartLanger)
+    // The hemisphere model has no horizons to plan.
+    const bool horizons = request.model == SkyModel::StewartLanger;
+    const auto [result, cells, loadSeconds, seconds] = runRasterCommand(
+        skyWork(request, o.p), o.demPath, {{o.out, {}}}, horizons ? &request.search : nullptr, o.verbose, ctx);
+    if (o.verbose && horizons)
         note(ctx, "  sky sweeps: " + std::to_string(result.directions) + " directions, direction tolerance " +
                       formatNumber(result.directionToleranceDeg) + " deg, search distance " +
                       formatDistance(result.maxDistanceM));

@@ -20,12 +20,8 @@ void runSun(const SunOptions& o, const CliContext& ctx) {
     const SunRequest request = sunRequest(o.p);
     if (request.model == SunModel::Horizon && o.p.directions)
         note(ctx, "note: --sky-directions is used by the aperture models only; --model horizon sweeps the sun's azimuth");
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const SunResult r = runWork(sunWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(sunWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     const std::string sweeps = request.model == SunModel::Horizon
                                    ? std::to_string(r.sweepRegions) + " sweep region(s), " + r.strategy + " strategy"
                                    : std::to_string(r.directions) + " aperture directions";

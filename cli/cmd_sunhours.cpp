@@ -22,12 +22,8 @@ struct SunhoursOptions {
 
 void runSunhours(const SunhoursOptions& o, const CliContext& ctx) {
     const SunhoursRequest request = sunhoursRequest(o.p);
-    checkOutputPath(o.out, o.demPath);
-    const DemSource dem = openDem(o.demPath, o.p.heights, ctx);
-    notePlan(request.search, o.verbose, dem.geometry().terrain, ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const SunhoursResult r = runWork(sunhoursWork(request, o.p), dem, {{o.out, {}}}, ctx, o.demPath);
-    const double seconds = secondsSince(start);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(sunhoursWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "wrote " + o.out.path + " (sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit): " +
                   std::to_string(r.instants) + " instants every " + o.p.step + ", " + std::to_string(r.instantsSwept) +
                   " with the sun up, horizons " +

@@ -72,6 +72,23 @@ template <class Result>
 Result runWork(const ProductWork<Result>& work, const DemSource& dem, const std::vector<RasterTarget>& targets,
                const CliContext& ctx, const std::string& inputPath);
 
+/// What a raster command's run gives its closing note.
+template <class Result>
+struct RasterOutcome {
+    Result result;            ///< of the first window
+    std::size_t demCells = 0;  ///< of the whole DEM
+    double readSeconds = 0;    ///< opening the DEM
+    double seconds = 0;        ///< computing and writing
+};
+
+/// A raster command run from its work: the outputs checked before any work (the first a raster,
+/// the others its companions, named after it), the DEM opened with `heights`, the scene plan of
+/// `search` noted (unless null), the work run and its rasters written to `targets`.
+template <class Result>
+RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const std::string& demPath,
+                                       const std::vector<RasterTarget>& targets, const SearchRequest* search,
+                                       bool verbose, const CliContext& ctx);
+
 /// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
 /// the field itself when no flag sets it.
 std::string flagForField(const std::string& field);
@@ -130,6 +147,25 @@ Result runWork(const ProductWork<Result>& work, const DemSource& dem, const std:
     const RasterRun tiles = work.plan(dem, run);
     ProgressBar bar(!ctx.quiet);
     return runRaster(work, dem, tiles, targets, run, inputPath, bar.callback(), [&bar] { bar.finish(); });
+}
+
+template <class Result>
+RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const std::string& demPath,
+                                       const std::vector<RasterTarget>& targets, const SearchRequest* search,
+                                       bool verbose, const CliContext& ctx) {
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+        if (k == 0)
+            checkOutputPath(targets[k].out, demPath);
+        else
+            checkOutputPath(targets[k].out.path, demPath);
+    }
+    const auto readStart = std::chrono::steady_clock::now();
+    const DemSource dem = openDem(demPath, work.heights, ctx);
+    const double readSeconds = secondsSince(readStart);
+    if (search) notePlan(*search, verbose, dem.geometry().terrain, ctx);
+    const auto start = std::chrono::steady_clock::now();
+    Result result = runWork(work, dem, targets, ctx, demPath);
+    return {std::move(result), dem.width() * dem.height(), readSeconds, secondsSince(start)};
 }
 
 }  // namespace demlight::cli
