@@ -57,21 +57,4 @@ void addClearSkyOptions(CLI::App* cmd, ClearSkyOptions& o, const std::string& mo
         ->capture_default_str();
 }
 
-ClearSkyRasters clearSkyRasters(const ClearSkyOptions& o) {
-    return {o.linkeRaster, o.albedoRaster, o.coeffBhRaster, o.coeffDhRaster};
-}
-
-std::vector<double> parseLinkeOption(const std::string& text) {
-    std::vector<double> values;
-    std::stringstream ss(text);
-    std::string part;
-    while (std::getline(ss, part, ',')) {
-        const std::optional<double> v = parseFiniteNumber(part, /*trailingSpaces=*/true);
-        if (!v) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
-        values.push_back(*v);
-    }
-    if (values.empty()) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers");
-    return values;
-}
-
 }  // namespace demlight::cli

@@ -1,7 +1,7 @@
 // demlight aperture DEM -o OUT.tif: ambient aperture per cell (demlight/products/aperture.h).
 #include "cli/common.h"
+#include "demlight/run/raster_commands.h"
 #include "cli/progress_bar.h"
-#include "demlight/products/aperture.h"
 
 #include <optional>
 
@@ -9,42 +9,16 @@ namespace demlight::cli {
 namespace {
 
 struct ApertureOptions {
-    DemOptions dem;
+    std::string demPath;
     OutputOptions out;
-    TilingOptions tiling;
-    SearchOptions search;
-    std::optional<std::size_t> directions;
+    bool verbose = false;
+    ApertureParameters p;
 };
 
-/// Bands of the output: bent normal E, N, U, aperture radius, visible solid angle.
-
-ApertureRequest apertureRequest(const ApertureOptions& o) {
-    ApertureRequest request;
-    request.directions = o.directions;
-    request.search = o.search.request;
-    return request;
-}
-
-RasterCall apertureCall(const ApertureOptions& o) {
-    return singleRasterCall(
-        "aperture", o.dem, o.tiling, o.search.request, apertureTileBytes(),
-        [request = apertureRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
-            return apertureProduct(dem, w, request, p);
-        });
-}
-
 void runAperture(const ApertureOptions& o, const CliContext& ctx) {
-    checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem, ctx);
-    const ApertureRequest request = apertureRequest(o);
-    notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, apertureTileBytes(), ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const ApertureResult result = runRaster<ApertureResult>(
-        run, {{o.out, {}}}, ctx, o.dem.path,
-        [&](const CellWindow& w, const ProgressFn& p) { return apertureProduct(dem, w, request, p); },
-        [](const ApertureResult& r) { return std::vector<const ProductResult*>{&r}; });
-    const double seconds = secondsSince(start);
+    const ApertureRequest request = apertureRequest(o.p);
+    const auto [result, cells, readSeconds, seconds] =
+        runRasterCommand(apertureWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "wrote " + o.out.path + " (bent normal E/N/U, aperture radius, visible solid angle); " +
                   std::to_string(result.directions) + " directions, " + formatSeconds(seconds) + " compute");
 }
@@ -54,15 +28,16 @@ void runAperture(const ApertureOptions& o, const CliContext& ctx) {
 void registerAperture(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<ApertureOptions>();
     CLI::App* cmd = app.add_subcommand("aperture", "Ambient aperture: bent normal, cap radius, visible solid angle");
-    addDemArgument(cmd, o->dem);
+    ApertureParameters& p = o->p;
+    addDemArgument(cmd, o->demPath, p.heights);
     addOutputOptions(cmd, o->out);
-    cmd->add_option("--sky-directions,--directions", o->directions,
+    cmd->add_option("--sky-directions,--directions", p.directions,
                     "Number of horizon directions integrated (default: 16 with --quality auto, 64 with full); "
                     "--directions is the older spelling")
         ->check(finiteRange(4, 1024));
-    addSearchOptions(cmd, o->search);
-    addTilingOptions(cmd, o->tiling);
-    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(apertureCall(*o)) : runAperture(*o, ctx); });
+    addSearchOptions(cmd, p.search, o->verbose);
+    addTilingOptions(cmd, p.tiling);
+    cmd->callback([o, &ctx] { ctx.takeCall ? ctx.takeCall(rasterWork(apertureWork(o->p))) : runAperture(*o, ctx); });
 }
 
 }  // namespace demlight::cli

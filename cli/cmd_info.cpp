@@ -22,37 +22,6 @@ struct InfoOptions {
     bool json = false;
 };
 
-nlohmann::json infoObject(const std::string& path, const Dem& dem, const DemInfo& d) {
-    const HeightTransform& z = dem.heights;
-    nlohmann::json j;
-    j["path"] = path;
-    j["width"] = d.width;
-    j["height"] = d.height;
-    j["crs_name"] = dem.crs.name;
-    j["epsg"] = dem.crs.epsg ? nlohmann::json(*dem.crs.epsg) : nlohmann::json(nullptr);
-    j["geographic"] = dem.crs.geographic;
-    j["extent"] = {{"lat_min", d.latMinDeg}, {"lat_max", d.latMaxDeg}, {"lon_min", d.lonMinDeg}, {"lon_max", d.lonMaxDeg}};
-    nlohmann::json cells = nlohmann::json::object();
-    for (const auto& r : d.rows)
-        cells[r.name] = {{"row", r.row}, {"latitude_deg", r.latitudeDeg}, {"x_m", r.cellWidthM}, {"y_m", r.cellHeightM}};
-    j["cell_size_m"] = cells;
-    j["elevation_min_m"] = d.elevationMinM;
-    j["elevation_max_m"] = d.elevationMaxM;
-    j["relief_m"] = d.reliefM;
-    j["nodata_fraction"] = d.nodataFraction;
-    j["nodata_value"] = dem.band.nodata ? nlohmann::json(*dem.band.nodata) : nlohmann::json(nullptr);
-    j["height_scale"] = z.scale;
-    j["height_offset"] = z.offset;
-    j["height_unit"] = z.unit;
-    j["height_to_metres"] = z.toMetres;
-    j["height_source"] = z.source;
-    j["convergence_deg"] = d.convergenceDeg
-                               ? nlohmann::json{{"min", d.convergenceDeg->first}, {"max", d.convergenceDeg->second}}
-                               : nlohmann::json(nullptr);
-    j["longest_shadow_m_at_5deg"] = d.longestShadowM;
-    return j;
-}
-
 void printText(const std::string& path, const Dem& dem, const DemInfo& d) {
     const HeightTransform& z = dem.heights;
     std::printf("DEM:            %s\n", path.c_str());
@@ -85,18 +54,13 @@ void printText(const std::string& path, const Dem& dem, const DemInfo& d) {
 
 void runInfo(const InfoOptions& o, const CliContext& ctx) {
     const DemSource source = openDem(o.dem, ctx);
-    const DemInfo d = describeDem(source);
     if (o.json)
-        std::cout << infoObject(o.dem.path, source.geometry(), d).dump(2) << "\n";
+        std::cout << infoJson(o.dem.path, source, 2) << "\n";
     else
-        printText(o.dem.path, source.geometry(), d);
+        printText(o.dem.path, source.geometry(), describeDem(source));
 }
 
 }  // namespace
-
-std::string infoJson(const std::string& path, const DemSource& source) {
-    return infoObject(path, source.geometry(), describeDem(source)).dump();
-}
 
 void registerInfo(CLI::App& app, CliContext& ctx) {
     auto opts = std::make_shared<InfoOptions>();

@@ -3,6 +3,7 @@
 // period of local days or times, by binned sun positions (demlight/products/insolation.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "demlight/run/raster_commands.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "demlight/products/insolation.h"
@@ -15,59 +16,18 @@ namespace demlight::cli {
 namespace {
 
 struct InsolationOptions {
-    DemOptions dem;
+    std::string demPath;
     OutputOptions out;
-    TilingOptions tiling;
-    SearchOptions search;
-    ClearSkyOptions sky;
-    CanopyRequest canopy;
+    bool verbose = false;
     PointOptions point;
-    DayOptions days;
-    std::string step = "10m";
-    std::optional<std::size_t> directions;
-    double elevationBandDeg = kDefaultInsolationBandDeg;
-    double sunDiameterDeg = kSunDiameterDeg;
+    InsolationParameters p;
 };
-
-InsolationRequest insolationRequest(const InsolationOptions& o) {
-    InsolationRequest r;
-    const LocalDays days = parseDayOptions(o.days, "insolation");
-    r.zone = days.zone;
-    r.firstDay = days.first;
-    r.lastDay = days.last;
-    r.interval = days.interval;
-    r.step = parseStepOption(o.step, std::chrono::minutes(1));
-    r.linke = parseLinkeOption(o.sky.linke);
-    r.albedo = o.sky.albedo;
-    r.coeffBh = o.sky.coeffBh;
-    r.coeffDh = o.sky.coeffDh;
-    r.rasters = clearSkyRasters(o.sky);
-    r.canopy = o.canopy;
-    r.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
-    r.solarConstantWm2 = o.sky.solarConstantWm2;
-    r.directions = o.directions;
-    r.elevationBandDeg = o.elevationBandDeg;
-    r.sunDiameterDeg = o.sunDiameterDeg;
-    r.search = o.search.request;
-    return r;
-}
-
-/// Bands of the output: beam, diffuse, reflected, global.
-constexpr std::size_t kInsolationBands = 5;  // beam, diffuse, reflected, global, sun_hours
-
-RasterCall insolationCall(const InsolationOptions& o) {
-    return singleRasterCall(
-        "insolation", o.dem, o.tiling, o.search.request, productTileBytes(kInsolationBands),
-        [request = insolationRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
-            return insolationProduct(dem, w, request, p);
-        });
-}
 
 /// --at / --at-xy: the irradiation of one cell, every instant with its own sun and horizon, printed.
 void printInsolationAt(const InsolationOptions& o, const PointSpec& spec, const CliContext& ctx) {
-    refuseRasterOptions(o.tiling);
-    const InsolationRequest request = insolationRequest(o);
-    const DemSource dem = openPointDem(o.dem, request.search, ctx);
+    refuseRasterOptions(o.p.tiling);
+    const InsolationRequest request = insolationRequest(o.p);
+    const DemSource dem = openPointDem({o.demPath, o.p.heights}, request.search, ctx);
     const PointInsolation p = pointInsolation(dem, locatePoint(dem, spec), request);
     const std::string start = formatInstant(p.start, request.zone), end = formatInstant(p.end, request.zone);
     nlohmann::ordered_json j;
@@ -82,7 +42,7 @@ void printInsolationAt(const InsolationOptions& o, const PointSpec& spec, const 
     j["albedo"] = request.albedo;
     j["coeff_bh"] = request.coeffBh;
     j["coeff_dh"] = request.coeffDh;
-    j["diffuse_model"] = o.sky.diffuseModel;
+    j["diffuse_model"] = o.p.sky.diffuseModel;
     j["max_distance_m"] = p.maxDistanceM;
     j["sky_k0"] = p.skyK0 ? nlohmann::ordered_json(*p.skyK0) : nlohmann::ordered_json(nullptr);
     j["sky_directions"] = p.skyDirections;
@@ -101,52 +61,45 @@ void printInsolationAt(const InsolationOptions& o, const PointSpec& spec, const 
 void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
     if (const auto spec = pointOf(o.point)) return printInsolationAt(o, *spec, ctx);
     requireOutputOrPoint(o.out, o.point);
-    const InsolationRequest request = insolationRequest(o);
-    checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem, ctx);
-    notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kInsolationBands), ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const InsolationResult r = runRaster<InsolationResult>(
-        run, {{o.out, {}}}, ctx, o.dem.path,
-        [&](const CellWindow& w, const ProgressFn& p) { return insolationProduct(dem, w, request, p); },
-        [](const InsolationResult& s) { return std::vector<const ProductResult*>{&s}; });
+    const InsolationRequest request = insolationRequest(o.p);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(insolationWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in kWh/m2, sun_hours; diffuse model " +
-                  o.sky.diffuseModel + "): " + std::to_string(r.instants) + " instants every " + o.step + " in " +
+                  o.p.sky.diffuseModel + "): " + std::to_string(r.instants) + " instants every " + o.p.step + " in " +
                   std::to_string(r.bins) + " bins of " + std::to_string(r.directions) + " azimuth sectors, " +
-                  formatSeconds(secondsSince(start)) + " compute");
+                  formatSeconds(seconds) + " compute");
 }
 
 }  // namespace
 
 void registerInsolation(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<InsolationOptions>();
-    o->days.periods = true;
     CLI::App* cmd = app.add_subcommand(
         "insolation", "Clear-sky solar irradiation (kWh/m2) over a period, from an interval within a day to a year: beam, "
         "diffuse, reflected, global, and hours of direct sun");
-    addDemArgument(cmd, o->dem);
+    InsolationParameters& p = o->p;
+    addDemArgument(cmd, o->demPath, p.heights);
     addOutputOptions(cmd, o->out);
     addPointOptions(cmd, o->point, cmd->get_option("-o"));
-    addDayOptions(cmd, o->days, "IANA time zone of the days (required; UTC for universal time)");
-    cmd->add_option("--step", o->step,
+    addDayOptions(cmd, p.days, "IANA time zone of the days (required; UTC for universal time)");
+    cmd->add_option("--step", p.step,
                     "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
                     "minutes); they are binned, so a finer step costs little")
         ->capture_default_str();
-    addCanopyOptions(cmd, o->canopy);
-    addClearSkyOptions(cmd, o->sky, "each instant in --tz");
-    cmd->add_option("--sky-directions", o->directions,
+    addCanopyOptions(cmd, p.canopy);
+    addClearSkyOptions(cmd, p.sky, "each instant in --tz");
+    cmd->add_option("--sky-directions", p.directions,
                     "Azimuth sectors of the sun bins and of the visible sky: one horizon sweep each (default 64)")
         ->check(finiteRange(4, 1024));
-    cmd->add_option("--elevation-band", o->elevationBandDeg, "Elevation band of the sun bins (degrees)")
+    cmd->add_option("--elevation-band", p.elevationBandDeg, "Elevation band of the sun bins (degrees)")
         ->check(finiteRange(0, 90, /*lowOpen=*/true))
         ->capture_default_str();
-    addSunDiameterOption(cmd, o->sunDiameterDeg);
-    addSearchOptions(cmd, o->search);
-    addTilingOptions(cmd, o->tiling);
+    addSunDiameterOption(cmd, p.sunDiameterDeg);
+    addSearchOptions(cmd, p.search, o->verbose);
+    addTilingOptions(cmd, p.tiling);
     cmd->callback([o, &ctx] {
         refusePointCall(o->point, ctx);
-        ctx.takeCall ? ctx.takeCall(insolationCall(*o)) : runInsolation(*o, ctx);
+        ctx.takeCall ? ctx.takeCall(rasterWork(insolationWork(o->p))) : runInsolation(*o, ctx);
     });
 }
 

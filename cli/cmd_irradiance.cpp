@@ -2,6 +2,7 @@
 // irradiance in W m-2 on each cell's surface, ESRA clear sky (demlight/products/irradiance.h).
 #include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "demlight/run/raster_commands.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "demlight/products/irradiance.h"
@@ -15,52 +16,17 @@ namespace demlight::cli {
 namespace {
 
 struct IrradianceOptions {
-    DemOptions dem;
+    std::string demPath;
     OutputOptions out;
-    TilingOptions tiling;
-    SearchOptions search;
-    ClearSkyOptions sky;
-    CanopyRequest canopy;
+    bool verbose = false;
     PointOptions point;
-    std::string time, tz;
-    std::optional<std::size_t> skyDirections;
-    double sunDiameterDeg = kSunDiameterDeg;
+    IrradianceParameters p;
 };
 
-/// Bands of the output: beam, diffuse, reflected, global.
-constexpr std::size_t kIrradianceBands = 4;
-
-IrradianceRequest irradianceRequest(const IrradianceOptions& o) {
-    IrradianceRequest request;
-    request.time = parseTimeOptions(o.time, o.tz);
-    request.linke = parseLinkeOption(o.sky.linke);
-    request.albedo = o.sky.albedo;
-    request.coeffBh = o.sky.coeffBh;
-    request.coeffDh = o.sky.coeffDh;
-    request.rasters = clearSkyRasters(o.sky);
-    request.canopy = o.canopy;
-    request.diffuseModel = parseDiffuseModel(o.sky.diffuseModel);
-    request.solarConstantWm2 = o.sky.solarConstantWm2;
-    request.skyDirections = o.skyDirections;
-    request.sunDiameterDeg = o.sunDiameterDeg;
-    request.search = o.search.request;
-    linkeFor(request);  // a bad --linke fails before the DEM is read
-    return request;
-}
-
-RasterCall irradianceCall(const IrradianceOptions& o) {
-    return singleRasterCall(
-        "irradiance", o.dem, o.tiling, o.search.request, productTileBytes(kIrradianceBands),
-        [request = irradianceRequest(o)](const DemSource& dem, const CellWindow& w, const ProgressFn& p) {
-            return irradianceProduct(dem, w, request, p);
-        });
-}
-
-/// --at / --at-xy: the irradiance of one cell, printed.
 void printIrradianceAt(const IrradianceOptions& o, const PointSpec& spec, const CliContext& ctx) {
-    refuseRasterOptions(o.tiling);
-    const IrradianceRequest request = irradianceRequest(o);
-    const DemSource dem = openPointDem(o.dem, request.search, ctx);
+    refuseRasterOptions(o.p.tiling);
+    const IrradianceRequest request = irradianceRequest(o.p);
+    const DemSource dem = openPointDem({o.demPath, o.p.heights}, request.search, ctx);
     const PointIrradiance p = pointIrradiance(dem, locatePoint(dem, spec), request);
     nlohmann::ordered_json j;
     j["point"] = pointJson(p.point);
@@ -73,7 +39,7 @@ void printIrradianceAt(const IrradianceOptions& o, const PointSpec& spec, const 
     j["albedo"] = request.albedo;
     j["coeff_bh"] = request.coeffBh;
     j["coeff_dh"] = request.coeffDh;
-    j["diffuse_model"] = o.sky.diffuseModel;
+    j["diffuse_model"] = o.p.sky.diffuseModel;
     j["max_distance_m"] = p.maxDistanceM;
     j["horizon_at_sun_deg"] = p.horizonAtSunDeg;
     j["sun_visibility"] = p.sunVisibility;
@@ -95,24 +61,16 @@ void printIrradianceAt(const IrradianceOptions& o, const PointSpec& spec, const 
 void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
     if (const auto spec = pointOf(o.point)) return printIrradianceAt(o, *spec, ctx);
     requireOutputOrPoint(o.out, o.point);
-    const IrradianceRequest request = irradianceRequest(o);
-    if (request.diffuseModel == DiffuseModel::RSun && o.skyDirections)
+    const IrradianceRequest request = irradianceRequest(o.p);
+    if (request.diffuseModel == DiffuseModel::RSun && o.p.skyDirections)
         note(ctx, "note: --sky-directions is used by --diffuse-model visible-sky only; rsun sweeps the sun's azimuth");
-    checkOutputPath(o.out, o.dem.path);
-    const DemSource dem = openDem(o.dem, ctx);
-    notePlan(o.search, dem.geometry().terrain, ctx);
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(kIrradianceBands), ctx);
-    const auto start = std::chrono::steady_clock::now();
-    const IrradianceResult r = runRaster<IrradianceResult>(
-        run, {{o.out, {}}}, ctx, o.dem.path,
-        [&](const CellWindow& w, const ProgressFn& p) { return irradianceProduct(dem, w, request, p); },
-        [](const IrradianceResult& s) { return std::vector<const ProductResult*>{&s}; });
-    const double seconds = secondsSince(start);
+    const auto [r, cells, readSeconds, seconds] =
+        runRasterCommand(irradianceWork(request, o.p), o.demPath, {{o.out, {}}}, &request.search, o.verbose, ctx);
     note(ctx, "sun at DEM centre: azimuth " + formatNumber(r.centreAzimuthDeg) + " deg, elevation " +
                   formatNumber(r.centreElevationDeg) + " deg (" + formatInstant(request.time.utc, std::string()) +
                   "); extraterrestrial " + formatNumber(std::round(r.extraterrestrialWm2 * 10) / 10) + " W/m2, Linke " +
                   formatNumber(r.linke) + (r.centreElevationDeg > 0 ? "" : "; the sun is below the horizon: all zero"));
-    note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in W/m2; diffuse model " + o.sky.diffuseModel +
+    note(ctx, "wrote " + o.out.path + " (beam, diffuse, reflected, global in W/m2; diffuse model " + o.p.sky.diffuseModel +
                   "), " + formatSeconds(seconds) + " compute");
 }
 
@@ -122,21 +80,22 @@ void registerIrradiance(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<IrradianceOptions>();
     CLI::App* cmd = app.add_subcommand(
         "irradiance", "Clear-sky solar irradiance (W/m2) at one instant: beam, diffuse, reflected, global (ESRA)");
-    addDemArgument(cmd, o->dem);
+    IrradianceParameters& p = o->p;
+    addDemArgument(cmd, o->demPath, p.heights);
     addOutputOptions(cmd, o->out);
     addPointOptions(cmd, o->point, cmd->get_option("-o"));
-    addTimeOptions(cmd, o->time, o->tz);
-    addCanopyOptions(cmd, o->canopy);
-    addClearSkyOptions(cmd, o->sky, "--time in its zone");
-    cmd->add_option("--sky-directions", o->skyDirections,
+    addTimeOptions(cmd, p.time, p.tz);
+    addCanopyOptions(cmd, p.canopy);
+    addClearSkyOptions(cmd, p.sky, "--time in its zone");
+    cmd->add_option("--sky-directions", p.skyDirections,
                     "Horizon directions of the visible sky (default: 16 with --quality auto, 64 with full)")
         ->check(finiteRange(4, 1024));
-    addSunDiameterOption(cmd, o->sunDiameterDeg);
-    addSearchOptions(cmd, o->search);
-    addTilingOptions(cmd, o->tiling);
+    addSunDiameterOption(cmd, p.sunDiameterDeg);
+    addSearchOptions(cmd, p.search, o->verbose);
+    addTilingOptions(cmd, p.tiling);
     cmd->callback([o, &ctx] {
         refusePointCall(o->point, ctx);
-        ctx.takeCall ? ctx.takeCall(irradianceCall(*o)) : runIrradiance(*o, ctx);
+        ctx.takeCall ? ctx.takeCall(rasterWork(irradianceWork(o->p))) : runIrradiance(*o, ctx);
     });
 }
 

@@ -18,7 +18,7 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
     request.time = parseTimeOptions(o.time, o.tz);
     checkOutputPath(o.out, o.fitPath);
     const ProductResult result = sequenceProduct(request);
-    writeResult(result, o.out, ctx, o.fitPath);
+    writeResult(result, o.out, runContext(ctx), o.fitPath);
     note(ctx, "wrote " + o.out.path + " (sun_irradiance at " + formatInstant(request.time.utc, request.time.zone) +
                   " from degree-" + result.metadata.at("DEMLIGHT_FIT_DEGREE") + " polynomials)");
 }

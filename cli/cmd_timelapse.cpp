@@ -202,7 +202,7 @@ public:
         OutputOptions out;
         out.path = (fs::path(o_.outDir) / name).string();
         out.creationOptions = o_.creationOptions;
-        writeResult(r, out, ctx_, o_.dem.path);
+        writeResult(r, out, runContext(ctx_), o_.dem.path);
     }
 
 private:
@@ -218,7 +218,7 @@ private:
         if (previous_ && dark && *previous_ == *dark) {
             // From the file that was encoded, not from a copy: each copy appends a directory.
             copyRasterWithMetadata((fs::path(o_.outDir) / previous_->name).string(),
-                                   (fs::path(o_.outDir) / name).string(), resultMetadata(lightmap, ctx_));
+                                   (fs::path(o_.outDir) / name).string(), resultMetadata(lightmap, runContext(ctx_)));
             return;
         }
         write(lightmap, name);
@@ -367,7 +367,7 @@ TimelapseResult runTiled(const TimelapseOptions& o, const DemSource& dem, const 
                          const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx) {
     const std::size_t n = request.frames.instants.size();
     const std::size_t fitTarget = 1 + n;
-    TiledWriter writer(run, targets, ctx, o.dem.path);
+    TiledWriter writer(run, targets, runContext(ctx), o.dem.path);
     FrameIndex index(o.outDir);
     std::optional<TimelapseResult> total;
     runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
@@ -410,7 +410,8 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
     checkCreationOptions("GTiff", o.creationOptions);  // before the work, not at the first file
     const DemSource dem = openDem(o.dem, ctx);
     const TimelapseRequest request = timelapseRequest(o, formats, dem.geometry());
-    const RasterRun run = planRasterRun(dem, o.tiling, request.search, productTileBytes(timelapseGridsPerCell(request)), ctx);
+    const RasterRun run = planRasterRun(dem, o.tiling, timelapseHaloCells(dem, request),
+                                        productTileBytes(timelapseGridsPerCell(request)), runContext(ctx));
     const bool tiled = run.tiles.size() > 1;
     if (request.previews && !dem.isWhole(run.tiles.front()))
         throw Error("--formats " + o.formats + ": png, gif and mp4 are pictures of whole frames of the DEM, and this run is " +

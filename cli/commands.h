@@ -3,6 +3,8 @@
 // CliContext. Errors are thrown as demlight::Error and caught once in main.
 #pragma once
 
+#include "demlight/run/runner.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -13,7 +15,6 @@
 
 namespace demlight::cli {
 
-struct RasterCall;
 
 /// What a command writes, where -o is not simply one GDAL raster.
 struct CommandOutputs {
@@ -29,9 +30,9 @@ struct CliContext {
     std::string commandLine;
     bool quiet = false;
     /// Set by a caller that brings its own DEM and writes the results itself (the Python module):
-    /// the raster commands then hand it their parsed options as a RasterCall (cli/common.h)
-    /// instead of running.
-    std::function<void(const RasterCall&)> takeCall;
+    /// the raster commands then hand it their parsed options as a RasterWork
+    /// (demlight/run/runner.h) instead of running.
+    std::function<void(const RasterWork&)> takeCall;
     /// What commands write beyond one GDAL raster at -o, by command name, for programs that drive
     /// demlight (options --json, cli/cmd_options.cpp).
     std::map<std::string, CommandOutputs> outputs;

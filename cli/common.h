@@ -13,6 +13,8 @@
 #include "demlight/products/product.h"
 #include "demlight/products/render.h"
 #include "demlight/products/tiles.h"
+#include "demlight/run/options.h"
+#include "demlight/run/runner.h"
 #include "demlight/core/error.h"
 
 #include <array>
@@ -27,13 +29,6 @@
 namespace demlight::cli {
 
 /// -o, -of, -co: where and how an output raster is written.
-struct OutputOptions {
-    std::string path;
-    std::string format = "GTiff";
-    std::vector<std::string> creationOptions;
-    /// Float32 bands stored as 16-bit fixed point instead (a command's --ot Int16).
-    std::optional<FixedPoint16> fixedPoint;
-};
 void addOutputOptions(CLI::App* cmd, OutputOptions& o);
 
 /// The DEM argument and how its heights are read (--z-unit, --z-factor).
@@ -42,7 +37,10 @@ struct DemOptions {
     HeightOptions heights;  ///< --z-unit, --z-factor
 };
 void addDemArgument(CLI::App* cmd, DemOptions& o);
+/// The same, into a path and a command's HeightOptions.
+void addDemArgument(CLI::App* cmd, std::string& path, HeightOptions& heights);
 DemSource openDem(const DemOptions& o, const CliContext& ctx);
+DemSource openDem(const std::string& path, const HeightOptions& heights, const CliContext& ctx);
 
 /// --max-distance, --refraction, --threads, --quality, --tolerance and -v into a SearchRequest.
 struct SearchOptions {
@@ -50,119 +48,46 @@ struct SearchOptions {
     bool verbose = false;
 };
 void addSearchOptions(CLI::App* cmd, SearchOptions& o);
+void addSearchOptions(CLI::App* cmd, SearchRequest& request, bool& verbose);
 
 /// Notes about the plan the product will make: unused options, and with -v the plan itself.
 void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& ctx);
-
-/// The metadata writeResult gives a product result's file: its own items, DEMLIGHT_COMMAND and
-/// `extra`.
-std::map<std::string, std::string> resultMetadata(const ProductResult& result, const CliContext& ctx,
-                                                  const std::map<std::string, std::string>& extra = {});
-
-/// Writes a product result to `out` (atomically), with DEMLIGHT_COMMAND added; `extra` items
-/// are added to its metadata. Refuses to overwrite `inputPath`.
-void writeResult(const ProductResult& result, const OutputOptions& out, const CliContext& ctx,
-                 const std::string& inputPath, const std::map<std::string, std::string>& extra = {});
+void notePlan(const SearchRequest& request, bool verbose, const Terrain& terrain, const CliContext& ctx);
 
 /// --tile-size, --memory-limit and --srcwin of the raster products.
-struct TilingOptions {
-    std::string tileSize = "auto";       ///< cells per tile side, or "auto"
-    double memoryLimitMB = 0;            ///< 0 = half of this machine's memory
-    std::vector<std::size_t> srcwin;     ///< XOFF YOFF XSIZE YSIZE (gdal_translate's order), or empty
-};
 void addTilingOptions(CLI::App* cmd, TilingOptions& o);
 
-/// One raster a product writes: where, and metadata items added to the result's.
-struct RasterTarget {
-    OutputOptions out;
-    std::map<std::string, std::string> extra;
-};
+/// The run context of a command: its command line, notes on stderr unless quiet, and Ctrl-C
+/// stopping a write.
+RunContext runContext(const CliContext& ctx);
 
-/// The windows a raster product runs on: the extent (the whole DEM or --srcwin) in tiles.
-struct RasterRun {
-    CellWindow extent;
-    GeoReference ref;  ///< of the extent
-    std::vector<CellWindow> tiles;
-};
-/// Chooses the tiles: --tile-size N, or auto (one piece unless extent + halo exceeds
-/// --memory-limit for a tile holding `bytes`). Throws Error naming the option on bad values.
-RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, const SearchRequest& search,
-                        const TileBytes& bytes, const CliContext& ctx);
-
-/// Streamed outputs of a tiled run: one sink per target, opened at the first tile.
-class TiledWriter {
-public:
-    TiledWriter(const RasterRun& run, std::vector<RasterTarget> targets, const CliContext& ctx, std::string inputPath);
-    ~TiledWriter();
-    /// Writes the parts of one tile's result, part k to target k.
-    void write(const CellWindow& tile, const std::vector<const ProductResult*>& parts);
-    /// Writes one tile of target k alone (products that stream several rasters per tile).
-    void write(std::size_t target, const CellWindow& tile, const ProductResult& part);
-    /// Sets metadata items of target k known only once every tile is written (a mean over the
-    /// raster); the target must have been written.
-    void setMetadata(std::size_t target, const std::map<std::string, std::string>& items);
-    /// Renames every output to its name.
-    void commit();
-
-private:
-    RasterRun run_;
-    std::vector<RasterTarget> targets_;
-    const CliContext& ctx_;
-    std::string inputPath_;
-    std::vector<std::unique_ptr<RasterSink>> sinks_;
-};
-
-/// A raster command's parsed options as a call on any DEM source, for a caller that brings its own
-/// DEM and writes the results itself (CliContext::takeCall): the requests are the command's own,
-/// so names, defaults, checks and messages are the command line's.
-struct RasterCall {
-    std::string command;
-    HeightOptions heights;  ///< --z-unit, --z-factor: how the DEM argument is to be opened
-    TilingOptions tiling;
-    SearchRequest search;         ///< what the halo and the tiles are planned from (planRasterRun)
-    TileBytes tileBytes;          ///< of planRasterRun
-    /// The product on one window of a source: one result per output raster (rasterTargets).
-    std::function<std::vector<ProductResult>(const DemSource&, const CellWindow&, const ProgressFn&)> run;
-    /// The rasters the command writes for -o, in the order of run's results.
-    std::function<std::vector<RasterTarget>(const OutputOptions&)> targets;
-};
-
-/// What `demlight info --json` prints of `source` opened from `path`: one JSON object, as text.
-std::string infoJson(const std::string& path, const DemSource& source);
-
-/// A RasterCall of a command that writes one raster: `product(source, window, progress)`.
-template <class Product>
-RasterCall singleRasterCall(std::string command, const DemOptions& dem, const TilingOptions& tiling,
-                            const SearchRequest& search, const TileBytes& tileBytes, Product product) {
-    RasterCall call;
-    call.command = std::move(command);
-    call.heights = dem.heights;
-    call.tiling = tiling;
-    call.search = search;
-    call.tileBytes = tileBytes;
-    call.run = [product](const DemSource& source, const CellWindow& w, const ProgressFn& p) {
-        return std::vector<ProductResult>{product(source, w, p)};
-    };
-    call.targets = [](const OutputOptions& out) { return std::vector<RasterTarget>{{out, {}}}; };
-    return call;
-}
-
-/// Removes the first `count` targets' files (written before a later one failed).
-void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
-
-/// Runs step(tile, progress) on each tile of `run` in order, with one progress bar for the whole
-/// job: the tiled half of runRaster, and the driver of products that write several rasters while
-/// they compute a tile (time-lapse frames through a TiledWriter).
+/// Runs step(tile, progress) on each tile of `run` with one progress bar for the whole job.
 template <class Step>
 void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step);
 
-/// Runs a raster product on each window of `run` (product(window, progress) -> Result; parts(r)
-/// lists its rasters, one per target) with one progress bar for the whole job, and writes them:
-/// in one piece as writeResult does, in tiles through a TiledWriter. Returns the first window's
-/// result, for the command's notes.
-template <class Result, class Product, class Parts>
-Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
-                 const std::string& inputPath, Product&& product, Parts&& parts);
+/// Plans `work`'s run on `dem`, runs it with one progress bar for the whole job and writes its
+/// rasters to `targets` (demlight::runRaster). Returns the first window's result, for the
+/// command's notes.
+template <class Result>
+Result runWork(const ProductWork<Result>& work, const DemSource& dem, const std::vector<RasterTarget>& targets,
+               const CliContext& ctx, const std::string& inputPath);
+
+/// What a raster command's run gives its closing note.
+template <class Result>
+struct RasterOutcome {
+    Result result;            ///< of the first window
+    std::size_t demCells = 0;  ///< of the whole DEM
+    double readSeconds = 0;    ///< opening the DEM
+    double seconds = 0;        ///< computing and writing
+};
+
+/// A raster command run from its work: the outputs checked before any work (the first a raster,
+/// the others its companions, named after it), the DEM opened with `heights`, the scene plan of
+/// `search` noted (unless null), the work run and its rasters written to `targets`.
+template <class Result>
+RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const std::string& demPath,
+                                       const std::vector<RasterTarget>& targets, const SearchRequest* search,
+                                       bool verbose, const CliContext& ctx);
 
 /// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
 /// the field itself when no flag sets it.
@@ -170,17 +95,6 @@ std::string flagForField(const std::string& field);
 /// `message` with the HeightOptions fields the library names in its DEM-opening messages
 /// (HeightOptions::zUnit, ::zFactor) as the user spells them: flags, or Python keywords.
 std::string renameHeightFields(std::string message, const std::string& zUnit, const std::string& zFactor);
-
-/// Fails early (before any work) if the output cannot be written or would replace the input.
-void checkOutputPath(const std::string& outPath, const std::string& inputPath);
-/// As above for a raster output, which must also be named as a GeoTIFF (checkRasterPath).
-void checkOutputPath(const OutputOptions& out, const std::string& inputPath);
-
-/// "R,G,B" linear, each >= 0; throws Error naming the option.
-std::array<double, 3> parseColor(const std::string& text, const std::string& option);
-
-/// A duration option (--step): 10m, 1h30m, 90s; a bare number counts `bareUnit`s.
-std::chrono::milliseconds parseStepOption(const std::string& text, std::chrono::milliseconds bareUnit);
 
 /// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen:
 /// lo excluded.
@@ -191,27 +105,12 @@ void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encodi
 /// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1); 0 = no atmospheric refraction.
 inline constexpr double kMaxPressureHpa = 5000;
 
-/// --time with --tz: parseZonedInstant, its messages naming the flags.
-ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
 /// --date D, or --start D --end D, and --tz of the commands over local days; with periods also
 /// --month YYYY-MM, --year YYYY, and --start/--end as local times (an interval within days).
-struct DayOptions {
-    std::string date, startDate, endDate, month, year, tz;
-    bool periods = false;  ///< --month, --year and local times in --start/--end are offered
-};
 /// Adds them (--month and --year when o.periods); `tzHelp` says what --tz is the zone of.
 void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp);
-/// The local days (inclusive) of the options; `command` names the command in errors.
-struct LocalDays {
-    std::chrono::sys_days first, last;
-    TimeZoneSpec zone;
-    /// --start/--end given as local times: the interval itself (first and last are its days).
-    std::optional<std::pair<UtcInstant, UtcInstant>> interval;
-};
-LocalDays parseDayOptions(const DayOptions& o, const std::string& command);
-
 /// --sun-diameter (degrees).
 void addSunDiameterOption(CLI::App* cmd, double& diameterDeg);
 /// --canopy RASTER and --transmissivity (demlight/products/canopy.h).
@@ -229,9 +128,6 @@ PictureRequest pictureRequest(const PictureOptions& o);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.
 std::string formatDistance(double metres);
-/// `text` as one finite number (trailing spaces allowed when `trailingSpaces`); nullopt when it
-/// is not exactly that. The option parsers' number rule.
-std::optional<double> parseFiniteNumber(const std::string& text, bool trailingSpaces = false);
 /// A duration for notes, rounded to hundredths of a second ("1.23 s").
 std::string formatSeconds(double seconds);
 /// Prints a line to stderr unless quiet.
@@ -240,38 +136,36 @@ void note(const CliContext& ctx, const std::string& line);
 template <class Step>
 void runTiles(const RasterRun& run, const CliContext& ctx, Step&& step) {
     ProgressBar bar(!ctx.quiet);
-    for (std::size_t i = 0; i < run.tiles.size(); ++i)
-        step(run.tiles[i], tileProgress(bar.callback(), i, run.tiles.size()));
+    demlight::runTiles(run, bar.callback(), step);
     bar.finish();
 }
 
-template <class Result, class Product, class Parts>
-Result runRaster(const RasterRun& run, const std::vector<RasterTarget>& targets, const CliContext& ctx,
-                 const std::string& inputPath, Product&& product, Parts&& parts) {
-    if (run.tiles.size() == 1) {
-        ProgressBar bar(!ctx.quiet);
-        Result r = product(run.tiles.front(), bar.callback());
-        bar.finish();
-        const std::vector<const ProductResult*> rasters = parts(r);
-        for (std::size_t k = 0; k < targets.size(); ++k) {
-            try {
-                writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
-            } catch (const Error&) {
-                removeOutputs(targets, k);  // a product's rasters are all written or none
-                throw;
-            }
-        }
-        return r;
+template <class Result>
+Result runWork(const ProductWork<Result>& work, const DemSource& dem, const std::vector<RasterTarget>& targets,
+               const CliContext& ctx, const std::string& inputPath) {
+    const RunContext run = runContext(ctx);
+    const RasterRun tiles = work.plan(dem, run);
+    ProgressBar bar(!ctx.quiet);
+    return runRaster(work, dem, tiles, targets, run, inputPath, bar.callback(), [&bar] { bar.finish(); });
+}
+
+template <class Result>
+RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const std::string& demPath,
+                                       const std::vector<RasterTarget>& targets, const SearchRequest* search,
+                                       bool verbose, const CliContext& ctx) {
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+        if (k == 0)
+            checkOutputPath(targets[k].out, demPath);
+        else
+            checkOutputPath(targets[k].out.path, demPath);
     }
-    TiledWriter writer(run, targets, ctx, inputPath);
-    std::optional<Result> first;
-    runTiles(run, ctx, [&](const CellWindow& tile, const ProgressFn& progress) {
-        Result r = product(tile, progress);
-        writer.write(tile, parts(r));
-        if (!first) first = std::move(r);
-    });
-    writer.commit();
-    return std::move(*first);
+    const auto readStart = std::chrono::steady_clock::now();
+    const DemSource dem = openDem(demPath, work.heights, ctx);
+    const double readSeconds = secondsSince(readStart);
+    if (search) notePlan(*search, verbose, dem.geometry().terrain, ctx);
+    const auto start = std::chrono::steady_clock::now();
+    Result result = runWork(work, dem, targets, ctx, demPath);
+    return {std::move(result), dem.width() * dem.height(), readSeconds, secondsSince(start)};
 }
 
 }  // namespace demlight::cli

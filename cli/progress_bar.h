@@ -8,9 +8,9 @@
 // bar, the line count and the time estimate afresh. In every mode the callback returns false
 // once requestCancel() was called (on the first Ctrl-C: cli/main.cpp, demlight/geo/signals.h), so the
 // library throws demlight::Cancelled at its next safe point. Writing outputs checks
-// cancelRequested() between strips (cli/common.cpp writeResult); work that reports no progress
-// (reading the DEM) is not interrupted, and a command that reaches no further progress call after
-// the request finishes normally.
+// cancelRequested() between strips (RunContext::cancelled, demlight/run/runner.h); work that
+// reports no progress (reading the DEM) is not interrupted, and a command that reaches no further
+// progress call after the request finishes normally.
 #pragma once
 
 #include "demlight/core/progress.h"

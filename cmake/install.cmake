@@ -8,15 +8,15 @@ include(CMakePackageConfigHelpers)
 
 set(DEMLIGHT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/demlight)
 
-# The libraries' one entry point for consumers: the products and everything they use. (The
-# target `demlight` is the CLI, so this one is exported under that name.)
+# The libraries' one entry point for consumers: the runner, the products and everything they
+# use. (The target `demlight` is the CLI, so this one is exported under that name.)
 add_library(demlight_library INTERFACE)
 set_target_properties(demlight_library PROPERTIES EXPORT_NAME demlight)
 add_library(demlight::demlight ALIAS demlight_library)
-target_link_libraries(demlight_library INTERFACE demlight_products)
+target_link_libraries(demlight_library INTERFACE demlight_run)
 
 # Only the libraries are exported (the warning flags are the build's own: $<BUILD_INTERFACE>).
-install(TARGETS demlight_library demlight_products demlight_lighting demlight_geo demlight_core
+install(TARGETS demlight_library demlight_run demlight_products demlight_lighting demlight_geo demlight_core
         EXPORT demlightTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         FILE_SET HEADERS DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

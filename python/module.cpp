@@ -1,11 +1,12 @@
 // demlight._demlight: the C++ side of the Python package (python/demlight/). DEMs opened from
 // files or made from numpy arrays; a raster command's keyword options parsed by the command
-// line's own parser (cli/) into a product call, so names, defaults, checks and messages are the
-// command's; results as numpy views; the command line's writers (one piece, or window by window
-// for demlight.dask); `sunpos --json` run as the command. Work runs without the GIL; progress
+// line's own parser (cli/) into the command's work (demlight/run/), so names, defaults, checks and
+// messages are the command's; results as numpy views; the runner's writers (one piece, or window
+// by window for demlight.dask); `sunpos --json` run as the command. Work runs without the GIL; progress
 // callbacks take it back.
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "demlight/run/runner.h"
 #include "demlight/geo/dem.h"
 #include "demlight/geo/dem_source.h"
 #include "demlight/geo/raster.h"
@@ -236,21 +237,17 @@ std::vector<const ProductResult*> pointers(const std::vector<std::shared_ptr<Ras
 
 // ---- Calls -----------------------------------------------------------------------------------
 
-/// A raster command's options parsed (the command line's parser and request builders) into a
-/// call on any DEM.
+/// A raster command's work on any DEM (demlight/run/raster_commands.h), its options parsed by
+/// the command line's parser.
 struct PyCall {
-    cli::RasterCall call;
-    cli::CliContext ctx;  ///< quiet; what the command line's helpers are given
+    RasterWork work;
 
-    std::size_t halo(const PyDem& dem) const {
-        const Terrain& terrain = dem.geometry().terrain;
-        return haloCellsFor(terrain, planFor(call.search, terrain).maxDistanceM);
-    }
+    std::size_t halo(const PyDem& dem) const { return work.halo(*dem.source); }
     /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them; the
-    /// command line's messages about srcwin and tile_size name them as keywords.
-    cli::RasterRun plan(const PyDem& dem) const {
+    /// messages about srcwin and tile_size name them as keywords.
+    RasterRun plan(const PyDem& dem) const {
         try {
-            return cli::planRasterRun(*dem.source, call.tiling, call.search, call.tileBytes, ctx);
+            return work.plan(*dem.source, RunContext{});
         } catch (const FieldError&) {
             throw;
         } catch (const Error& e) {
@@ -262,10 +259,10 @@ struct PyCall {
 /// The CLI arguments [command, DEM, -o, placeholder, options...] parsed into a PyCall.
 std::shared_ptr<PyCall> parseCall(const std::vector<std::string>& arguments) {
     auto out = std::make_shared<PyCall>();
-    std::optional<cli::RasterCall> taken;
+    std::optional<RasterWork> taken;
     cli::CliContext ctx;
     ctx.quiet = true;
-    ctx.takeCall = [&taken](const cli::RasterCall& c) { taken = c; };
+    ctx.takeCall = [&taken](const RasterWork& w) { taken = w; };
     CLI::App app;
     cli::registerCommands(app, ctx);
     try {
@@ -280,58 +277,19 @@ std::shared_ptr<PyCall> parseCall(const std::vector<std::string>& arguments) {
         throw Error(keywordsForFlags(e.what()));
     }
     if (!taken) throw Error("'" + (arguments.empty() ? std::string() : arguments.front()) + "' is not a raster command");
-    out->call = std::move(*taken);
-    out->ctx.quiet = true;
+    out->work = std::move(*taken);
     return out;
-}
-
-/// Every band of `part` pasted into `into` at `at` (cells of `into`).
-void paste(ProductResult& into, const ProductResult& part, std::size_t col0, std::size_t row0) {
-    for (std::size_t k = 0; k < part.bands.size(); ++k) {
-        const ProductBand& from = part.bands[k];
-        ProductBand& to = into.bands[k];
-        const std::size_t cols = from.values.empty() ? from.flags.width() : from.values.width();
-        const std::size_t rows = from.values.empty() ? from.flags.height() : from.values.height();
-        for (std::size_t r = 0; r < rows; ++r) {
-            if (from.values.empty())
-                std::copy_n(&from.flags(0, r), cols, &to.flags(col0, row0 + r));
-            else
-                std::copy_n(&from.values(0, r), cols, &to.values(col0, row0 + r));
-        }
-    }
 }
 
 /// The command on its extent (the whole DEM or srcwin) in the tiles it plans (tile_size,
 /// memory_limit), pasted into one result per output raster: what the command line writes.
 std::vector<std::shared_ptr<Raster>> computeCall(const PyCall& c, const PyDem& dem, py::object progress) {
-    const cli::RasterRun run = c.plan(dem);
+    const RasterRun run = c.plan(dem);
     PythonProgress p(std::move(progress));
     return p.run([&](const ProgressFn& fn) {
         std::vector<std::shared_ptr<Raster>> out;
-        for (std::size_t i = 0; i < run.tiles.size(); ++i) {
-            const ProgressFn tileFn = run.tiles.size() == 1 ? fn : tileProgress(fn, i, run.tiles.size());
-            std::vector<ProductResult> parts = c.call.run(*dem.source, run.tiles[i], tileFn);
-            if (run.tiles.size() == 1) {
-                for (ProductResult& part : parts) out.push_back(std::make_shared<Raster>(std::move(part)));
-                break;
-            }
-            if (out.empty()) {
-                const std::size_t cols = run.extent.col1 - run.extent.col0, rows = run.extent.row1 - run.extent.row0;
-                for (const ProductResult& part : parts) {
-                    auto whole = std::make_shared<Raster>(part);
-                    whole->ref = run.ref;
-                    for (ProductBand& b : whole->bands) {
-                        if (b.values.empty())
-                            b.flags = Grid<std::uint8_t>(cols, rows);
-                        else
-                            b.values = Grid<float>(cols, rows);
-                    }
-                    out.push_back(std::move(whole));
-                }
-            }
-            for (std::size_t k = 0; k < parts.size(); ++k)
-                paste(*out[k], parts[k], run.tiles[i].col0 - run.extent.col0, run.tiles[i].row0 - run.extent.row0);
-        }
+        for (ProductResult& part : computeRaster(c.work, *dem.source, run, fn))
+            out.push_back(std::make_shared<Raster>(std::move(part)));
         return out;
     });
 }
@@ -344,13 +302,13 @@ std::vector<std::shared_ptr<Raster>> computeWindow(const PyCall& c, const PyDem&
     PythonProgress p(std::move(progress));
     return p.run([&](const ProgressFn& fn) {
         std::vector<std::shared_ptr<Raster>> out;
-        for (ProductResult& part : c.call.run(*dem.source, window, fn)) out.push_back(std::make_shared<Raster>(std::move(part)));
+        for (ProductResult& part : c.work.compute(*dem.source, window, fn)) out.push_back(std::make_shared<Raster>(std::move(part)));
         return out;
     });
 }
 
-cli::OutputOptions outputOptions(const std::string& path, const std::string& format, const std::vector<std::string>& co) {
-    cli::OutputOptions out;
+OutputOptions outputOptions(const std::string& path, const std::string& format, const std::vector<std::string>& co) {
+    OutputOptions out;
     out.path = path;
     out.format = format;
     out.creationOptions = co;
@@ -362,19 +320,18 @@ cli::OutputOptions outputOptions(const std::string& path, const std::string& for
 std::vector<std::string> writeCall(const PyCall& c, const std::vector<std::shared_ptr<Raster>>& parts, const std::string& path,
                                    const std::string& format, const std::vector<std::string>& co,
                                    const std::string& commandLine, const std::string& inputPath) {
-    const std::vector<cli::RasterTarget> targets = c.call.targets(outputOptions(path, format, co));
+    const std::vector<RasterTarget> targets = c.work.targets(outputOptions(path, format, co));
     if (targets.size() != parts.size()) throw Error("the result has " + std::to_string(parts.size()) + " rasters, the command writes " + std::to_string(targets.size()));
-    cli::CliContext ctx;
-    ctx.quiet = true;
+    RunContext ctx;
     ctx.commandLine = commandLine;
     {
         py::gil_scoped_release release;
-        for (const cli::RasterTarget& t : targets) cli::checkOutputPath(t.out, inputPath);
+        for (const RasterTarget& t : targets) checkOutputPath(t.out, inputPath);
         for (std::size_t k = 0; k < targets.size(); ++k) {
             try {
-                cli::writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
+                writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
             } catch (const Error&) {
-                cli::removeOutputs(targets, k);  // a command's rasters are all written or none
+                removeOutputs(targets, k);  // a command's rasters are all written or none
                 throw;
             }
         }
@@ -391,12 +348,11 @@ public:
     PyWriter(std::shared_ptr<PyCall> call, const PyDem& dem, const std::string& path, const std::string& format,
              const std::vector<std::string>& co, const std::string& commandLine)
         : call_(std::move(call)) {
-        ctx_.quiet = true;
         ctx_.commandLine = commandLine;
         run_ = call_->plan(dem);
-        targets_ = call_->call.targets(outputOptions(path, format, co));
-        for (const cli::RasterTarget& t : targets_) cli::checkOutputPath(t.out, dem.path);
-        writer_ = std::make_unique<cli::TiledWriter>(run_, targets_, ctx_, dem.path);
+        targets_ = call_->work.targets(outputOptions(path, format, co));
+        for (const RasterTarget& t : targets_) checkOutputPath(t.out, dem.path);
+        writer_ = std::make_unique<TiledWriter>(run_, targets_, ctx_, dem.path);
     }
     void write(const std::vector<std::size_t>& w, const std::vector<std::shared_ptr<Raster>>& parts) {
         if (!writer_) throw Error("the writer is closed");
@@ -419,10 +375,10 @@ public:
 
 private:
     std::shared_ptr<PyCall> call_;
-    cli::CliContext ctx_;
-    cli::RasterRun run_;
-    std::vector<cli::RasterTarget> targets_;
-    std::unique_ptr<cli::TiledWriter> writer_;
+    RunContext ctx_;
+    RasterRun run_;
+    std::vector<RasterTarget> targets_;
+    std::unique_ptr<TiledWriter> writer_;
 };
 
 // ---- Options of the commands, for the Python signatures and docstrings -------------------------
@@ -463,12 +419,12 @@ std::string sunposJson(std::vector<std::string> arguments) {
 std::vector<std::string> rasterCommands() {
     cli::CliContext ctx;
     std::vector<std::string> out;
-    ctx.takeCall = [](const cli::RasterCall&) {};
+    ctx.takeCall = [](const RasterWork&) {};
     CLI::App app;
     cli::registerCommands(app, ctx);
     for (const CLI::App* sub : app.get_subcommands({})) {
         // A raster command is one whose options include -o and --tile-size (the tiled products),
-        // but timelapse, whose -o is a folder of frames and which hands no RasterCall.
+        // but timelapse, whose -o is a folder of frames and which hands no RasterWork.
         if (sub->get_option_no_throw("--tile-size") && sub->get_option_no_throw("--output") &&
             sub->get_name() != "timelapse")
             out.push_back(sub->get_name());
@@ -551,7 +507,7 @@ PYBIND11_MODULE(_demlight, m) {
                  }
                  return view(d.whole->terrain.heightsM, d.whole);
              })
-        .def("info_json", [](const PyDem& d) { return cli::infoJson(d.path.empty() ? d.source->path() : d.path, *d.source); });
+        .def("info_json", [](const PyDem& d) { return infoJson(d.path.empty() ? d.source->path() : d.path, *d.source); });
 
     m.def("horizon_profile", &horizonProfile, py::arg("dem"), py::arg("first"), py::arg("second"), py::arg("wgs84"),
           py::arg("directions"), py::arg("max_distance"), py::arg("refraction"), py::arg("from_south"));
@@ -575,9 +531,9 @@ PYBIND11_MODULE(_demlight, m) {
                         [](const py::tuple& t) { return rasterFromState(t); }));
 
     py::class_<PyCall, std::shared_ptr<PyCall>>(m, "Call")
-        .def_property_readonly("command", [](const PyCall& c) { return c.call.command; })
-        .def_property_readonly("z_unit", [](const PyCall& c) { return c.call.heights.zUnit; })
-        .def_property_readonly("z_factor", [](const PyCall& c) { return c.call.heights.zFactor; })
+        .def_property_readonly("command", [](const PyCall& c) { return c.work.command; })
+        .def_property_readonly("z_unit", [](const PyCall& c) { return c.work.heights.zUnit; })
+        .def_property_readonly("z_factor", [](const PyCall& c) { return c.work.heights.zFactor; })
         .def("halo", &PyCall::halo, py::arg("dem"))
         .def("extent",
              [](const PyCall& c, const PyDem& dem) {

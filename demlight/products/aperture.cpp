@@ -7,6 +7,13 @@
 
 namespace demlight {
 
+std::size_t apertureHaloCells(const DemSource& source, const ApertureRequest& request) {
+    const Terrain& whole = source.geometry().terrain;
+    const ScenePlan plan = planFor(request.search, whole);
+    const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
+    return haloCellsFor(whole, integralParams(request.search, plan, whole, directions).maxDistanceM);
+}
+
 ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
                                const ProgressFn& progress) {
     if (request.directions && *request.directions < 1)
@@ -14,7 +21,7 @@ ApertureResult apertureProduct(const DemSource& source, const CellWindow& window
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const std::size_t halo = haloCellsFor(whole, integralParams(request.search, plan, whole, directions).maxDistanceM);
+    const std::size_t halo = apertureHaloCells(source, request);
     // The sweeps serve the window's cells only; the halo is read for its occluders.
     return onWindowCells<ApertureResult>(source, window, halo, [&](const Dem& dem, const CellWindow& cells) {
         const Terrain& t = dem.terrain;

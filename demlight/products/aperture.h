@@ -27,6 +27,10 @@ inline constexpr std::size_t kApertureBands = 5;
 /// Memory of a tile (demlight/products/tiles.h): the aperture computes its window's cells only.
 TileBytes apertureTileBytes();
 
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t apertureHaloCells(const DemSource& source, const ApertureRequest& request);
+
 ApertureResult apertureProduct(const DemSource& source, const CellWindow& window, const ApertureRequest& request,
                                const ProgressFn& progress = {});
 

@@ -82,7 +82,7 @@ HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, 
     for (double az : request.azimuthsDeg)
         if (!std::isfinite(az)) throw FieldError("azimuthsDeg", ": " + formatNumber(az) + " is not a finite number");
     const ScenePlan plan = planFor(request.search, source.geometry().terrain);
-    const std::size_t halo = haloCellsFor(source.geometry().terrain, horizonParams(request.search, plan).maxDistanceM);
+    const std::size_t halo = horizonHaloCells(source, request);
     return onWindow<HorizonResult>(source, window, halo,
                                    [&](const Dem& dem) { return computeHorizons(dem, plan, request, progress); });
 }

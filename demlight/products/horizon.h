@@ -45,7 +45,8 @@ void cropResult(HorizonResult& result, const CellWindow& read, const CellWindow&
 /// Truncation mask value at DEM voids (declared as the mask's nodata).
 inline constexpr std::uint8_t kTruncationMaskNodata = 255;
 
-/// Cells of halo a window needs: the plan's search distance in cells.
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
 std::size_t horizonHaloCells(const DemSource& source, const HorizonRequest& request);
 
 HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, const HorizonRequest& request,

@@ -173,6 +173,11 @@ std::vector<UtcInstant> periodInstants(const InsolationRequest& r) {
     return times;
 }
 
+std::size_t insolationHaloCells(const DemSource& source, const InsolationRequest& request) {
+    const Terrain& whole = source.geometry().terrain;
+    return haloCellsFor(whole, horizonParams(request.search, planFor(request.search, whole)).maxDistanceM);
+}
+
 InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
                                    const ProgressFn& progress) {
     validateInsolation(request);
@@ -186,7 +191,7 @@ InsolationResult insolationProduct(const DemSource& source, const CellWindow& wi
     std::size_t instants = 0;
     const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, rasters.monthlyLinke(), instants),
                                              directions, request.elevationBandDeg);
-    const std::size_t halo = haloCellsFor(whole.terrain, horizonParams(request.search, plan).maxDistanceM);
+    const std::size_t halo = insolationHaloCells(source, request);
     return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
         return insolationOn(dem, plan, request, bins, directions, instants, rasters, canopy, progress);
     });

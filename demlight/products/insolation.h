@@ -64,6 +64,10 @@ double instantHoursBetween(UtcInstant a, UtcInstant b);
 
 /// Bands (Float32): beam, diffuse, reflected, global (kWh m-2), sun_hours (hours of direct sun:
 /// the time of each bin times the fraction of the sun's disk the cell sees in it).
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t insolationHaloCells(const DemSource& source, const InsolationRequest& request);
+
 InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
                                    const ProgressFn& progress = {});
 

@@ -313,6 +313,28 @@ std::size_t monthAt(UtcInstant t, const TimeZoneSpec& zone) {
 
 double linkeFor(const IrradianceRequest& r) { return linkeAt(r.linke, r.time.utc, r.time.zone); }
 
+namespace {
+
+/// The halo of irradianceHaloCells for the plan and the sun field the product makes.
+std::size_t irradianceHalo(const Terrain& whole, const IrradianceRequest& request, const ScenePlan& plan,
+                           const SunField& field) {
+    double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole, field);
+    if (request.diffuseModel == DiffuseModel::VisibleSky)
+        distance = std::max(distance, integralParams(request.search, plan, whole,
+                                                     request.skyDirections.value_or(
+                                                         static_cast<std::size_t>(plan.skyDirections)))
+                                          .maxDistanceM);
+    return haloCellsFor(whole, distance);
+}
+
+}  // namespace
+
+std::size_t irradianceHaloCells(const DemSource& source, const IrradianceRequest& request) {
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    return irradianceHalo(source.geometry().terrain, request, plan,
+                          sunFieldFor(source, request.time.utc, request.atmosphere, plan));
+}
+
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window, const IrradianceRequest& request,
                                    const ProgressFn& progress) {
     validateIrradiance(request);
@@ -325,16 +347,7 @@ IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& wi
     const ScenePlan plan = planFor(request.search, whole.terrain);
     // The whole DEM's sun, read by each window: the same bits on its cells.
     const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
-    std::size_t halo = 0;
-    if (!source.isWhole(window)) {
-        double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
-        if (request.diffuseModel == DiffuseModel::VisibleSky)
-            distance = std::max(distance, integralParams(request.search, plan, whole.terrain,
-                                                         request.skyDirections.value_or(
-                                                             static_cast<std::size_t>(plan.skyDirections)))
-                                              .maxDistanceM);
-        halo = haloCellsFor(whole.terrain, distance);
-    }
+    const std::size_t halo = source.isWhole(window) ? 0 : irradianceHalo(whole.terrain, request, plan, field);
     // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
     const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
     const Grid<float> canopy = loadCanopy(request.canopy, source);

@@ -111,6 +111,10 @@ void validateClearSky(double albedo, double coeffBh, double coeffDh, double sola
 std::vector<ProductBand> irradianceBands(IrradianceMaps maps, const std::string& unit);
 
 /// Bands (W m-2, Float32): beam, diffuse, reflected, global.
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t irradianceHaloCells(const DemSource& source, const IrradianceRequest& request);
+
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window,
                                    const IrradianceRequest& request, const ProgressFn& progress = {});
 

@@ -222,6 +222,26 @@ std::vector<Grid<float>> combineLight(const LightTerms& terms) {
     return light;
 }
 
+namespace {
+
+/// The halo of lightHaloCells for the plan and the sun field the product makes.
+std::size_t lightHalo(const Terrain& whole, const LightRequest& request, const ScenePlan& plan, const SunField& field) {
+    const double sunDistance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole, field);
+    const double skyDistance =
+        integralParams(request.search, plan, whole,
+                       request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
+            .maxDistanceM;
+    return haloCellsFor(whole, std::max(sunDistance, skyDistance));
+}
+
+}  // namespace
+
+std::size_t lightHaloCells(const DemSource& source, const LightRequest& request) {
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    return lightHalo(source.geometry().terrain, request, plan,
+                     sunFieldFor(source, request.time.utc, request.atmosphere, plan));
+}
+
 LightResult lightProduct(const DemSource& source, const CellWindow& window, const LightRequest& request,
                          const ProgressFn& progress) {
     validateLight(request);
@@ -232,16 +252,7 @@ LightResult lightProduct(const DemSource& source, const CellWindow& window, cons
     const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
     const LightRasters rasters = loadRasters(source, request);
     const Grid<float> canopy = loadCanopy(request.canopy, source);
-    std::size_t halo = 0;
-    if (!source.isWhole(window)) {
-        const double sunDistance =
-            sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
-        const double skyDistance =
-            integralParams(request.search, plan, whole.terrain,
-                           request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
-                .maxDistanceM;
-        halo = haloCellsFor(whole.terrain, std::max(sunDistance, skyDistance));
-    }
+    const std::size_t halo = source.isWhole(window) ? 0 : lightHalo(whole.terrain, request, plan, field);
     return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
         if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, canopy, progress);  // whole DEM
         return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),

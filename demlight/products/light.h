@@ -69,6 +69,10 @@ struct LightResult : ProductResult {
 };
 
 /// Bands: light, or light_r/g/b (a colour), or reflected_r/g/b (a colour raster).
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t lightHaloCells(const DemSource& source, const LightRequest& request);
+
 LightResult lightProduct(const DemSource& source, const CellWindow& window, const LightRequest& request,
                          const ProgressFn& progress = {});
 

@@ -66,6 +66,16 @@ SkyResult stewartLanger(const Dem& dem, const CellWindow& cells, const ScenePlan
 
 }  // namespace
 
+std::size_t skyHaloCells(const DemSource& source, const SkyRequest& request) {
+    // The hemisphere model sees no terrain: one cell for the normals.
+    if (request.model == SkyModel::Hemisphere) return 1;
+    const Terrain& whole = source.geometry().terrain;
+    const ScenePlan plan = planFor(request.search, whole);
+    return haloCellsFor(whole, integralParams(request.search, plan, whole,
+                                              request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                                   .maxDistanceM);
+}
+
 SkyResult skyProduct(const DemSource& source, const CellWindow& window, const SkyRequest& request,
                      const ProgressFn& progress) {
     if (request.model == SkyModel::None) throw Error("sky model 'none' makes no sky product");
@@ -78,11 +88,7 @@ SkyResult skyProduct(const DemSource& source, const CellWindow& window, const Sk
     const Terrain& whole = source.geometry().terrain;
     const bool hemi = request.model == SkyModel::Hemisphere;
     const ScenePlan plan = planFor(request.search, whole);
-    const std::size_t halo =
-        hemi ? 1
-             : haloCellsFor(whole, integralParams(request.search, plan, whole,
-                                                  request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
-                                       .maxDistanceM);
+    const std::size_t halo = skyHaloCells(source, request);
     // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
     Grid<float> albedo;
     if (!request.albedoRaster.empty())

@@ -42,6 +42,10 @@ std::size_t skyBands(const SkyRequest& request);
 /// Memory of a tile (demlight/products/tiles.h): the sky computes its window's cells only.
 TileBytes skyTileBytes(const SkyRequest& request);
 
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t skyHaloCells(const DemSource& source, const SkyRequest& request);
+
 SkyResult skyProduct(const DemSource& source, const CellWindow& window, const SkyRequest& request,
                      const ProgressFn& progress = {});
 

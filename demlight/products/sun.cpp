@@ -117,6 +117,27 @@ SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere&
     return computeSunField(source, time, site, SpaOptions{}, plan.sunLatticeStepCells);
 }
 
+namespace {
+
+/// The halo of sunHaloCells for the plan and the sun field the product makes.
+std::size_t sunHalo(const Terrain& whole, const SunRequest& request, const ScenePlan& plan, const SunField& field) {
+    // The longest search any sun of this instant needs on the whole DEM.
+    double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole, field);
+    if (request.model != SunModel::Horizon)
+        distance = integralParams(request.search, plan, whole,
+                                  request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
+                       .maxDistanceM;
+    return haloCellsFor(whole, distance);
+}
+
+}  // namespace
+
+std::size_t sunHaloCells(const DemSource& source, const SunRequest& request) {
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    return sunHalo(source.geometry().terrain, request, plan,
+                   sunFieldFor(source, request.time.utc, request.atmosphere, plan));
+}
+
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
                      const ProgressFn& progress) {
     validateSun(request.sunDiameterDeg, request.atmosphere);
@@ -130,16 +151,7 @@ SunResult sunProduct(const DemSource& source, const CellWindow& window, const Su
     const ScenePlan plan = planFor(request.search, whole.terrain);
     // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
     const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
-    std::size_t halo = 0;
-    if (!source.isWhole(window)) {
-        // The longest search any sun of this instant needs on the whole DEM.
-        double distance = sunFrameDistanceM(request.search, request.sunDiameterDeg, plan, whole.terrain, field);
-        if (request.model != SunModel::Horizon)
-            distance = integralParams(request.search, plan, whole.terrain,
-                                      request.directions.value_or(static_cast<std::size_t>(plan.skyDirections)))
-                           .maxDistanceM;
-        halo = haloCellsFor(whole.terrain, distance);
-    }
+    const std::size_t halo = source.isWhole(window) ? 0 : sunHalo(whole.terrain, request, plan, field);
     return onWindow<SunResult>(source, window, halo, [&](const Dem& dem) {
         return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), canopy, progress);
     });

@@ -52,6 +52,10 @@ SunField sunFieldFor(const DemSource& source, UtcInstant time, const Atmosphere&
 SunField sunFieldOnTile(const SunField& whole, const Dem& tile, const DemSource& source);
 
 /// Bands: sun_visibility (fraction of the disk, 0-1), sun_irradiance (normalised).
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t sunHaloCells(const DemSource& source, const SunRequest& request);
+
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
                      const ProgressFn& progress = {});
 

@@ -202,6 +202,19 @@ std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& p
     return r.stackDirections || autoOnTerrain ? sunhoursStackDirectionsAtMost(r) : 0;
 }
 
+std::size_t sunhoursHaloCells(const DemSource& source, const SunhoursRequest& request) {
+    const Terrain& whole = source.geometry().terrain;
+    const ScenePlan plan = planFor(request.search, whole);
+    // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
+    const double sunDistance = request.search.maxDistanceM.value_or(
+        plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(whole, 0.0, request.sunDiameterDeg));
+    const double skyDistance =
+        integralParams(request.search, plan, whole,
+                       request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
+            .maxDistanceM;
+    return haloCellsFor(whole, std::max(sunDistance, skyDistance));
+}
+
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
     if (request.lastDay < request.firstDay)
@@ -224,17 +237,7 @@ SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
     const std::size_t stackDirections = sunhoursStackDirections(request, plan);
-    std::size_t halo = 0;
-    if (!source.isWhole(window)) {
-        // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
-        const double sunDistance = request.search.maxDistanceM.value_or(
-            plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(whole, 0.0, request.sunDiameterDeg));
-        const double skyDistance =
-            integralParams(request.search, plan, whole,
-                           request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
-                .maxDistanceM;
-        halo = haloCellsFor(whole, std::max(sunDistance, skyDistance));
-    }
+    const std::size_t halo = source.isWhole(window) ? 0 : sunhoursHaloCells(source, request);
     return onWindow<SunhoursResult>(source, window, halo,
                                     [&](const Dem& dem) {
                                         return computeSunhours(source, dem, plan, request, stackDirections, canopy,

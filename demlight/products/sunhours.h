@@ -67,6 +67,10 @@ std::size_t sunhoursStackDirections(const SunhoursRequest& request, const SceneP
 std::size_t sunhoursStackDirectionsAtMost(const SunhoursRequest& request);
 
 /// Bands: sun_hours, sun_irradiation, sky_irradiation, first_lit, last_lit.
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t sunhoursHaloCells(const DemSource& source, const SunhoursRequest& request);
+
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress = {});
 

@@ -74,6 +74,12 @@ SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan,
     return out;
 }
 
+/// Directions of the sky term: the stack's, or the request's or the plan's.
+std::size_t timelapseSkyDirections(const TimelapseRequest& r, const ScenePlan& plan) {
+    return r.stackDirections > 0 ? r.stackDirections
+                                 : r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+}
+
 /// Search distance (metres) around a window: the sky term's, and the longest any frame's sun
 /// needs on the whole DEM (with a stack, the stack's serves every sun).
 double reachM(const DemSource& source, const ScenePlan& plan, const TimelapseRequest& r, std::size_t skyDirections) {
@@ -356,6 +362,12 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
 
 }  // namespace
 
+std::size_t timelapseHaloCells(const DemSource& source, const TimelapseRequest& request) {
+    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+    return haloCellsFor(source.geometry().terrain,
+                        reachM(source, plan, request, timelapseSkyDirections(request, plan)));
+}
+
 TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& window, const TimelapseRequest& request,
                                  const TimelapseSink& sink, const ProgressFn& progress) {
     const auto& instants = request.frames.instants;
@@ -372,16 +384,13 @@ TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& wind
     if (request.previews && !source.isWhole(window))
         throw FieldError("previews", ": pictures are of the whole DEM; a window or tile of it gets lightmaps only");
     const ScenePlan plan = planFor(request.search, source.geometry().terrain);
-    const std::size_t skyDirections = request.stackDirections > 0
-                                          ? request.stackDirections
-                                          : request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+    const std::size_t skyDirections = timelapseSkyDirections(request, plan);
     const Grid<float> canopy = loadCanopy(request.canopy, source);
     if (source.isWhole(window)) {
         const std::shared_ptr<const Dem> dem = source.readWhole();
         return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, canopy, sink, progress);
     }
-    const CellWindow read =
-        source.withHalo(window, haloCellsFor(source.geometry().terrain, reachM(source, plan, request, skyDirections)));
+    const CellWindow read = source.withHalo(window, timelapseHaloCells(source, request));
     return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, canopy, sink,
                             progress);
 }

@@ -120,6 +120,10 @@ std::size_t parseHorizonMode(const std::string& text, const std::string& field);
 /// the sky term's search and the longest any frame's sun needs), frame by frame into the sink;
 /// the sky term, each lightmap and the fit cover the window. Previews are pictures of the whole
 /// DEM: request.previews on any other window throws FieldError("previews").
+/// Cells of halo a window of `request` reads around it: its search distance in cells. The product
+/// reads this halo, and a run's tiles are planned with it (demlight/run/runner.h).
+std::size_t timelapseHaloCells(const DemSource& source, const TimelapseRequest& request);
+
 TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& window, const TimelapseRequest& request,
                                  const TimelapseSink& sink, const ProgressFn& progress = {});
 
