@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <filesystem>
+#include <set>
 #include <signal.h>
 #include <spawn.h>
 #include <string>
@@ -59,5 +60,21 @@ private:
     bool ok_ = false;
     bool done_ = false;
 };
+
+/// The folder's entries (paths relative to it), recursively. A child writing there makes and
+/// removes its private temporary folder while this walks: a walk that meets an entry removed
+/// under it starts again.
+inline std::set<std::string> namesIn(const std::filesystem::path& dir) {
+    for (int attempt = 0;; ++attempt) {
+        try {
+            std::set<std::string> names;
+            for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+                names.insert(std::filesystem::relative(e.path(), dir).string());
+            return names;
+        } catch (const std::filesystem::filesystem_error&) {
+            if (attempt == 100) throw;
+        }
+    }
+}
 
 }  // namespace demlight::testing

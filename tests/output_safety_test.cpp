@@ -64,11 +64,7 @@ fs::path scratch(const std::string& suffix = {}) {
     return dir;
 }
 
-std::set<std::string> namesIn(const fs::path& dir) {
-    std::set<std::string> names;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) names.insert(fs::relative(e.path(), dir).string());
-    return names;
-}
+using testing::namesIn;
 
 std::string joined(const std::set<std::string>& names) {
     std::string s;

@@ -59,11 +59,7 @@ std::string quoted(const fs::path& p) {
     return q + "'";
 }
 
-std::set<std::string> namesIn(const fs::path& dir) {
-    std::set<std::string> names;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) names.insert(fs::relative(e.path(), dir).string());
-    return names;
-}
+using testing::namesIn;
 
 std::string joined(const std::set<std::string>& names) {
     std::string s;
