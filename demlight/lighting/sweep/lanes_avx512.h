@@ -16,9 +16,9 @@ namespace {
 
 #ifdef DEMLIGHT_HAS_AVX512_KERNELS
 #define DEMLIGHT_SWEEP_AVX512 1
-/// Eight lines' delayed serving at once (sweepBlock's serveDelayed), one line per AVX-512 lane,
+/// Eight lines' delayed serving at once (BlockWalk::serveDelayed), one line per AVX-512 lane,
 /// where simdPath() is SimdPath::Avx512 (functions marked DEMLIGHT_AVX512, called from the
-/// portable sweepBlock with plain arrays).
+/// portable BlockWalk with plain arrays).
 /// Each lane makes the scalar loop's comparisons and arithmetic in the same order, written as the
 /// same expressions on vectors (so the compiler contracts them alike), and the same
 /// hull walk from the line's hint: the same bits. The branches of the scalar tangent search
@@ -67,7 +67,7 @@ DEMLIGHT_AVX512 inline __m512d laneDistances(const LineGeometry& geo, const Line
     return _mm512_abs_pd(arc - edgeArc) * _mm512_set1_pd(geo.invAbsSlope);
 }
 
-/// laneDistances into out[0, 8), for the portable sweepBlock.
+/// laneDistances into out[0, 8), for the portable BlockWalk.
 DEMLIGHT_AVX512 void laneDistancesInto(const LineGeometry& geo, const LineState* lines, std::size_t b0, long m, long n0,
                                        double frac, double* out) {
     _mm512_store_pd(out, laneDistances(geo, lines, b0, m, n0, frac));
@@ -177,7 +177,7 @@ struct TopVertices {
 };
 
 /// One step of the far-to-near walk for lines b0..b0+7 where it serves nothing (the delayed
-/// serving: sweepBlock's Lanes), one line per AVX-512 lane: the line sample between cells n0
+/// serving: BlockWalk's Lanes), one line per AVX-512 lane: the line sample between cells n0
 /// (index idx0 + lane * idxStride) and n0 + 1, every one of them inside the terrain, the pops it
 /// causes and its push. The scalar walk's comparisons and arithmetic are written as the same
 /// expressions on vectors (so the compiler contracts them alike), and its pop loop becomes a
