@@ -84,9 +84,6 @@ constexpr int kSlots = kWindow - 1;
 /// refill them in the same call.
 constexpr int kRefillKept = 2;
 static_assert(kSlots > kRefillKept);
-/// Rows one group of lanes walks before the next group of the block takes the same rows: the
-/// block's rows then stay in the caches (and their pages in the TLB) while its groups pass.
-constexpr std::size_t kRowsPerChunk = 32;
 /// How far ahead the heights and the output are prefetched (rows of one group).
 constexpr std::size_t kPrefetchRows = 12;
 
@@ -97,16 +94,6 @@ struct RowTables {
     const float* curve;
     const float* offset;
     float spacing;
-};
-
-/// One group's registers between row chunks: each lane's window of hull vertices (dropped height
-/// g, row, offset; g NaN where the window holds no vertex) and the row of the vertex under the
-/// window's lowest one (-1: none, the window holds the whole hull).
-struct alignas(64) GroupState {
-    float g[kWindow][kLanes];
-    float row[kWindow][kLanes];
-    float offset[kWindow][kLanes];
-    float under[kLanes];
 };
 
 /// A group's scratch: each point's dropped height and the row of the hull vertex below it when it
@@ -195,20 +182,22 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
     }
 }
 
-/// Rows [r0, r1) of the group of lines at column col0 (lanes: the lines that exist).
+/// The n samples of the group of lines at column col0 (lanes: the lines that exist).
 template <bool kVarying>
-DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask16 lanes, const RowTables& t,
-                               const GroupPoints& points, std::size_t r0, std::size_t r1, std::size_t n,
-                               GroupState& state) {
-    __m512 G[kWindow], R[kWindow], O[kWindow];
-    for (int j = 0; j < kWindow; ++j) {
-        G[j] = _mm512_load_ps(state.g[j]);
-        R[j] = _mm512_load_ps(state.row[j]);
-        O[j] = _mm512_load_ps(state.offset[j]);
-    }
-    __m512 U = _mm512_load_ps(state.under);
+DEMLIGHT_AVX512 void groupLines(const HullBlock& block, std::size_t col0, __mmask16 lanes, const RowTables& t,
+                                const GroupPoints& points, std::size_t n) {
     const __m512 nan = _mm512_set1_ps(std::numeric_limits<float>::quiet_NaN());
     const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
+    // Each lane's window of hull vertices, top first: dropped height g (NaN: no vertex), row and
+    // offset; U: the row of the vertex under the window's lowest one (-1: none, the window holds
+    // the whole hull).
+    __m512 G[kWindow], R[kWindow], O[kWindow];
+    for (int j = 0; j < kWindow; ++j) {
+        G[j] = nan;
+        R[j] = none;
+        O[j] = zero;
+    }
+    __m512 U = none;
     const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
     const __m512 spacing = _mm512_set1_ps(t.spacing);
     // Locals, so that the stores below cannot make the compiler read them again.
@@ -220,7 +209,7 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
     const float* const offsets = t.offset;
     float* const pointG = points.g;
     float* const pointLink = points.link;
-    for (std::size_t r = r0; r < r1; ++r) {
+    for (std::size_t r = 0; r < n; ++r) {
         if (r + kPrefetchRows < n) {
             const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
             _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
@@ -321,34 +310,17 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         R[0] = _mm512_mask_mov_ps(R[0], valid, rf);
         if constexpr (kVarying) O[0] = _mm512_mask_mov_ps(O[0], valid, offR);
     }
-    for (int j = 0; j < kWindow; ++j) {
-        _mm512_store_ps(state.g[j], G[j]);
-        _mm512_store_ps(state.row[j], R[j]);
-        _mm512_store_ps(state.offset[j], O[j]);
-    }
-    _mm512_store_ps(state.under, U);
 }
 
 template <bool kVarying>
 DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const RowTables& t, HullScratch& scratch) {
     const std::size_t groups = (block.lines + kLanes - 1) / kLanes;
-    scratch.pointG.resize(groups * n * kLanes);
-    scratch.pointLink.resize(groups * n * kLanes);
-    std::vector<GroupState> states(groups);
-    for (GroupState& s : states) {
-        std::fill(&s.g[0][0], &s.g[0][0] + kWindow * kLanes, std::numeric_limits<float>::quiet_NaN());
-        std::fill(&s.row[0][0], &s.row[0][0] + kWindow * kLanes, -1.0f);
-        std::fill(&s.offset[0][0], &s.offset[0][0] + kWindow * kLanes, 0.0f);
-        std::fill(s.under, s.under + kLanes, -1.0f);
-    }
-    for (std::size_t r0 = 0; r0 < n; r0 += kRowsPerChunk) {
-        const std::size_t r1 = std::min(n, r0 + kRowsPerChunk);
-        for (std::size_t q = 0; q < groups; ++q) {
-            const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
-            const auto lanes = static_cast<__mmask16>((1u << count) - 1u);
-            const GroupPoints points{scratch.pointG.data() + q * n * kLanes, scratch.pointLink.data() + q * n * kLanes};
-            groupRows<kVarying>(block, col0, lanes, t, points, r0, r1, n, states[q]);
-        }
+    scratch.pointG.resize(n * kLanes);
+    scratch.pointLink.resize(n * kLanes);
+    const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
+    for (std::size_t q = 0; q < groups; ++q) {
+        const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
+        groupLines<kVarying>(block, col0, static_cast<__mmask16>((1u << count) - 1u), t, points, n);
     }
 }
 
