@@ -238,7 +238,10 @@ DEMLIGHT_AVX512 void groupLines(const HullBlock& block, std::size_t col0, __mmas
         __mmask16 pop[kWindow - 1];
         for (int j = 0; j < kWindow - 1; ++j)
             pop[j] = _mm512_cmp_ps_mask(_mm512_mul_ps(a[j + 1], d[j]), _mm512_mul_ps(a[j], d[j + 1]), _CMP_GE_OQ);
-        // On a convex chain the pops are a leading run: lanes in m[k] pop at least k + 1 vertices.
+        // On a convex chain the pops are a leading run (the new point above the line through
+        // vertices j, j + 1 is above the line through j - 1, j too): lanes in m[k] pop at least
+        // k + 1 vertices. Taking the run, not the tests, keeps the masks nested where rounding
+        // breaks that order.
         __mmask16 m[kWindow - 1];
         // A lane without data at this row pops its top and pushes it back: the window stays, and
         // the push below needs no mask but the top's.
