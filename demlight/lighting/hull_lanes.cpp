@@ -182,10 +182,34 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
     }
 }
 
-/// The n samples of the group of lines at column col0 (lanes: the lines that exist).
-template <bool kVarying>
-DEMLIGHT_AVX512 void groupLines(const HullBlock& block, std::size_t col0, __mmask16 lanes, const RowTables& t,
-                                const GroupPoints& points, std::size_t n) {
+/// Sixteen lines of a row-major block, one a column: their samples are the block's cells.
+struct ColumnLines {
+    const float* heights;
+    float* out;
+    std::size_t stride, col0, n;
+    __mmask16 lanes;  // the lines that exist
+
+    DEMLIGHT_AVX512 void prefetch(std::size_t r) const {
+        if (r + kPrefetchRows >= n) return;
+        const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
+        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
+        __builtin_prefetch(out + ahead, 1);
+        __builtin_prefetch(out + ahead + kLanes - 1, 1);
+    }
+    DEMLIGHT_AVX512 __m512 load(std::size_t r, __m512 nan) const {
+        return _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+    }
+    /// value: the slopes, NaN where the sample has no data.
+    DEMLIGHT_AVX512 void store(std::size_t r, __m512 value) const {
+        _mm512_mask_storeu_ps(out + r * stride + col0, lanes, value);
+    }
+};
+
+/// Rows [r0, r1) of sixteen lines (Lines: ColumnLines or ShearedLines), each lane's hull empty at r0.
+template <bool kVarying, class Lines>
+DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoints& points, std::size_t r0,
+                                std::size_t r1) {
     const __m512 nan = _mm512_set1_ps(std::numeric_limits<float>::quiet_NaN());
     const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
     // Each lane's window of hull vertices, top first: dropped height g (NaN: no vertex), row and
@@ -201,27 +225,17 @@ DEMLIGHT_AVX512 void groupLines(const HullBlock& block, std::size_t col0, __mmas
     const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
     const __m512 spacing = _mm512_set1_ps(t.spacing);
     // Locals, so that the stores below cannot make the compiler read them again.
-    const float* const heights = block.heightsM;
-    float* const outBase = block.out;
-    const std::size_t stride = block.stride;
     const float* const drop = t.drop;
     const float* const curve = t.curve;
     const float* const offsets = t.offset;
     float* const pointG = points.g;
     float* const pointLink = points.link;
-    for (std::size_t r = 0; r < n; ++r) {
-        if (r + kPrefetchRows < n) {
-            const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
-            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
-            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
-            __builtin_prefetch(outBase + ahead, 1);
-            __builtin_prefetch(outBase + ahead + kLanes - 1, 1);
-        }
-        float* out = outBase + r * stride + col0;
-        const __m512 h = _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+    for (std::size_t r = r0; r < r1; ++r) {
+        lines.prefetch(r);
+        const __m512 h = lines.load(r, nan);
         const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
         if (!valid) {  // nodata only (sea): every hull stays as it is
-            _mm512_mask_storeu_ps(out, lanes, h);
+            lines.store(r, h);
             continue;
         }
         const __m512 rf = _mm512_set1_ps(static_cast<float>(r));
@@ -298,7 +312,7 @@ DEMLIGHT_AVX512 void groupLines(const HullBlock& block, std::size_t col0, __mmas
         inv = _mm512_mul_ps(inv, _mm512_fnmadd_ps(d1, inv, two));
         __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(curve[r]));
         slope = _mm512_mask_blend_ps(topLeft, noHorizon, slope);
-        _mm512_mask_storeu_ps(out, lanes, _mm512_mask_blend_ps(valid, h, slope));
+        lines.store(r, _mm512_mask_blend_ps(valid, h, slope));
 
         // Push: the point's height and the row of the vertex below it, stored whole (slots of
         // points that never become vertices are never read).
@@ -323,7 +337,8 @@ DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const Ro
     const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
     for (std::size_t q = 0; q < groups; ++q) {
         const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
-        groupLines<kVarying>(block, col0, static_cast<__mmask16>((1u << count) - 1u), t, points, n);
+        ColumnLines lines{block.heightsM, block.out, block.stride, col0, n, static_cast<__mmask16>((1u << count) - 1u)};
+        groupLines<kVarying>(lines, t, points, 0, n);
     }
 }
 
