@@ -23,6 +23,47 @@ void checkBlock(const HullGeometry& geometry, const HullBlock& block) {
         throw Error("hull kernel: sigmaM[0] must be 0, not " + std::to_string(geometry.sigmaM.front()));
 }
 
+void checkShear(const HullGeometry& geometry, const HullShear& grid) {
+    if (!(grid.shearCols >= 0.0 && grid.shearCols <= 1.0))
+        throw Error("hull kernel: shearCols " + std::to_string(grid.shearCols) + " outside [0, 1]");
+    if (geometry.sigmaM.size() != grid.height)
+        throw Error("hull kernel: " + std::to_string(geometry.sigmaM.size()) + " distances for " +
+                    std::to_string(grid.height) + " rows");
+}
+
+/// The lines of a shear, m from shearFirstLine to width - 1: enough that the last row's first
+/// cell has a line on its left.
+long shearFirstLine(const HullShear& grid) {
+    return grid.height == 0 ? 0
+                            : -static_cast<long>(std::floor(static_cast<double>(grid.height - 1) * grid.shearCols)) - 1;
+}
+
+/// Where the lines of a shear cross row r: whole columns (the same for every line, added to m) and
+/// the fraction across to the next cell.
+struct ShearRow {
+    long whole;
+    float fraction;
+};
+ShearRow shearRow(const HullShear& grid, std::size_t r) {
+    const double x = static_cast<double>(r) * grid.shearCols;
+    const double whole = std::floor(x);
+    return {static_cast<long>(whole), static_cast<float>(x - whole)};
+}
+
+/// A cell's slope from the lines on its left (a) and right (b): the cell lies 1 - fraction across
+/// from a, fraction from b, so f a + (1 - f) b, one rounding; b alone where the fraction is 0 (b
+/// passes through the cell), the other where one has no data (the grid's right edge, a void),
+/// -inf where one has no earlier sample.
+float serveCell(float a, float b, float fraction) {
+    if (fraction == 0.0f || std::isnan(a)) return b;
+    if (std::isnan(b)) return a;
+    if (a == kNoHorizon || b == kNoHorizon) return kNoHorizon;
+    return __builtin_fmaf(fraction, a - b, b);
+}
+
+/// A line's height at row r between the cells a (left) and b: a where the fraction is 0.
+float lineHeight(float a, float b, float fraction) { return fraction == 0.0f ? a : __builtin_fmaf(fraction, b - a, a); }
+
 }  // namespace
 
 void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
@@ -52,6 +93,36 @@ void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, H
             v[2 * t] = s;
             v[2 * t + 1] = g;
             top[b] = t + 1;
+        }
+    }
+}
+
+void hullShearReference(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch) {
+    checkShear(geometry, grid);
+    const long w = static_cast<long>(grid.width), first = shearFirstLine(grid);
+    const std::size_t lines = static_cast<std::size_t>(w - first), n = grid.height;
+    // Line m's heights and slopes at [(m - first) + r * lines]: one block, a column a line.
+    std::vector<float> heights(lines * n), slopes(lines * n);
+    const auto cell = [&](std::size_t r, long c) {
+        return c >= 0 && c < w ? grid.heightsM[r * grid.width + static_cast<std::size_t>(c)]
+                               : std::numeric_limits<float>::quiet_NaN();
+    };
+    for (std::size_t r = 0; r < n; ++r) {
+        const ShearRow row = shearRow(grid, r);
+        for (long m = first; m < w; ++m) {
+            heights[r * lines + static_cast<std::size_t>(m - first)] =
+                lineHeight(cell(r, m + row.whole), cell(r, m + row.whole + 1), row.fraction);
+        }
+    }
+    hullSlopesReference(geometry, {heights.data(), slopes.data(), lines, lines}, scratch);
+    for (std::size_t r = 0; r < n; ++r) {
+        const ShearRow row = shearRow(grid, r);
+        for (long c = 0; c < w; ++c) {
+            // The lines on the cell's left and right: m + whole + fraction = c - 1 + fraction, c + fraction.
+            const std::size_t left = static_cast<std::size_t>(c - row.whole - 1 - first);
+            float& o = grid.out[r * grid.width + static_cast<std::size_t>(c)];
+            o = std::isnan(cell(r, c)) ? cell(r, c)
+                                       : serveCell(slopes[r * lines + left], slopes[r * lines + left + 1], row.fraction);
         }
     }
 }
@@ -206,6 +277,66 @@ struct ColumnLines {
     }
 };
 
+/// The lanes whose columns i + lane lie in [0, width).
+inline __mmask16 columnsInside(long i, long width) {
+    const long lo = std::clamp(-i, 0L, 16L), hi = std::clamp(width - i, 0L, 16L);
+    return lo < hi ? static_cast<__mmask16>(((1u << hi) - 1u) & ~((1u << lo) - 1u)) : 0;
+}
+
+/// Sixteen adjacent lines of a shear (lane b is line first + b): at each row the lines share the
+/// fraction across, so their heights are two unaligned loads and a multiply-add, and the fifteen
+/// cells between them are served by the slopes shifted one lane and a multiply-add.
+struct ShearedLines {
+    const HullShear& grid;
+    long first;
+    // Of the row load() read last, for store():
+    long column = 0;  // the cell under lane 0
+    __m512 fraction{}, cells{};
+
+    template <class T>
+    DEMLIGHT_AVX512 T* at(T* base, std::size_t r, long c) const {
+        return base + static_cast<std::ptrdiff_t>(r * grid.width) + c;
+    }
+    DEMLIGHT_AVX512 void prefetch(std::size_t r) const {
+        if (r + kPrefetchRows >= grid.height) return;
+        const std::size_t ahead = r + kPrefetchRows;
+        const long c = std::clamp(first + shearRow(grid, ahead).whole, 0L, static_cast<long>(grid.width) - 1);
+        _mm_prefetch(reinterpret_cast<const char*>(at(grid.heightsM, ahead, c)), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(at(grid.heightsM, ahead, c) + kLanes), _MM_HINT_T0);
+        __builtin_prefetch(at(grid.out, ahead, c), 1);
+        __builtin_prefetch(at(grid.out, ahead, c) + kLanes, 1);
+    }
+    DEMLIGHT_AVX512 __m512 load(std::size_t r, __m512 nan) {
+        const ShearRow row = shearRow(grid, r);
+        const long w = static_cast<long>(grid.width);
+        column = first + row.whole;
+        fraction = _mm512_set1_ps(row.fraction);
+        cells = _mm512_mask_loadu_ps(nan, columnsInside(column, w), at(grid.heightsM, r, column));
+        if (row.fraction == 0.0f) return cells;  // lineHeight
+        const __m512 right = _mm512_mask_loadu_ps(nan, columnsInside(column + 1, w), at(grid.heightsM, r, column + 1));
+        return _mm512_fmadd_ps(fraction, _mm512_sub_ps(right, cells), cells);
+    }
+    /// value: the lines' slopes, NaN where their samples have no data. Serves the cells under
+    /// lanes 1..15 (hullShearReference's serveCell).
+    DEMLIGHT_AVX512 void store(std::size_t r, __m512 value) const {
+        const __m512 left = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(value), _mm512_castps_si512(value), 15));
+        __m512 served = value;  // serveCell
+        if (_mm512_cvtss_f32(fraction) != 0.0f) {
+            const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
+            served = _mm512_fmadd_ps(fraction, _mm512_sub_ps(left, value), value);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(left, noHorizon, _CMP_EQ_OQ) |
+                                              _mm512_cmp_ps_mask(value, noHorizon, _CMP_EQ_OQ),
+                                          served, noHorizon);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(value, value, _CMP_UNORD_Q), served, left);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(left, left, _CMP_UNORD_Q), served, value);
+        }
+        served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(cells, cells, _CMP_UNORD_Q), served, cells);
+        const __mmask16 lanes = columnsInside(column, static_cast<long>(grid.width)) & 0xFFFEu;
+        _mm512_mask_storeu_ps(at(grid.out, r, column), lanes, served);
+    }
+};
+
 /// Rows [r0, r1) of sixteen lines (Lines: ColumnLines or ShearedLines), each lane's hull empty at r0.
 template <bool kVarying, class Lines>
 DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoints& points, std::size_t r0,
@@ -346,11 +477,11 @@ DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const Ro
 
 bool hullVectorKernelAvailable() { return processorHasAvx512(); }
 
-void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
-    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
-    checkBlock(geometry, block);
+namespace {
+
+/// The per-sample tables of the vector kernel in scratch.rowTables; whether the offsets are not all 0.
+bool makeRowTables(const HullGeometry& geometry, HullScratch& scratch, RowTables& t) {
     const std::size_t n = geometry.sigmaM.size();
-    if (n == 0 || block.lines == 0) return;
     if (n >= (std::size_t{1} << 24))
         throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
     // The uniform spacing the row differences are scaled by, and each sample's offset from it.
@@ -369,11 +500,52 @@ void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, Hull
         offset[i] = std::abs(off) > std::ldexp(spacing, -24) ? static_cast<float>(off) : 0.0f;
         varying = varying || offset[i] != 0.0f;
     }
-    const RowTables t{drop, curve, offset, static_cast<float>(spacing)};
-    if (varying)
+    t = {drop, curve, offset, static_cast<float>(spacing)};
+    return varying;
+}
+
+template <bool kVarying>
+DEMLIGHT_AVX512 void vectorShear(const HullShear& grid, const RowTables& t, HullScratch& scratch) {
+    const std::size_t n = grid.height;
+    scratch.pointG.resize(n * kLanes);
+    scratch.pointLink.resize(n * kLanes);
+    const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
+    const long w = static_cast<long>(grid.width);
+    // Groups overlap by a line: each serves the fifteen cells between its lanes.
+    for (long first = shearFirstLine(grid); first + 1 <= w - 1; first += kLanes - 1) {
+        // The rows where the group's lanes read cells of the grid (the columns only grow).
+        std::size_t r0 = 0;
+        while (r0 < n && first + shearRow(grid, r0).whole + kLanes < 0) ++r0;
+        std::size_t r1 = r0;
+        while (r1 < n && first + shearRow(grid, r1).whole <= w - 1) ++r1;
+        ShearedLines lines{grid, first};
+        groupLines<kVarying>(lines, t, points, r0, r1);
+    }
+}
+
+}  // namespace
+
+void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
+    checkBlock(geometry, block);
+    const std::size_t n = geometry.sigmaM.size();
+    if (n == 0 || block.lines == 0) return;
+    RowTables t{};
+    if (makeRowTables(geometry, scratch, t))
         vectorBlock<true>(block, n, t, scratch);
     else
         vectorBlock<false>(block, n, t, scratch);
+}
+
+void hullShearVector(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch) {
+    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
+    checkShear(geometry, grid);
+    if (grid.height == 0 || grid.width == 0) return;
+    RowTables t{};
+    if (makeRowTables(geometry, scratch, t))
+        vectorShear<true>(grid, t, scratch);
+    else
+        vectorShear<false>(grid, t, scratch);
 }
 
 #else
@@ -381,6 +553,10 @@ void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, Hull
 bool hullVectorKernelAvailable() { return false; }
 
 void hullSlopesVector(const HullGeometry&, const HullBlock&, HullScratch&) {
+    throw Error("hull kernel: this build has no AVX-512 kernels");
+}
+
+void hullShearVector(const HullGeometry&, const HullShear&, HullScratch&) {
     throw Error("hull kernel: this build has no AVX-512 kernels");
 }
 
