@@ -21,7 +21,9 @@
 //   spacing), so they stay exact where a float distance from the line's start would not; the
 //   tangent's division is a reciprocal estimate and one Newton step.
 // hullSlopes runs the AVX-512 kernel where simdPath() allows it, the reference elsewhere. The two
-// agree within hullSlopeErrorBound (derived there); tests hold them to it.
+// agree within hullSlopeErrorBound (derived there); tests hold them to it. The lines are a block's
+// columns (HullBlock) or lines sheared across a grid, each cell served from the two beside it
+// (HullShear); the line geometry of a sweep (which azimuths, regions, transposes) is not here.
 #pragma once
 
 #include <cstddef>
@@ -81,7 +83,7 @@ struct HullShear {
     double shearCols = 0.0;
 };
 
-/// The served slopes of every cell, the lines by hullSlopesReference one at a time (the portable path).
+/// The served slopes of every cell, the lines through hullSlopesReference.
 void hullShearReference(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch);
 
 /// The same with the vector kernel, sixteen adjacent lines a group: a row's heights of a group
