@@ -36,6 +36,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -317,39 +318,88 @@ double threadSeconds(F&& f) {
     return static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec);
 }
 
+struct Timed {
+    const char* name;
+    std::function<void()> run;
+};
+
 /// One thread, the kernels timed in turn within each round (the order rotating between rounds),
-/// each round's times divided by the float kernel's: medians and ranges of those ratios, so that
+/// each round's times divided by the first kernel's: medians and ranges of those ratios, so that
 /// a machine busy with other work moves every kernel of a round alike.
-void ratioRounds(const Lines& l, float* out, int runs) {
-    const Kernel kernels[] = {Kernel::floatLanes, Kernel::doubleLanes, Kernel::hullLanes, Kernel::hullLanesUniform,
-                              Kernel::copyOnly};
-    const char* names[] = {"float kernel (16 lines, gathers)", "double kernel (8 lines, gathers)",
-                           "hull_lanes.h kernel (16 lines, no gathers)", "  the same, uniform spacing (timing only)",
-                           "only reading heights, writing the output"};
-    constexpr int kKernels = 5;
+void ratioRounds(const std::vector<Timed>& kernels, double cells, int runs) {
+    const std::size_t count = kernels.size();
     const int rounds = std::max(3, 2 * runs + 1);
-    std::vector<double> seconds[kKernels], ratios[kKernels];
+    std::vector<std::vector<double>> seconds(count), ratios(count);
+    std::vector<double> t(count);
     for (int round = 0; round < rounds; ++round) {
-        double t[kKernels];
-        for (int j = 0; j < kKernels; ++j) {
-            const int k = (j + round) % kKernels;
-            t[k] = threadSeconds([&] { sweepColumns(l, out, 1, kernels[k]); });
+        for (std::size_t j = 0; j < count; ++j) {
+            const std::size_t k = (j + static_cast<std::size_t>(round)) % count;
+            t[k] = threadSeconds(kernels[k].run);
         }
-        for (int k = 0; k < kKernels; ++k) {
+        for (std::size_t k = 0; k < count; ++k) {
             seconds[k].push_back(t[k]);
             ratios[k].push_back(t[k] / t[0]);
         }
     }
-    const double cells = static_cast<double>(l.width * l.height);
-    std::printf("one thread, %d alternating rounds, thread CPU time: ratio to the float kernel, median [min, max]; "
+    std::printf("one thread, %d alternating rounds, thread CPU time: ratio to the first, median [min, max]; "
                 "ns/cell median\n",
                 rounds);
-    for (int k = 0; k < kKernels; ++k) {
+    for (std::size_t k = 0; k < count; ++k) {
         std::sort(ratios[k].begin(), ratios[k].end());
         std::sort(seconds[k].begin(), seconds[k].end());
-        std::printf("  %-44s %6.3f [%.3f, %.3f] %8.2f\n", names[k], ratios[k][ratios[k].size() / 2], ratios[k].front(),
-                    ratios[k].back(), seconds[k][seconds[k].size() / 2] / cells * 1e9);
+        std::printf("  %-48s %6.3f [%.3f, %.3f] %8.2f\n", kernels[k].name, ratios[k][ratios[k].size() / 2],
+                    ratios[k].front(), ratios[k].back(), seconds[k][seconds[k].size() / 2] / cells * 1e9);
     }
+}
+
+/// The floor kernels and hull_lanes.h's on every column.
+void columnRatios(const Lines& l, float* out, int runs) {
+    const auto on = [&](Kernel k) { return [&l, out, k] { sweepColumns(l, out, 1, k); }; };
+    ratioRounds({{"float kernel (16 lines, gathers)", on(Kernel::floatLanes)},
+                 {"double kernel (8 lines, gathers)", on(Kernel::doubleLanes)},
+                 {"hull_lanes.h kernel (16 lines, no gathers)", on(Kernel::hullLanes)},
+                 {"  the same, uniform spacing (timing only)", on(Kernel::hullLanesUniform)},
+                 {"only reading heights, writing the output", on(Kernel::copyOnly)}},
+                static_cast<double>(l.width * l.height), runs);
+}
+
+/// A strip of `kStripColumns` columns from the middle of the DEM, on its own: the float kernel
+/// and hull_lanes.h on its columns, and hull_lanes.h's sheared lines at `azimuthDeg` (in grid
+/// terms: tan(azimuth) columns a row, the distance along a line a row's height over its cosine),
+/// every cell served from the two lines beside it. The sheared kernel's largest angle difference
+/// from its reference is printed.
+void stripRatios(const Lines& l, double azimuthDeg, int runs) {
+    constexpr long kStripColumns = 256;
+    if (l.width < kStripColumns) return;
+    const long c0 = (l.width - kStripColumns) / 2;
+    std::vector<float> heights(static_cast<std::size_t>(kStripColumns * l.height));
+    for (long r = 0; r < l.height; ++r)
+        std::copy_n(l.heights + r * l.width + c0, kStripColumns, heights.begin() + r * kStripColumns);
+    Lines strip = l;
+    strip.heights = heights.data();
+    strip.width = kStripColumns;
+    const double shear = std::tan(azimuthDeg * M_PI / 180.0);
+    demlight::HullGeometry along = l.geometry;
+    for (double& s : along.sigmaM) s /= std::cos(azimuthDeg * M_PI / 180.0);
+    std::vector<float> out(heights.size()), exact(heights.size());
+    const demlight::HullShear grid{heights.data(), out.data(), static_cast<std::size_t>(kStripColumns),
+                                   static_cast<std::size_t>(l.height), shear};
+    demlight::HullScratch scratch;
+    demlight::hullShearVector(along, grid, scratch);
+    demlight::hullShearReference(along, {heights.data(), exact.data(), grid.width, grid.height, shear}, scratch);
+    double maxDeg = 0;
+    for (std::size_t i = 0; i < out.size(); ++i)
+        if (std::isfinite(out[i]) && std::isfinite(exact[i]))
+            maxDeg = std::max(maxDeg, std::abs(std::atan(static_cast<double>(out[i])) -
+                                               std::atan(static_cast<double>(exact[i]))) * 180.0 / M_PI);
+    std::printf("a %ld-column strip from column %ld; sheared lines at %.1f deg: max %.1e deg from their reference\n",
+                kStripColumns, c0, azimuthDeg, maxDeg);
+    const auto on = [&](Kernel k) { return [&strip, &out, k] { sweepColumns(strip, out.data(), 1, k); }; };
+    const std::string sheared = "hull_lanes.h sheared lines at " + std::to_string(azimuthDeg).substr(0, 4) + " deg";
+    ratioRounds({{"float kernel on the strip's columns", on(Kernel::floatLanes)},
+                 {"hull_lanes.h kernel on the strip's columns", on(Kernel::hullLanes)},
+                 {sheared.c_str(), [&] { demlight::hullShearVector(along, grid, scratch); }}},
+                static_cast<double>(heights.size()), runs);
 }
 #endif
 
@@ -388,7 +438,8 @@ int main(int argc, char** argv) {
             const std::vector<float> doubleSlopes = slopes;
             sweepColumns(lines, slopes.data(), 1, Kernel::hullLanes);
             reportAgainst(slopes, doubleSlopes, "hull_lanes.h kernel");
-            ratioRounds(lines, slopes.data(), runs);
+            columnRatios(lines, slopes.data(), runs);
+            stripRatios(lines, 37.0, runs);
             return 0;
         }
 #endif
@@ -442,7 +493,7 @@ int main(int argc, char** argv) {
         if (demlight::hullVectorKernelAvailable()) {
             row("hull_lanes.h kernel (16 lines, no gathers)", kernel(Kernel::hullLanes), true);
             reportAgainst(slopes, doubleSlopes, "hull_lanes.h kernel");
-            ratioRounds(lines, slopes.data(), runs);
+            columnRatios(lines, slopes.data(), runs);
         }
 #else
         std::printf("(AVX-512 not compiled in: no vector kernel)\n");

@@ -259,6 +259,86 @@ TEST(HullLanes, VectorMatchesReferenceOnSharedDems) {
     if (found == 0) GTEST_SKIP() << "shared DEMs not found in " << DEMLIGHT_SHARED_DEM_DIR;
 }
 
+/// The sheared lines' served slopes, vector against reference: the same cells without data or
+/// horizon, the rest within the bound (the lines' heights are the same floats in both).
+void expectShearMatches(const std::vector<float>& heights, std::size_t width, double shear, const HullGeometry& geo,
+                        const std::string& what) {
+    const std::size_t height = heights.size() / width;
+    std::vector<float> ref(heights.size(), 7.0f), vec(heights.size(), 7.0f);
+    HullScratch scratch;
+    hullShearReference(geo, {heights.data(), ref.data(), width, height, shear}, scratch);
+    hullShearVector(geo, {heights.data(), vec.data(), width, height, shear}, scratch);
+    Profiles p{geo, heights, width, width};
+    const HullSlopeBound limit = hullSlopeErrorBound(geo, maxAbsG(p));
+    std::size_t failures = 0, finite = 0;
+    for (std::size_t k = 0; k < heights.size(); ++k) {
+        const float x = vec[k], y = ref[k];
+        const bool ok = std::isfinite(y) ? std::abs(static_cast<double>(x) - y) <= limit.at(y)
+                                         : (std::isnan(x) && std::isnan(y)) || x == y;
+        finite += std::isfinite(y);
+        if (!ok && ++failures <= 5)
+            ADD_FAILURE() << what << ": row " << k / width << " column " << k % width << ": vector " << x
+                          << ", reference " << y << " (bound " << limit.at(y) << ")";
+    }
+    EXPECT_EQ(failures, 0u) << what;
+    EXPECT_GT(finite, heights.size() / 2) << what;
+}
+
+TEST(HullLanes, ShearedLinesMatchReference) {
+    SKIP_WITHOUT_VECTOR_KERNEL();
+    std::mt19937 rng(5);
+    std::normal_distribution<double> step(0.0, 6.0);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const std::size_t width = 77, height = 900;
+    std::vector<float> heights(width * height);
+    // Rough ground across and along, a wall, and holes of nodata.
+    for (std::size_t c = 0; c < width; ++c) {
+        double h = 300.0;
+        for (std::size_t r = 0; r < height; ++r) {
+            h += step(rng);
+            heights[r * width + c] = static_cast<float>(h + (r == 400 ? 500.0 : 0.0) + 3.0 * static_cast<double>(c % 7));
+        }
+    }
+    for (int hole = 0; hole < 30; ++hole) {
+        const auto r = static_cast<std::size_t>(uniform(rng) * (height - 10)), c = static_cast<std::size_t>(uniform(rng) * (width - 10));
+        for (std::size_t i = 0; i < 6; ++i)
+            for (std::size_t j = 0; j < 6; ++j) heights[(r + i) * width + c + j] = kNaN;
+    }
+    for (const double shear : {0.0, 0.25, std::tan(37.0 * M_PI / 180.0), 1.0})
+        for (const double growth : {0.0, 1e-6})
+            expectShearMatches(heights, width, shear, geometry(height, 30.0 / std::cos(std::atan(shear)), growth, 1.0 / 7.3e6),
+                               "shear " + std::to_string(shear) + " growth " + std::to_string(growth));
+    const Terrain t = loadDem(std::string(DEMLIGHT_SAMPLES_DIR) + "/rocky_mountain_np_dem.tif").terrain;
+    const std::vector<float> dem(t.heightsM.data(), t.heightsM.data() + t.width() * t.height());
+    expectShearMatches(dem, t.width(), std::tan(37.0 * M_PI / 180.0),
+                       geometry(t.height(), t.cellHeightM[0] / std::cos(37.0 * M_PI / 180.0), 0.0, 1.0 / 7.3e6),
+                       "rocky_mountain_np_dem.tif at 37 deg");
+}
+
+TEST(HullLanes, ShearedReferenceServesTheLinesBesideEachCell) {
+    // Line m passes row r at column m + r / 2: on even rows through the cell centres (a cell's
+    // slope is its own line's), on odd rows halfway (the mean of the two lines beside it; the
+    // last column's right line has no data there, off the grid, and the left one serves alone).
+    const std::size_t width = 6, height = 5;
+    std::vector<float> heights(width * height);
+    for (std::size_t r = 0; r < height; ++r)
+        for (std::size_t c = 0; c < width; ++c) heights[r * width + c] = static_cast<float>(100.0 - 10.0 * r + 7.0 * c);
+    const HullGeometry geo = geometry(height, 10.0, 0.0, 0.0);
+    std::vector<float> out(heights.size());
+    HullScratch scratch;
+    hullShearReference(geo, {heights.data(), out.data(), width, height, 0.5}, scratch);
+    // Along every line the ground falls 10 m a row and rises 7 m a column times the shear 0.5: every
+    // earlier sample is 6.5 m higher per row back, 10 m a row: slope 0.65 on lines that started at
+    // row 0.
+    for (std::size_t r = 1; r < height; ++r)
+        for (std::size_t c = 0; c < width; ++c) {
+            const long left = static_cast<long>(c) - static_cast<long>(r / 2) - 1;  // the left line's column at row 0
+            if (left < 0) continue;  // it starts later, on the left edge
+            EXPECT_NEAR(out[r * width + c], (10.0 - 3.5) / 10.0, 1e-6) << "row " << r << " column " << c;
+        }
+    EXPECT_EQ(out[0], -std::numeric_limits<float>::infinity());
+}
+
 TEST(HullLanes, DispatchFollowsSimdPath) {
     const Profiles p = rampsAndPeaks(20, 500, geometry(500, 10.0, 0.0, 1.0 / 7.3e6));
     const auto viaDispatch = [&] {

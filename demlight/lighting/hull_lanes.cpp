@@ -23,6 +23,47 @@ void checkBlock(const HullGeometry& geometry, const HullBlock& block) {
         throw Error("hull kernel: sigmaM[0] must be 0, not " + std::to_string(geometry.sigmaM.front()));
 }
 
+void checkShear(const HullGeometry& geometry, const HullShear& grid) {
+    if (!(grid.shearCols >= 0.0 && grid.shearCols <= 1.0))
+        throw Error("hull kernel: shearCols " + std::to_string(grid.shearCols) + " outside [0, 1]");
+    if (geometry.sigmaM.size() != grid.height)
+        throw Error("hull kernel: " + std::to_string(geometry.sigmaM.size()) + " distances for " +
+                    std::to_string(grid.height) + " rows");
+}
+
+/// The lines of a shear, m from shearFirstLine to width - 1: enough that the last row's first
+/// cell has a line on its left.
+long shearFirstLine(const HullShear& grid) {
+    return grid.height == 0 ? 0
+                            : -static_cast<long>(std::floor(static_cast<double>(grid.height - 1) * grid.shearCols)) - 1;
+}
+
+/// Where the lines of a shear cross row r: whole columns (the same for every line, added to m) and
+/// the fraction across to the next cell.
+struct ShearRow {
+    long whole;
+    float fraction;
+};
+ShearRow shearRow(const HullShear& grid, std::size_t r) {
+    const double x = static_cast<double>(r) * grid.shearCols;
+    const double whole = std::floor(x);
+    return {static_cast<long>(whole), static_cast<float>(x - whole)};
+}
+
+/// A cell's slope from the lines on its left (a) and right (b): the cell lies 1 - fraction across
+/// from a, fraction from b, so f a + (1 - f) b, one rounding; b alone where the fraction is 0 (b
+/// passes through the cell), the other where one has no data (the grid's right edge, a void),
+/// -inf where one has no earlier sample.
+float serveCell(float a, float b, float fraction) {
+    if (fraction == 0.0f || std::isnan(a)) return b;
+    if (std::isnan(b)) return a;
+    if (a == kNoHorizon || b == kNoHorizon) return kNoHorizon;
+    return __builtin_fmaf(fraction, a - b, b);
+}
+
+/// A line's height at row r between the cells a (left) and b: a where the fraction is 0.
+float lineHeight(float a, float b, float fraction) { return fraction == 0.0f ? a : __builtin_fmaf(fraction, b - a, a); }
+
 }  // namespace
 
 void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
@@ -56,6 +97,36 @@ void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, H
     }
 }
 
+void hullShearReference(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch) {
+    checkShear(geometry, grid);
+    const long w = static_cast<long>(grid.width), first = shearFirstLine(grid);
+    const std::size_t lines = static_cast<std::size_t>(w - first), n = grid.height;
+    // Line m's heights and slopes at [(m - first) + r * lines]: one block, a column a line.
+    std::vector<float> heights(lines * n), slopes(lines * n);
+    const auto cell = [&](std::size_t r, long c) {
+        return c >= 0 && c < w ? grid.heightsM[r * grid.width + static_cast<std::size_t>(c)]
+                               : std::numeric_limits<float>::quiet_NaN();
+    };
+    for (std::size_t r = 0; r < n; ++r) {
+        const ShearRow row = shearRow(grid, r);
+        for (long m = first; m < w; ++m) {
+            heights[r * lines + static_cast<std::size_t>(m - first)] =
+                lineHeight(cell(r, m + row.whole), cell(r, m + row.whole + 1), row.fraction);
+        }
+    }
+    hullSlopesReference(geometry, {heights.data(), slopes.data(), lines, lines}, scratch);
+    for (std::size_t r = 0; r < n; ++r) {
+        const ShearRow row = shearRow(grid, r);
+        for (long c = 0; c < w; ++c) {
+            // The lines on the cell's left and right: m + whole + fraction = c - 1 + fraction, c + fraction.
+            const std::size_t left = static_cast<std::size_t>(c - row.whole - 1 - first);
+            float& o = grid.out[r * grid.width + static_cast<std::size_t>(c)];
+            o = std::isnan(cell(r, c)) ? cell(r, c)
+                                       : serveCell(slopes[r * lines + left], slopes[r * lines + left + 1], row.fraction);
+        }
+    }
+}
+
 HullSlopeBound hullSlopeErrorBound(const HullGeometry& geometry, double maxAbsGM) {
     const std::size_t n = geometry.sigmaM.size();
     if (n < 2) return {};
@@ -84,9 +155,6 @@ constexpr int kSlots = kWindow - 1;
 /// refill them in the same call.
 constexpr int kRefillKept = 2;
 static_assert(kSlots > kRefillKept);
-/// Rows one group of lanes walks before the next group of the block takes the same rows: the
-/// block's rows then stay in the caches (and their pages in the TLB) while its groups pass.
-constexpr std::size_t kRowsPerChunk = 32;
 /// How far ahead the heights and the output are prefetched (rows of one group).
 constexpr std::size_t kPrefetchRows = 12;
 
@@ -97,16 +165,6 @@ struct RowTables {
     const float* curve;
     const float* offset;
     float spacing;
-};
-
-/// One group's registers between row chunks: each lane's window of hull vertices (dropped height
-/// g, row, offset; g NaN where the window holds no vertex) and the row of the vertex under the
-/// window's lowest one (-1: none, the window holds the whole hull).
-struct alignas(64) GroupState {
-    float g[kWindow][kLanes];
-    float row[kWindow][kLanes];
-    float offset[kWindow][kLanes];
-    float under[kLanes];
 };
 
 /// A group's scratch: each point's dropped height and the row of the hull vertex below it when it
@@ -195,44 +253,124 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
     }
 }
 
-/// Rows [r0, r1) of the group of lines at column col0 (lanes: the lines that exist).
-template <bool kVarying>
-DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask16 lanes, const RowTables& t,
-                               const GroupPoints& points, std::size_t r0, std::size_t r1, std::size_t n,
-                               GroupState& state) {
-    __m512 G[kWindow], R[kWindow], O[kWindow];
-    for (int j = 0; j < kWindow; ++j) {
-        G[j] = _mm512_load_ps(state.g[j]);
-        R[j] = _mm512_load_ps(state.row[j]);
-        O[j] = _mm512_load_ps(state.offset[j]);
+/// Sixteen lines of a row-major block, one a column: their samples are the block's cells.
+struct ColumnLines {
+    const float* heights;
+    float* out;
+    std::size_t stride, col0, n;
+    __mmask16 lanes;  // the lines that exist
+
+    // Inlined by force: out of line, a function of prefetches alone counts as having no effect,
+    // and its calls are dropped.
+    DEMLIGHT_AVX512 DEMLIGHT_INLINE void prefetch(std::size_t r) const {
+        if (r + kPrefetchRows >= n) return;
+        const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
+        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
+        __builtin_prefetch(out + ahead, 1);
+        __builtin_prefetch(out + ahead + kLanes - 1, 1);
     }
-    __m512 U = _mm512_load_ps(state.under);
+    DEMLIGHT_AVX512 __m512 load(std::size_t r, __m512 nan) const {
+        return _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+    }
+    /// value: the slopes, NaN where the sample has no data.
+    DEMLIGHT_AVX512 void store(std::size_t r, __m512 value) const {
+        _mm512_mask_storeu_ps(out + r * stride + col0, lanes, value);
+    }
+};
+
+/// The lanes whose columns i + lane lie in [0, width).
+inline __mmask16 columnsInside(long i, long width) {
+    const long lo = std::clamp(-i, 0L, 16L), hi = std::clamp(width - i, 0L, 16L);
+    return lo < hi ? static_cast<__mmask16>(((1u << hi) - 1u) & ~((1u << lo) - 1u)) : 0;
+}
+
+/// Sixteen adjacent lines of a shear (lane b is line first + b): at each row the lines share the
+/// fraction across, so their heights are two unaligned loads and a multiply-add, and the fifteen
+/// cells between them are served by the slopes shifted one lane and a multiply-add.
+struct ShearedLines {
+    const HullShear& grid;
+    long first;
+    // Of the row load() read last, for store():
+    long column = 0;  // the cell under lane 0
+    __m512 fraction{}, cells{};
+
+    template <class T>
+    DEMLIGHT_AVX512 T* at(T* base, std::size_t r, long c) const {
+        return base + static_cast<std::ptrdiff_t>(r * grid.width) + c;
+    }
+    // Inlined by force: out of line, a function of prefetches alone counts as having no effect,
+    // and its calls are dropped.
+    DEMLIGHT_AVX512 DEMLIGHT_INLINE void prefetch(std::size_t r) const {
+        if (r + kPrefetchRows >= grid.height) return;
+        const std::size_t ahead = r + kPrefetchRows;
+        const long c = std::clamp(first + shearRow(grid, ahead).whole, 0L, static_cast<long>(grid.width) - 1);
+        _mm_prefetch(reinterpret_cast<const char*>(at(grid.heightsM, ahead, c)), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(at(grid.heightsM, ahead, c) + kLanes), _MM_HINT_T0);
+        __builtin_prefetch(at(grid.out, ahead, c), 1);
+        __builtin_prefetch(at(grid.out, ahead, c) + kLanes, 1);
+    }
+    DEMLIGHT_AVX512 __m512 load(std::size_t r, __m512 nan) {
+        const ShearRow row = shearRow(grid, r);
+        const long w = static_cast<long>(grid.width);
+        column = first + row.whole;
+        fraction = _mm512_set1_ps(row.fraction);
+        cells = _mm512_mask_loadu_ps(nan, columnsInside(column, w), at(grid.heightsM, r, column));
+        if (row.fraction == 0.0f) return cells;  // lineHeight
+        const __m512 right = _mm512_mask_loadu_ps(nan, columnsInside(column + 1, w), at(grid.heightsM, r, column + 1));
+        return _mm512_fmadd_ps(fraction, _mm512_sub_ps(right, cells), cells);
+    }
+    /// value: the lines' slopes, NaN where their samples have no data. Serves the cells under
+    /// lanes 1..15 (hullShearReference's serveCell).
+    DEMLIGHT_AVX512 void store(std::size_t r, __m512 value) const {
+        const __m512 left = _mm512_castsi512_ps(
+            _mm512_alignr_epi32(_mm512_castps_si512(value), _mm512_castps_si512(value), 15));
+        __m512 served = value;  // serveCell
+        if (_mm512_cvtss_f32(fraction) != 0.0f) {
+            const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
+            served = _mm512_fmadd_ps(fraction, _mm512_sub_ps(left, value), value);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(left, noHorizon, _CMP_EQ_OQ) |
+                                              _mm512_cmp_ps_mask(value, noHorizon, _CMP_EQ_OQ),
+                                          served, noHorizon);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(value, value, _CMP_UNORD_Q), served, left);
+            served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(left, left, _CMP_UNORD_Q), served, value);
+        }
+        served = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(cells, cells, _CMP_UNORD_Q), served, cells);
+        const __mmask16 lanes = columnsInside(column, static_cast<long>(grid.width)) & 0xFFFEu;
+        _mm512_mask_storeu_ps(at(grid.out, r, column), lanes, served);
+    }
+};
+
+/// Rows [r0, r1) of sixteen lines (Lines: ColumnLines or ShearedLines), each lane's hull empty at r0.
+template <bool kVarying, class Lines>
+DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoints& points, std::size_t r0,
+                                std::size_t r1) {
     const __m512 nan = _mm512_set1_ps(std::numeric_limits<float>::quiet_NaN());
     const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
+    // Each lane's window of hull vertices, top first: dropped height g (NaN: no vertex), row and
+    // offset; U: the row of the vertex under the window's lowest one (-1: none, the window holds
+    // the whole hull).
+    __m512 G[kWindow], R[kWindow], O[kWindow];
+    for (int j = 0; j < kWindow; ++j) {
+        G[j] = nan;
+        R[j] = none;
+        O[j] = zero;
+    }
+    __m512 U = none;
     const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
     const __m512 spacing = _mm512_set1_ps(t.spacing);
     // Locals, so that the stores below cannot make the compiler read them again.
-    const float* const heights = block.heightsM;
-    float* const outBase = block.out;
-    const std::size_t stride = block.stride;
     const float* const drop = t.drop;
     const float* const curve = t.curve;
     const float* const offsets = t.offset;
     float* const pointG = points.g;
     float* const pointLink = points.link;
     for (std::size_t r = r0; r < r1; ++r) {
-        if (r + kPrefetchRows < n) {
-            const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
-            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
-            _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
-            __builtin_prefetch(outBase + ahead, 1);
-            __builtin_prefetch(outBase + ahead + kLanes - 1, 1);
-        }
-        float* out = outBase + r * stride + col0;
-        const __m512 h = _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+        lines.prefetch(r);
+        const __m512 h = lines.load(r, nan);
         const __mmask16 valid = _mm512_cmp_ps_mask(h, h, _CMP_ORD_Q);
         if (!valid) {  // nodata only (sea): every hull stays as it is
-            _mm512_mask_storeu_ps(out, lanes, h);
+            lines.store(r, h);
             continue;
         }
         const __m512 rf = _mm512_set1_ps(static_cast<float>(r));
@@ -249,7 +387,10 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         __mmask16 pop[kWindow - 1];
         for (int j = 0; j < kWindow - 1; ++j)
             pop[j] = _mm512_cmp_ps_mask(_mm512_mul_ps(a[j + 1], d[j]), _mm512_mul_ps(a[j], d[j + 1]), _CMP_GE_OQ);
-        // On a convex chain the pops are a leading run: lanes in m[k] pop at least k + 1 vertices.
+        // On a convex chain the pops are a leading run (the new point above the line through
+        // vertices j, j + 1 is above the line through j - 1, j too): lanes in m[k] pop at least
+        // k + 1 vertices. Taking the run, not the tests, keeps the masks nested where rounding
+        // breaks that order.
         __mmask16 m[kWindow - 1];
         // A lane without data at this row pops its top and pushes it back: the window stays, and
         // the push below needs no mask but the top's.
@@ -306,7 +447,7 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         inv = _mm512_mul_ps(inv, _mm512_fnmadd_ps(d1, inv, two));
         __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(curve[r]));
         slope = _mm512_mask_blend_ps(topLeft, noHorizon, slope);
-        _mm512_mask_storeu_ps(out, lanes, _mm512_mask_blend_ps(valid, h, slope));
+        lines.store(r, _mm512_mask_blend_ps(valid, h, slope));
 
         // Push: the point's height and the row of the vertex below it, stored whole (slots of
         // points that never become vertices are never read).
@@ -321,34 +462,18 @@ DEMLIGHT_AVX512 void groupRows(const HullBlock& block, std::size_t col0, __mmask
         R[0] = _mm512_mask_mov_ps(R[0], valid, rf);
         if constexpr (kVarying) O[0] = _mm512_mask_mov_ps(O[0], valid, offR);
     }
-    for (int j = 0; j < kWindow; ++j) {
-        _mm512_store_ps(state.g[j], G[j]);
-        _mm512_store_ps(state.row[j], R[j]);
-        _mm512_store_ps(state.offset[j], O[j]);
-    }
-    _mm512_store_ps(state.under, U);
 }
 
 template <bool kVarying>
 DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const RowTables& t, HullScratch& scratch) {
     const std::size_t groups = (block.lines + kLanes - 1) / kLanes;
-    scratch.pointG.resize(groups * n * kLanes);
-    scratch.pointLink.resize(groups * n * kLanes);
-    std::vector<GroupState> states(groups);
-    for (GroupState& s : states) {
-        std::fill(&s.g[0][0], &s.g[0][0] + kWindow * kLanes, std::numeric_limits<float>::quiet_NaN());
-        std::fill(&s.row[0][0], &s.row[0][0] + kWindow * kLanes, -1.0f);
-        std::fill(&s.offset[0][0], &s.offset[0][0] + kWindow * kLanes, 0.0f);
-        std::fill(s.under, s.under + kLanes, -1.0f);
-    }
-    for (std::size_t r0 = 0; r0 < n; r0 += kRowsPerChunk) {
-        const std::size_t r1 = std::min(n, r0 + kRowsPerChunk);
-        for (std::size_t q = 0; q < groups; ++q) {
-            const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
-            const auto lanes = static_cast<__mmask16>((1u << count) - 1u);
-            const GroupPoints points{scratch.pointG.data() + q * n * kLanes, scratch.pointLink.data() + q * n * kLanes};
-            groupRows<kVarying>(block, col0, lanes, t, points, r0, r1, n, states[q]);
-        }
+    scratch.pointG.resize(n * kLanes);
+    scratch.pointLink.resize(n * kLanes);
+    const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
+    for (std::size_t q = 0; q < groups; ++q) {
+        const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
+        ColumnLines lines{block.heightsM, block.out, block.stride, col0, n, static_cast<__mmask16>((1u << count) - 1u)};
+        groupLines<kVarying>(lines, t, points, 0, n);
     }
 }
 
@@ -356,11 +481,11 @@ DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const Ro
 
 bool hullVectorKernelAvailable() { return processorHasAvx512(); }
 
-void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
-    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
-    checkBlock(geometry, block);
+namespace {
+
+/// The per-sample tables of the vector kernel in scratch.rowTables; whether the offsets are not all 0.
+bool makeRowTables(const HullGeometry& geometry, HullScratch& scratch, RowTables& t) {
     const std::size_t n = geometry.sigmaM.size();
-    if (n == 0 || block.lines == 0) return;
     if (n >= (std::size_t{1} << 24))
         throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
     // The uniform spacing the row differences are scaled by, and each sample's offset from it.
@@ -379,11 +504,52 @@ void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, Hull
         offset[i] = std::abs(off) > std::ldexp(spacing, -24) ? static_cast<float>(off) : 0.0f;
         varying = varying || offset[i] != 0.0f;
     }
-    const RowTables t{drop, curve, offset, static_cast<float>(spacing)};
-    if (varying)
+    t = {drop, curve, offset, static_cast<float>(spacing)};
+    return varying;
+}
+
+template <bool kVarying>
+DEMLIGHT_AVX512 void vectorShear(const HullShear& grid, const RowTables& t, HullScratch& scratch) {
+    const std::size_t n = grid.height;
+    scratch.pointG.resize(n * kLanes);
+    scratch.pointLink.resize(n * kLanes);
+    const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
+    const long w = static_cast<long>(grid.width);
+    // Groups overlap by a line: each serves the fifteen cells between its lanes.
+    for (long first = shearFirstLine(grid); first + 1 <= w - 1; first += kLanes - 1) {
+        // The rows where the group's lanes read cells of the grid (the columns only grow).
+        std::size_t r0 = 0;
+        while (r0 < n && first + shearRow(grid, r0).whole + kLanes < 0) ++r0;
+        std::size_t r1 = r0;
+        while (r1 < n && first + shearRow(grid, r1).whole <= w - 1) ++r1;
+        ShearedLines lines{grid, first};
+        groupLines<kVarying>(lines, t, points, r0, r1);
+    }
+}
+
+}  // namespace
+
+void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
+    checkBlock(geometry, block);
+    const std::size_t n = geometry.sigmaM.size();
+    if (n == 0 || block.lines == 0) return;
+    RowTables t{};
+    if (makeRowTables(geometry, scratch, t))
         vectorBlock<true>(block, n, t, scratch);
     else
         vectorBlock<false>(block, n, t, scratch);
+}
+
+void hullShearVector(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch) {
+    if (!hullVectorKernelAvailable()) throw Error("hull kernel: this processor (or this build) has no AVX-512");
+    checkShear(geometry, grid);
+    if (grid.height == 0 || grid.width == 0) return;
+    RowTables t{};
+    if (makeRowTables(geometry, scratch, t))
+        vectorShear<true>(grid, t, scratch);
+    else
+        vectorShear<false>(grid, t, scratch);
 }
 
 #else
@@ -391,6 +557,10 @@ void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, Hull
 bool hullVectorKernelAvailable() { return false; }
 
 void hullSlopesVector(const HullGeometry&, const HullBlock&, HullScratch&) {
+    throw Error("hull kernel: this build has no AVX-512 kernels");
+}
+
+void hullShearVector(const HullGeometry&, const HullShear&, HullScratch&) {
     throw Error("hull kernel: this build has no AVX-512 kernels");
 }
 

@@ -21,7 +21,9 @@
 //   spacing), so they stay exact where a float distance from the line's start would not; the
 //   tangent's division is a reciprocal estimate and one Newton step.
 // hullSlopes runs the AVX-512 kernel where simdPath() allows it, the reference elsewhere. The two
-// agree within hullSlopeErrorBound (derived there); tests hold them to it.
+// agree within hullSlopeErrorBound (derived there); tests hold them to it. The lines are a block's
+// columns (HullBlock) or lines sheared across a grid, each cell served from the two beside it
+// (HullShear); the line geometry of a sweep (which azimuths, regions, transposes) is not here.
 #pragma once
 
 #include <cstddef>
@@ -66,6 +68,29 @@ bool hullVectorKernelAvailable();
 /// The AVX-512 kernel, whatever simdPath() says (for tests and benchmarks); throws Error where
 /// hullVectorKernelAvailable() is false.
 void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch);
+
+/// Parallel lines crossing a grid at a shear: line m passes row r at column m + r * shearCols
+/// (cell centres at integers; 0 <= shearCols <= 1, lines within 45 degrees of the columns), its
+/// height there interpolated between the two cells beside it, its samples one a row (distance
+/// geometry.sigmaM[r] from row 0 along the line). The horizon slope of each cell is served from the
+/// two lines beside it, linearly in their distance across (-inf where either has no earlier
+/// sample, NaN at nodata and where either line's sample has none). The lines that matter start on
+/// the grid's top or left edge and end on its bottom or right edge.
+struct HullShear {
+    const float* heightsM = nullptr;  // row-major, width * height, NaN nodata
+    float* out = nullptr;             // width * height slopes
+    std::size_t width = 0, height = 0;
+    double shearCols = 0.0;
+};
+
+/// The served slopes of every cell, the lines through hullSlopesReference.
+void hullShearReference(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch);
+
+/// The same with the vector kernel, sixteen adjacent lines a group: a row's heights of a group
+/// are two unaligned loads and one multiply-add (the lines share the fraction across), fifteen
+/// cells are served from the group's slopes shifted by one lane; throws Error where
+/// hullVectorKernelAvailable() is false.
+void hullShearVector(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch);
 
 /// A bound on |slope(vector kernel) - slope(reference)|: absolute + relative * |slope(reference)|.
 struct HullSlopeBound {
