@@ -53,7 +53,7 @@ TEST(Simd, AScopedPathIsForcedAndRestored) {
             const detail::ScopedSimdPath wide(SimdPath::Avx512);
             EXPECT_EQ(simdPath(), SimdPath::Avx512);
         } else {
-            EXPECT_THROW(detail::ScopedSimdPath(SimdPath::Avx512), Error);
+            EXPECT_THROW(detail::ScopedSimdPath{SimdPath::Avx512}, Error);  // braces: parentheses would declare a variable
         }
         if (processorHasAvx2()) {
             const detail::ScopedSimdPath wide(SimdPath::Avx2);
