@@ -651,5 +651,19 @@ TEST(SkyGrid, RejectsBadUse) {
     EXPECT_THROW(SkyAccumulator(s.east, s.north, s.up, 0), Error);
 }
 
+// skyFactorOf: per cell skyFactor(K, C); NaN where K or C is NaN (a NaN albedo must not read as
+// a white sky: skyFactor clamps C, and clamp keeps NaN, but min(1, NaN) would give 1).
+TEST(Sky, SkyFactorOfAGridIsNanWhereKOrTheAlbedoIs) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    Grid<float> k(3, 1), c(3, 1);
+    k(0, 0) = 0.6f, k(1, 0) = nan, k(2, 0) = 0.6f;
+    c(0, 0) = 0.3f, c(1, 0) = 0.3f, c(2, 0) = nan;
+    const Grid<float> f = skyFactorOf(k, &c, 0.0);
+    EXPECT_FLOAT_EQ(f(0, 0), 0.6f / (0.7f + 0.3f * 0.6f));
+    EXPECT_TRUE(std::isnan(f(1, 0)));
+    EXPECT_TRUE(std::isnan(f(2, 0)));
+    EXPECT_FLOAT_EQ(skyFactorOf(k, nullptr, 0.0)(2, 0), 0.6f);  // C = 0: f = K
+}
+
 }  // namespace
 }  // namespace demlight

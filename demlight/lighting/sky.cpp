@@ -274,6 +274,16 @@ double skyK(std::span<const float> horizonDeg, const EnuVector& normalIn) {
     return sum;
 }
 
+Grid<float> skyFactorOf(const Grid<float>& skyK, const Grid<float>* albedo, double constantAlbedo) {
+    if (albedo && !albedo->sameShape(skyK)) throw Error("sky: albedo grid size differs from the sky K grid");
+    Grid<float> out(skyK.width(), skyK.height());
+    for (std::size_t i = 0; i < skyK.size(); ++i) {
+        const double k = skyK.data()[i], c = albedo ? albedo->data()[i] : constantAlbedo;
+        out.data()[i] = std::isnan(k) || std::isnan(c) ? kNaNf : static_cast<float>(skyFactor(k, c));
+    }
+    return out;
+}
+
 double skyFactor(double skyK, double albedo) {
     // Hoffman & Mitchell 2001b, Eq. 8 (Stewart & Langer's interreflection approximation).
     const double k = std::clamp(skyK, 0.0, 1.0);

@@ -76,6 +76,11 @@ double skyKWedge(const EnuVector& normal, double az0Deg, double az1Deg, double h
 /// K > 0 gives 1; C = 0 gives K. The denominator is >= K, so no division by zero for K > 0.
 double skyFactor(double skyK, double albedo);
 
+/// skyFactor of every cell of a K grid, with the albedo of each cell (`albedo`) or one for all;
+/// NaN where K or the albedo is NaN, as SkyAccumulator::finish gives it. For a K made otherwise
+/// than by one accumulator (canopy blends).
+Grid<float> skyFactorOf(const Grid<float>& skyK, const Grid<float>* albedo, double constantAlbedo);
+
 // ---- Sky patches -----------------------------------------------------------------------------
 
 /// One sky patch: azimuths [azimuth0Deg, azimuth1Deg) (azimuth0Deg may be negative, e.g. a

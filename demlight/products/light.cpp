@@ -42,17 +42,6 @@ LightRasters rastersOnTile(const LightRasters& whole, const Dem& dem) {
     return out;
 }
 
-/// f_sky = K / (1 - C (1 - K)) per cell (skyFactor), with the albedo of each cell or one for all.
-Grid<float> skyFactorOf(const Grid<float>& skyK, const Grid<float>* albedo, double constantAlbedo) {
-    Grid<float> out(skyK.width(), skyK.height());
-    for (std::size_t k = 0; k < skyK.size(); ++k) {
-        const float K = skyK.data()[k];
-        out.data()[k] = std::isnan(K) ? K
-                                      : static_cast<float>(skyFactor(K, albedo ? albedo->data()[k] : constantAlbedo));
-    }
-    return out;
-}
-
 LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightRequest& o, const SunField& field,
                          const LightRasters& rasters, const Grid<float>& wholeCanopy, const ProgressFn& progress) {
     const Terrain& t = dem.terrain;

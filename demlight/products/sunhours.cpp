@@ -96,19 +96,9 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         skyFactor = std::move(skyAcc).finish(r.albedo).skyFactor;
     } else {
         // K of each surface (the full one hidden under the crowns), blended, then f_sky from it.
-        Grid<float> own;
-        sweepDirections(t, hp, skyDirections, [&](std::size_t i, const HorizonMap& h) {
-            own = h.angleDeg;
-            hideUnderCrown(own, canopy->underCrown, 90.0f);
-            skyAcc.addDirection(i, own);
-        }, &skyCounter);
-        SkyAccumulator groundAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
-        sweepDirections(canopy->ground, hp, skyDirections,
-                        [&](std::size_t i, const HorizonMap& h) { groundAcc.addDirection(i, h.angleDeg); }, &skyCounter);
-        skyFactor = std::move(skyAcc).finish(r.albedo).skyK;
-        blendCanopy(skyFactor, std::move(groundAcc).finish(r.albedo).skyK, r.canopy.transmissivity);
-        for (float& k : skyFactor.values())
-            if (!std::isnan(k)) k = static_cast<float>(demlight::skyFactor(k, r.albedo));
+        skyFactor = skyFactorOf(
+            canopySkyK(t, *canopy, normals, skyDirections, hp, r.canopy.transmissivity, &skyCounter), nullptr,
+            r.albedo);
     }
 
     ProgressCounter counter(progress, "sunhours", seq.instants.size());
