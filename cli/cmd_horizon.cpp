@@ -1,6 +1,7 @@
 // demlight horizon DEM -o OUT.tif (--azimuth DEG... | --directions N): horizon angle maps, one
 // Float32 band per azimuth (demlight/products/horizon.h), and the truncation mask in OUT.truncated.tif.
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
 #include "demlight/run/raster_commands.h"
@@ -15,11 +16,12 @@ namespace demlight::cli {
 namespace {
 
 struct HorizonOptions {
-    std::string demPath;
-    OutputOptions out;
-    bool verbose = false;
+    std::unique_ptr<RasterCommandOf<HorizonParameters>> command = horizonCommand();
+    std::string& demPath = command->demPath;
+    OutputOptions& out = command->out;
+    bool& verbose = command->verbose;
     PointOptions point;
-    HorizonParameters p;
+    HorizonParameters& p = command->values;
 };
 
 /// The point formats a horizon profile adds to json and csv: solar tools' horizon files.
@@ -102,35 +104,14 @@ void runHorizon(const HorizonOptions& o, const CliContext& ctx) {
 
 void registerHorizon(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<HorizonOptions>();
-    CLI::App* cmd = app.add_subcommand("horizon", "Horizon elevation angle maps along true azimuths");
+    declarePointOptions(o->command->declaration(), o->point,
+                        {{kPvgisFormat, "PVGIS's user horizon file: one height per line, the first due north, then "
+                                        "clockwise at equal steps"},
+                         {kPvlibFormat, "CSV azimuth,elevation, azimuth clockwise from north, as pvlib's horizon "
+                                        "profiles"}});
+    CLI::App* cmd = addDeclaredCommand(app, o->command->declaration(), ctx);
     ctx.outputs[cmd->get_name()].companionKeys = {kTruncationMaskKey};
-    HorizonParameters& p = o->p;
-    addDemArgument(cmd, o->demPath, p.heights);
-    addOutputOptions(cmd, o->out);
-    addPointOptions(cmd, o->point, cmd->get_option("-o"),
-                    {{kPvgisFormat, "PVGIS's user horizon file: one height per line, the first due north, then "
-                                    "clockwise at equal steps"},
-                     {kPvlibFormat, "CSV azimuth,elevation, azimuth clockwise from north, as pvlib's horizon "
-                                    "profiles"}});
-    auto* az = cmd->add_option("--azimuth", p.azimuthsDeg, "True azimuth(s), degrees clockwise from north (repeatable)")
-                   ->expected(1, -1);
-    auto* dirs = cmd->add_option("--directions", p.directions, "N azimuths evenly spaced from 0 (0, 360/N, ...); a point query without --azimuth: 48")
-                     ->check(finiteRange(1, 4096));
-    az->excludes(dirs);
-    addSearchOptions(cmd, p.search, o->verbose);
-    addTilingOptions(cmd, p.tiling);
-    cmd->add_option("--method", p.method, "sweep (fast, default) or reference (brute-force ray march)")
-        ->check(CLI::IsMember({"sweep", "reference"}))
-        ->capture_default_str();
-    cmd->add_option("--ot", p.dataType,
-                    "Horizon band type (also -ot): Float32, or Int16 = 16-bit fixed point, -90..90 deg in steps of "
-                    "0.00275 deg with GDAL scale/offset (readers get degrees), half the size")
-        ->check(CLI::IsMember({"Float32", "Int16"}))
-        ->capture_default_str();
-    cmd->callback([o, &ctx] {
-        refusePointCall(o->point, ctx);
-        ctx.takeCall ? ctx.takeCall(rasterWork(horizonWork(o->p))) : runHorizon(*o, ctx);
-    });
+    cmd->callback([o, &ctx] { runHorizon(*o, ctx); });
 }
 
 }  // namespace demlight::cli

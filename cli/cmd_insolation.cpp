@@ -1,8 +1,8 @@
 // demlight insolation DEM -o OUT.tif (--date D | --start D --end D | --month M | --year Y) --tz ZONE:
 // beam, diffuse, reflected and global irradiation in kWh m-2 and hours of direct sun over a
 // period of local days or times, by binned sun positions (demlight/products/insolation.h).
-#include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/run/raster_commands.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
@@ -10,17 +10,19 @@
 #include "demlight/products/point.h"
 #include "demlight/core/error.h"
 
+#include <memory>
 #include <optional>
 
 namespace demlight::cli {
 namespace {
 
 struct InsolationOptions {
-    std::string demPath;
-    OutputOptions out;
-    bool verbose = false;
+    std::unique_ptr<RasterCommandOf<InsolationParameters>> command = insolationCommand();
+    std::string& demPath = command->demPath;
+    OutputOptions& out = command->out;
+    bool& verbose = command->verbose;
     PointOptions point;
-    InsolationParameters p;
+    InsolationParameters& p = command->values;
 };
 
 /// --at / --at-xy: the irradiation of one cell, every instant with its own sun and horizon, printed.
@@ -74,33 +76,9 @@ void runInsolation(const InsolationOptions& o, const CliContext& ctx) {
 
 void registerInsolation(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<InsolationOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "insolation", "Clear-sky solar irradiation (kWh/m2) over a period, from an interval within a day to a year: beam, "
-        "diffuse, reflected, global, and hours of direct sun");
-    InsolationParameters& p = o->p;
-    addDemArgument(cmd, o->demPath, p.heights);
-    addOutputOptions(cmd, o->out);
-    addPointOptions(cmd, o->point, cmd->get_option("-o"));
-    addDayOptions(cmd, p.days, "IANA time zone of the days (required; UTC for universal time)");
-    cmd->add_option("--step", p.step,
-                    "Time between sun positions (trapezoid weights), 6 s to 2 h: 10m, 90s, 1h (a bare number = "
-                    "minutes); they are binned, so a finer step costs little")
-        ->capture_default_str();
-    addCanopyOptions(cmd, p.canopy);
-    addClearSkyOptions(cmd, p.sky, "each instant in --tz");
-    cmd->add_option("--sky-directions", p.directions,
-                    "Azimuth sectors of the sun bins and of the visible sky: one horizon sweep each (default 64)")
-        ->check(finiteRange(4, 1024));
-    cmd->add_option("--elevation-band", p.elevationBandDeg, "Elevation band of the sun bins (degrees)")
-        ->check(finiteRange(0, 90, /*lowOpen=*/true))
-        ->capture_default_str();
-    addSunDiameterOption(cmd, p.sunDiameterDeg);
-    addSearchOptions(cmd, p.search, o->verbose);
-    addTilingOptions(cmd, p.tiling);
-    cmd->callback([o, &ctx] {
-        refusePointCall(o->point, ctx);
-        ctx.takeCall ? ctx.takeCall(rasterWork(insolationWork(o->p))) : runInsolation(*o, ctx);
-    });
+    declarePointOptions(o->command->declaration(), o->point);
+    CLI::App* cmd = addDeclaredCommand(app, o->command->declaration(), ctx);
+    cmd->callback([o, &ctx] { runInsolation(*o, ctx); });
 }
 
 }  // namespace demlight::cli

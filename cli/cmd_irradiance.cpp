@@ -1,7 +1,7 @@
 // demlight irradiance DEM -o OUT.tif --time T [--tz ZONE]: beam, diffuse, reflected and global
 // irradiance in W m-2 on each cell's surface, ESRA clear sky (demlight/products/irradiance.h).
-#include "cli/clear_sky_options.h"
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/run/raster_commands.h"
 #include "cli/point_options.h"
 #include "cli/progress_bar.h"
@@ -10,17 +10,19 @@
 #include "demlight/core/error.h"
 
 #include <cmath>
+#include <memory>
 #include <optional>
 
 namespace demlight::cli {
 namespace {
 
 struct IrradianceOptions {
-    std::string demPath;
-    OutputOptions out;
-    bool verbose = false;
+    std::unique_ptr<RasterCommandOf<IrradianceParameters>> command = irradianceCommand();
+    std::string& demPath = command->demPath;
+    OutputOptions& out = command->out;
+    bool& verbose = command->verbose;
     PointOptions point;
-    IrradianceParameters p;
+    IrradianceParameters& p = command->values;
 };
 
 void printIrradianceAt(const IrradianceOptions& o, const PointSpec& spec, const CliContext& ctx) {
@@ -78,25 +80,9 @@ void runIrradiance(const IrradianceOptions& o, const CliContext& ctx) {
 
 void registerIrradiance(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<IrradianceOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "irradiance", "Clear-sky solar irradiance (W/m2) at one instant: beam, diffuse, reflected, global (ESRA)");
-    IrradianceParameters& p = o->p;
-    addDemArgument(cmd, o->demPath, p.heights);
-    addOutputOptions(cmd, o->out);
-    addPointOptions(cmd, o->point, cmd->get_option("-o"));
-    addTimeOptions(cmd, p.time, p.tz);
-    addCanopyOptions(cmd, p.canopy);
-    addClearSkyOptions(cmd, p.sky, "--time in its zone");
-    cmd->add_option("--sky-directions", p.skyDirections,
-                    "Horizon directions of the visible sky (default: 16 with --quality auto, 64 with full)")
-        ->check(finiteRange(4, 1024));
-    addSunDiameterOption(cmd, p.sunDiameterDeg);
-    addSearchOptions(cmd, p.search, o->verbose);
-    addTilingOptions(cmd, p.tiling);
-    cmd->callback([o, &ctx] {
-        refusePointCall(o->point, ctx);
-        ctx.takeCall ? ctx.takeCall(rasterWork(irradianceWork(o->p))) : runIrradiance(*o, ctx);
-    });
+    declarePointOptions(o->command->declaration(), o->point);
+    CLI::App* cmd = addDeclaredCommand(app, o->command->declaration(), ctx);
+    cmd->callback([o, &ctx] { runIrradiance(*o, ctx); });
 }
 
 }  // namespace demlight::cli

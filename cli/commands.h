@@ -3,6 +3,7 @@
 // CliContext. Errors are thrown as demlight::Error and caught once in main.
 #pragma once
 
+#include "demlight/run/parameters.h"
 #include "demlight/run/runner.h"
 
 #include <CLI/CLI.hpp>
@@ -29,10 +30,11 @@ struct CommandOutputs {
 struct CliContext {
     std::string commandLine;
     bool quiet = false;
-    /// Set by a caller that brings its own DEM and writes the results itself (the Python module):
-    /// the raster commands then hand it their parsed options as a RasterWork
-    /// (demlight/run/runner.h) instead of running.
-    std::function<void(const RasterWork&)> takeCall;
+    /// Each command's declaration (cli/declared.h), by name: options --json and messages.
+    std::map<std::string, const ParameterSet*> declarations;
+    /// The declaration of the command being run, once its arguments are parsed: the messages
+    /// of its errors spell its parameters (describeError).
+    const ParameterSet* running = nullptr;
     /// What commands write beyond one GDAL raster at -o, by command name, for programs that drive
     /// demlight (options --json, cli/cmd_options.cpp).
     std::map<std::string, CommandOutputs> outputs;

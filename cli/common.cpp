@@ -86,25 +86,10 @@ void addDemArgument(CLI::App* cmd, std::string& path, HeightOptions& heights) {
 DemSource openDem(const DemOptions& o, const CliContext& ctx) { return openDem(o.path, o.heights, ctx); }
 
 DemSource openDem(const std::string& path, const HeightOptions& heights, const CliContext& ctx) {
-    try {
-        ProgressBar bar(!ctx.quiet);
-        DemSource source = DemSource::open(path, heights, bar.callback());
-        bar.finish();
-        return source;
-    } catch (const Cancelled&) {
-        throw;
-    } catch (const Error& e) {
-        throw Error(renameHeightFields(e.what(), "--z-unit", "--z-factor"));  // the user typed flags
-    }
-}
-
-std::string renameHeightFields(std::string message, const std::string& zUnit, const std::string& zFactor) {
-    const std::pair<std::string, const std::string&> renames[] = {{"HeightOptions::zUnit", zUnit},
-                                                                  {"HeightOptions::zFactor", zFactor}};
-    for (const auto& [field, name] : renames)
-        for (auto at = message.find(field); at != std::string::npos; at = message.find(field, at + name.size()))
-            message.replace(at, field.size(), name);
-    return message;
+    ProgressBar bar(!ctx.quiet);
+    DemSource source = DemSource::open(path, heights, bar.callback());
+    bar.finish();
+    return source;
 }
 
 void addSearchOptions(CLI::App* cmd, SearchOptions& o) { addSearchOptions(cmd, o.request, o.verbose); }
@@ -173,30 +158,6 @@ void addTilingOptions(CLI::App* cmd, TilingOptions& o) {
                     "gdalbuildvrt equal the one-piece output bit for bit")
         ->expected(4)
         ->check(finiteRange(0, kUnbounded));  // before the conversion: "-5" would wrap to 2^64 - 5
-}
-
-std::string flagForField(const std::string& field) {
-    // One meaning per option name across commands, so one table for all of them.
-    static const std::map<std::string, std::string> flags = {
-        {"albedo", "--albedo"},           {"albedoRaster", "--albedo-raster"},   {"azimuthsDeg", "--azimuth"},
-        {"cloudShadow", "--cloud-shadow"}, {"coeffBh", "--coeff-bh"},                {"coeffDh", "--coeff-dh"},
-        {"coeffBhRaster", "--coeff-bh-raster"}, {"coeffDhRaster", "--coeff-dh-raster"},
-        {"colorEncoding", "--color-encoding"}, {"colorRaster", "--color-raster"}, {"diffuseModel", "--diffuse-model"},
-        {"directions", "--sky-directions"}, {"exposure", "--exposure"},          {"lastDay", "--end"},
-        {"elevationBandDeg", "--elevation-band"}, {"firstDay", "--start"},
-        {"linke", "--linke"},             {"linkeRaster", "--linke-raster"},     {"solarConstantWm2", "--solar-constant"},
-        {"maxDistanceM", "--max-distance"}, {"maxFrames", "--max-frames"},       {"pressureHpa", "--pressure"},
-        {"nearFieldSteps", "--near-field"},
-        {"patches", "--patches"},         {"point", "--at"},                     {"quality", "--quality"},
-        {"refraction", "--refraction"},   {"skyColor", "--sky-color"},           {"skyDirections", "--sky-directions"},
-        {"stackDirections", "--horizon-mode"}, {"step", "--step"},               {"sunColor", "--sun-color"},
-        {"sunDiameterDeg", "--sun-diameter"}, {"temperatureC", "--temperature"}, {"threads", "--threads"},
-        {"time", "--time"},               {"toleranceDeg", "--tolerance"},       {"overwrite", "--overwrite"},
-        {"zone", "--tz"},                 {"canopy", "--canopy"},                {"canopyRaster", "--canopy"},
-        {"transmissivity", "--transmissivity"},
-    };
-    const auto it = flags.find(field);
-    return it == flags.end() ? field : it->second;
 }
 
 void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encoding, const std::string& use) {

@@ -13,6 +13,7 @@
 #include "demlight/products/product.h"
 #include "demlight/products/render.h"
 #include "demlight/products/tiles.h"
+#include "demlight/run/common_parameters.h"
 #include "demlight/run/options.h"
 #include "demlight/run/runner.h"
 #include "demlight/core/error.h"
@@ -89,21 +90,12 @@ RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const st
                                        const std::vector<RasterTarget>& targets, const SearchRequest* search,
                                        bool verbose, const CliContext& ctx);
 
-/// The flag that sets a request field (FieldError::field), e.g. "maxDistanceM" -> "--max-distance";
-/// the field itself when no flag sets it.
-std::string flagForField(const std::string& field);
-/// `message` with the HeightOptions fields the library names in its DEM-opening messages
-/// (HeightOptions::zUnit, ::zFactor) as the user spells them: flags, or Python keywords.
-std::string renameHeightFields(std::string message, const std::string& zUnit, const std::string& zFactor);
-
 /// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen:
 /// lo excluded.
 CLI::Validator finiteRange(double lo, double hi, bool lowOpen = false);
 /// The --color-raster and --color-encoding options of pictures and light.
 void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encoding, const std::string& use);
 
-/// SPA's stated pressure limit (hPa; Reda & Andreas, Table 1); 0 = no atmospheric refraction.
-inline constexpr double kMaxPressureHpa = 5000;
 
 /// --time and --tz of every command at one instant.
 void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);

@@ -120,11 +120,12 @@ int main(int argc, char** argv) {
     } catch (const Cancelled&) {
         std::cerr << "demlight: cancelled\n";
         return kExitCancelled;
-    } catch (const FieldError& e) {
-        std::cerr << "demlight: error: " << cli::flagForField(e.field()) << e.detail() << "\n";
-        return kExitError;
     } catch (const Error& e) {
-        std::cerr << "demlight: error: " << e.what() << "\n";
+        // Parameters named as the command line spells them, or as QGIS's form labels them when
+        // the QGIS provider runs the command (DEMLIGHT_PARAMETER_NAMES=qgis).
+        const char* names = std::getenv("DEMLIGHT_PARAMETER_NAMES");
+        const Naming naming = names && std::string(names) == "qgis" ? Naming::Qgis : Naming::CommandLine;
+        std::cerr << "demlight: error: " << describeError(e, ctx.running, naming) << "\n";
         return kExitError;
     } catch (const std::exception& e) {
         std::cerr << "demlight: internal error: " << e.what() << "\n";

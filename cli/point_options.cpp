@@ -24,24 +24,29 @@ std::pair<double, double> parsePair(const std::string& text, const std::string& 
 
 }  // namespace
 
-void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output,
-                     const std::vector<std::pair<std::string, std::string>>& moreFormats) {
-    output->required(false);
-    auto* at = cmd->add_option("--at", o.at,
-                               "Point query: print the values at WGS84 LAT,LON (degrees; --at=-33.9,18.4 when the "
-                               "first is negative) instead of writing a raster")
-                   ->type_name("LAT,LON");
-    auto* xy = cmd->add_option("--at-xy", o.atXy, "Point query at X,Y in the DEM's CRS (as --at)")->type_name("X,Y");
-    at->excludes(xy);
-    at->excludes(output);
-    xy->excludes(output);
+void declarePointOptions(ParameterSet& set, PointOptions& o,
+                         const std::vector<std::pair<std::string, std::string>>& moreFormats) {
+    set.find("output")->required = false;  // a point query prints instead
+    set.add("at", o.at, "Point (lat, lon)",
+            "Point query: print the values at WGS84 LAT,LON (degrees; --at=-33.9,18.4 when the first is negative) "
+            "instead of writing a raster")
+        .type("LAT,LON")
+        .notWith("at_xy")
+        .notWith("output")
+        .field("point")
+        .only(kCommandLine);
+    set.add("at_xy", o.atXy, "Point (x, y)", "Point query at X,Y in the DEM's CRS (as {at})")
+        .type("X,Y")
+        .notWith("at")
+        .notWith("output")
+        .only(kCommandLine);
     std::vector<std::string> formats{"json", "csv"};
     std::string help = "What a point query prints: json (one object), csv (a header and rows)";
     for (const auto& [name, what] : moreFormats) {
         formats.push_back(name);
         help += ", " + name + " (" + what + ")";
     }
-    cmd->add_option("--point-format", o.format, help)->check(CLI::IsMember(formats))->capture_default_str();
+    set.add("point_format", o.format, "Point output format", help).oneOf(formats).only(kCommandLine);
 }
 
 std::optional<PointSpec> pointOf(const PointOptions& o) {
@@ -70,10 +75,6 @@ DemSource openPointDem(const DemOptions& dem, const SearchRequest& search, const
     // No bar for a point query's opening; Ctrl-C still stops it.
     return DemSource::openWithoutHeightPass(dem.path, dem.heights,
                                             [](double, const std::string&) { return !cancelRequested(); });
-}
-
-void refusePointCall(const PointOptions& o, const CliContext& ctx) {
-    if (ctx.takeCall && pointOf(o)) throw Error("--at and --at-xy print values: run the command line for a point query");
 }
 
 nlohmann::ordered_json pointJson(const PointCell& p) {

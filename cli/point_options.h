@@ -4,6 +4,7 @@
 
 #include "cli/common.h"
 #include "demlight/products/point.h"
+#include "demlight/run/parameters.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -22,8 +23,11 @@ struct PointOptions {
 /// Adds the options; -o (`output`) stops being required, and one of -o or a point is checked by
 /// requireOutputOrPoint. `moreFormats` are --point-format choices besides json and csv, with what
 /// they print, for the help text.
-void addPointOptions(CLI::App* cmd, PointOptions& o, CLI::Option* output,
-                     const std::vector<std::pair<std::string, std::string>>& moreFormats = {});
+/// --at, --at-xy and --point-format (the command line's point queries) added to a raster
+/// command's declaration, whose output is then optional; `moreFormats` are the command's own
+/// point formats beside json and csv, with what each prints.
+void declarePointOptions(ParameterSet& set, PointOptions& o,
+                         const std::vector<std::pair<std::string, std::string>>& moreFormats = {});
 /// The point of --at or --at-xy, or none.
 std::optional<PointSpec> pointOf(const PointOptions& o);
 /// Throws Error unless -o or a point was given.
@@ -35,8 +39,6 @@ void refuseRasterOptions(const TilingOptions& tiling);
 /// (DemSource::openWithoutHeightPass); without it the opening pass finds the relief that sizes
 /// the default search, as for a raster.
 DemSource openPointDem(const DemOptions& dem, const SearchRequest& search, const CliContext& ctx);
-/// Refuses a point query from a caller that takes raster calls (CliContext::takeCall).
-void refusePointCall(const PointOptions& o, const CliContext& ctx);
 
 /// The "point" object of every point query's JSON.
 nlohmann::ordered_json pointJson(const PointCell& p);

@@ -1,12 +1,12 @@
 // demlight._demlight: the C++ side of the Python package (python/demlight/). DEMs opened from
-// files or made from numpy arrays; a raster command's keyword options parsed by the command
-// line's own parser (cli/) into the command's work (demlight/run/), so names, defaults, checks and
-// messages are the command's; results as numpy views; the runner's writers (one piece, or window
-// by window for demlight.dask); `sunpos --json` run as the command. Work runs without the GIL; progress
-// callbacks take it back.
-#include "cli/commands.h"
-#include "cli/common.h"
+// files or made from numpy arrays; a raster command's keywords set through the command's
+// declaration (demlight/run/parameters.h) into its work (demlight/run/), so names, defaults,
+// checks and messages are the command's, spelt as keywords; results as numpy views; the runner's
+// writers (one piece, or window by window for demlight.dask); sunpos's report as JSON. Work runs
+// without the GIL; progress callbacks take it back.
+#include "demlight/run/raster_commands.h"
 #include "demlight/run/runner.h"
+#include "demlight/run/sunpos_command.h"
 #include "demlight/geo/dem.h"
 #include "demlight/geo/dem_source.h"
 #include "demlight/geo/raster.h"
@@ -21,11 +21,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <iostream>
 #include <memory>
 #include <optional>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,25 +33,9 @@ namespace {
 
 // ---- Errors and progress ------------------------------------------------------------------------
 
-/// A command-line spelling in a message as the Python keyword: "--max-distance" -> "max_distance".
-std::string keywordsForFlags(const std::string& message) {
-    static const std::regex flag("(^|[\\s'\"(])--?([a-z][a-z0-9]*(-[a-z0-9]+)*)");
-    std::string out;
-    std::smatch m;
-    std::string rest = message;
-    while (std::regex_search(rest, m, flag)) {
-        std::string name = m[2].str();
-        for (char& c : name)
-            if (c == '-') c = '_';
-        out += m.prefix().str() + m[1].str() + name;
-        rest = m.suffix().str();
-    }
-    return out + rest;
-}
-
-/// The library's message with a request field named as the keyword that sets it (the command
-/// line's flag for the field, spelt as a keyword).
-std::string fieldMessage(const FieldError& e) { return keywordsForFlags(cli::flagForField(e.field()) + e.detail()); }
+/// A message of the library with its parameters spelt as Python keywords (of `set`, the running
+/// command's, when known).
+Error keywordError(const std::exception& e, const ParameterSet* set) { return Error(describeError(e, set, Naming::Python)); }
 
 /// Runs library work without the GIL, and cancels it when Python asks: the progress callback
 /// raises or returns False, or a signal handler raises (Ctrl-C: KeyboardInterrupt). The raised
@@ -237,47 +218,43 @@ std::vector<const ProductResult*> pointers(const std::vector<std::shared_ptr<Ras
 
 // ---- Calls -----------------------------------------------------------------------------------
 
-/// A raster command's work on any DEM (demlight/run/raster_commands.h), its options parsed by
-/// the command line's parser.
+/// The keywords of a call: (keyword, its values as text) in the order given; what demlight.dask
+/// pickles to its workers.
+using Keywords = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+/// A raster command's work on any DEM (demlight/run/raster_commands.h), its keywords set through
+/// the command's declaration.
 struct PyCall {
+    std::shared_ptr<RasterCommand> command;
     RasterWork work;
 
-    std::size_t halo(const PyDem& dem) const { return work.halo(*dem.source); }
-    /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them; the
-    /// messages about srcwin and tile_size name them as keywords.
-    RasterRun plan(const PyDem& dem) const {
+    const ParameterSet* declaration() const { return &command->declaration(); }
+    std::size_t halo(const PyDem& dem) const { return named([&] { return work.halo(*dem.source); }); }
+    /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them.
+    RasterRun plan(const PyDem& dem) const { return named([&] { return work.plan(*dem.source, RunContext{}); }); }
+    /// f(), its errors' messages naming this command's keywords.
+    template <class F>
+    auto named(F&& f) const -> decltype(f()) {
         try {
-            return work.plan(*dem.source, RunContext{});
-        } catch (const FieldError&) {
+            return f();
+        } catch (const Cancelled&) {
             throw;
         } catch (const Error& e) {
-            throw Error(keywordsForFlags(e.what()));
+            throw keywordError(e, declaration());
         }
     }
 };
 
-/// The CLI arguments [command, DEM, -o, placeholder, options...] parsed into a PyCall.
-std::shared_ptr<PyCall> parseCall(const std::vector<std::string>& arguments) {
+/// The raster command `command` with these keywords set.
+std::shared_ptr<PyCall> parseCall(const std::string& command, const Keywords& keywords) {
     auto out = std::make_shared<PyCall>();
-    std::optional<RasterWork> taken;
-    cli::CliContext ctx;
-    ctx.quiet = true;
-    ctx.takeCall = [&taken](const RasterWork& w) { taken = w; };
-    CLI::App app;
-    cli::registerCommands(app, ctx);
-    try {
-        app.parse(cli::parserArguments(arguments));
-    } catch (const CLI::ParseError& e) {
-        throw Error(keywordsForFlags(e.what()));
-    } catch (const FieldError& e) {
-        throw Error(fieldMessage(e));
-    } catch (const Cancelled&) {
-        throw;
-    } catch (const Error& e) {
-        throw Error(keywordsForFlags(e.what()));
-    }
-    if (!taken) throw Error("'" + (arguments.empty() ? std::string() : arguments.front()) + "' is not a raster command");
-    out->work = std::move(*taken);
+    out->command = makeRasterCommand(command);
+    out->work = out->named([&] {
+        ParameterSet& set = out->command->declaration();
+        for (const auto& [keyword, values] : keywords) set.set(keyword, values, kPython);
+        set.checkRequired(kPython);
+        return out->command->work();
+    });
     return out;
 }
 
@@ -287,10 +264,12 @@ std::vector<std::shared_ptr<Raster>> computeCall(const PyCall& c, const PyDem& d
     const RasterRun run = c.plan(dem);
     PythonProgress p(std::move(progress));
     return p.run([&](const ProgressFn& fn) {
-        std::vector<std::shared_ptr<Raster>> out;
-        for (ProductResult& part : computeRaster(c.work, *dem.source, run, fn))
-            out.push_back(std::make_shared<Raster>(std::move(part)));
-        return out;
+        return c.named([&] {
+            std::vector<std::shared_ptr<Raster>> out;
+            for (ProductResult& part : computeRaster(c.work, *dem.source, run, fn))
+                out.push_back(std::make_shared<Raster>(std::move(part)));
+            return out;
+        });
     });
 }
 
@@ -301,9 +280,12 @@ std::vector<std::shared_ptr<Raster>> computeWindow(const PyCall& c, const PyDem&
     const CellWindow window{w[0], w[1], w[2], w[3]};
     PythonProgress p(std::move(progress));
     return p.run([&](const ProgressFn& fn) {
-        std::vector<std::shared_ptr<Raster>> out;
-        for (ProductResult& part : c.work.compute(*dem.source, window, fn)) out.push_back(std::make_shared<Raster>(std::move(part)));
-        return out;
+        return c.named([&] {
+            std::vector<std::shared_ptr<Raster>> out;
+            for (ProductResult& part : c.work.compute(*dem.source, window, fn))
+                out.push_back(std::make_shared<Raster>(std::move(part)));
+            return out;
+        });
     });
 }
 
@@ -320,21 +302,23 @@ OutputOptions outputOptions(const std::string& path, const std::string& format, 
 std::vector<std::string> writeCall(const PyCall& c, const std::vector<std::shared_ptr<Raster>>& parts, const std::string& path,
                                    const std::string& format, const std::vector<std::string>& co,
                                    const std::string& commandLine, const std::string& inputPath) {
-    const std::vector<RasterTarget> targets = c.work.targets(outputOptions(path, format, co));
+    const std::vector<RasterTarget> targets = c.named([&] { return c.work.targets(outputOptions(path, format, co)); });
     if (targets.size() != parts.size()) throw Error("the result has " + std::to_string(parts.size()) + " rasters, the command writes " + std::to_string(targets.size()));
     RunContext ctx;
     ctx.commandLine = commandLine;
     {
         py::gil_scoped_release release;
-        for (const RasterTarget& t : targets) checkOutputPath(t.out, inputPath);
-        for (std::size_t k = 0; k < targets.size(); ++k) {
-            try {
-                writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
-            } catch (const Error&) {
-                removeOutputs(targets, k);  // a command's rasters are all written or none
-                throw;
+        c.named([&] {
+            for (const RasterTarget& t : targets) checkOutputPath(t.out, inputPath);
+            for (std::size_t k = 0; k < targets.size(); ++k) {
+                try {
+                    writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
+                } catch (const Error&) {
+                    removeOutputs(targets, k);  // a command's rasters are all written or none
+                    throw;
+                }
             }
-        }
+        });
     }
     std::vector<std::string> paths;
     for (const auto& t : targets) paths.push_back(t.out.path);
@@ -350,21 +334,23 @@ public:
         : call_(std::move(call)) {
         ctx_.commandLine = commandLine;
         run_ = call_->plan(dem);
-        targets_ = call_->work.targets(outputOptions(path, format, co));
-        for (const RasterTarget& t : targets_) checkOutputPath(t.out, dem.path);
-        writer_ = std::make_unique<TiledWriter>(run_, targets_, ctx_, dem.path);
+        call_->named([&] {
+            targets_ = call_->work.targets(outputOptions(path, format, co));
+            for (const RasterTarget& t : targets_) checkOutputPath(t.out, dem.path);
+            writer_ = std::make_unique<TiledWriter>(run_, targets_, ctx_, dem.path);
+        });
     }
     void write(const std::vector<std::size_t>& w, const std::vector<std::shared_ptr<Raster>>& parts) {
         if (!writer_) throw Error("the writer is closed");
         if (w.size() != 4) throw Error("window: expected (col0, row0, col1, row1)");
         py::gil_scoped_release release;
-        writer_->write({w[0], w[1], w[2], w[3]}, pointers(parts));
+        call_->named([&] { writer_->write({w[0], w[1], w[2], w[3]}, pointers(parts)); });
     }
     std::vector<std::string> commit() {
         if (!writer_) throw Error("the writer is closed");
         {
             py::gil_scoped_release release;
-            writer_->commit();
+            call_->named([&] { writer_->commit(); });
             writer_.reset();
         }
         std::vector<std::string> paths;
@@ -381,62 +367,31 @@ private:
     std::unique_ptr<TiledWriter> writer_;
 };
 
-// ---- Options of the commands, for the Python signatures and docstrings -------------------------
+// ---- The commands' declarations, for the Python signatures and docstrings -----------------
 
+/// The declarations of the raster commands and sunpos as JSON (demlight::declarationsJson).
 std::string optionsJson() {
-    cli::CliContext ctx;
-    CLI::App app;
-    cli::registerCommands(app, ctx);
-    return cli::optionsJson(app, ctx);
+    std::vector<std::unique_ptr<RasterCommand>> commands;
+    std::vector<const ParameterSet*> sets;
+    for (const std::string& name : rasterCommandNames()) {
+        commands.push_back(makeRasterCommand(name));
+        sets.push_back(&commands.back()->declaration());
+    }
+    const SunposCommand sunpos;
+    sets.push_back(&sunpos.declaration());
+    return declarationsJson(sets);
 }
 
-/// What `demlight sunpos ... --json` prints for these arguments ([sunpos, options...]): the
-/// command itself, parsed and run by the command line's parser, its standard output captured.
-std::string sunposJson(std::vector<std::string> arguments) {
-    if (arguments.empty() || arguments.front() != "sunpos") throw Error("sunpos: expected its arguments");
-    arguments.push_back("--json");
-    cli::CliContext ctx;
-    ctx.quiet = true;
-    CLI::App app;
-    cli::registerCommands(app, ctx);
-    std::ostringstream captured;
-    struct Restore {
-        std::streambuf* saved;
-        ~Restore() { std::cout.rdbuf(saved); }
-    } restore{std::cout.rdbuf(captured.rdbuf())};
+/// sunpos's report for these keywords, as JSON.
+std::string sunposKeywordsJson(const Keywords& keywords) {
+    SunposCommand c;
     try {
-        app.parse(cli::parserArguments(arguments));
-    } catch (const CLI::ParseError& e) {
-        throw Error(keywordsForFlags(e.what()));
-    } catch (const FieldError& e) {
-        throw Error(fieldMessage(e));
+        for (const auto& [keyword, values] : keywords) c.declaration().set(keyword, values, kPython);
+        c.declaration().checkRequired(kPython);
+        return demlight::sunposJson(sunposReport(c.values));
     } catch (const Error& e) {
-        throw Error(keywordsForFlags(e.what()));
+        throw keywordError(e, &c.declaration());
     }
-    return captured.str();
-}
-
-std::vector<std::string> rasterCommands() {
-    cli::CliContext ctx;
-    std::vector<std::string> out;
-    ctx.takeCall = [](const RasterWork&) {};
-    CLI::App app;
-    cli::registerCommands(app, ctx);
-    for (const CLI::App* sub : app.get_subcommands({})) {
-        // A raster command is one whose options include -o and --tile-size (the tiled products),
-        // but timelapse, whose -o is a folder of frames and which hands no RasterWork.
-        if (sub->get_option_no_throw("--tile-size") && sub->get_option_no_throw("--output") &&
-            sub->get_name() != "timelapse")
-            out.push_back(sub->get_name());
-    }
-    return out;
-}
-
-std::string commandDescription(const std::string& command) {
-    cli::CliContext ctx;
-    CLI::App app;
-    cli::registerCommands(app, ctx);
-    return app.get_subcommand(command)->get_description();
 }
 
 /// The reference horizon profile at one point of the DEM: `directions` azimuths evenly spaced
@@ -479,10 +434,8 @@ PYBIND11_MODULE(_demlight, m) {
             if (p) std::rethrow_exception(p);
         } catch (const Cancelled& e) {
             cancelled(e.what());
-        } catch (const FieldError& e) {
-            error(fieldMessage(e).c_str());
         } catch (const Error& e) {
-            error(cli::renameHeightFields(e.what(), "z_unit", "z_factor").c_str());
+            error(describeError(e, nullptr, Naming::Python).c_str());
         }
     });
 
@@ -554,12 +507,10 @@ PYBIND11_MODULE(_demlight, m) {
         .def("commit", &PyWriter::commit)
         .def("abandon", &PyWriter::abandon);
 
-    m.def("parse", &parseCall, py::arg("arguments"));
-    m.def("keywords_for_flags", &keywordsForFlags, py::arg("text"));
+    m.def("parse", &parseCall, py::arg("command"), py::arg("keywords"));
     m.def("options_json", &optionsJson);
-    m.def("sunpos_json", &sunposJson, py::arg("arguments"));
-    m.def("command_description", &commandDescription, py::arg("command"));
-    m.def("raster_commands", &rasterCommands);
+    m.def("sunpos_json", &sunposKeywordsJson, py::arg("keywords"));
+    m.def("raster_commands", &rasterCommandNames);
     m.def("tiles", [](const std::vector<std::size_t>& extent, std::size_t cells) {
         const std::vector<CellWindow> tiles = tilesOf({extent.at(0), extent.at(1), extent.at(2), extent.at(3)}, cells);
         py::list out;

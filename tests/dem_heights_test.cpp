@@ -256,8 +256,8 @@ TEST(DemHeights, UnknownBandUnitIsRefusedNamingItTheFileAndTheOverride) {
     const std::string message = messageOf([] { loadDem(files().furlong); });
     EXPECT_NE(message.find("\"furlong\""), std::string::npos) << message;
     EXPECT_NE(message.find(files().furlong), std::string::npos) << message;
-    EXPECT_NE(message.find("HeightOptions::zUnit"), std::string::npos) << message;
-    EXPECT_NE(message.find("HeightOptions::zFactor"), std::string::npos) << message;
+    EXPECT_NE(message.find("z_unit"), std::string::npos) << message;
+    EXPECT_NE(message.find("z_factor"), std::string::npos) << message;
 }
 
 TEST(DemHeights, InvalidOptionsNameTheFieldAndValue) {
@@ -266,12 +266,12 @@ TEST(DemHeights, InvalidOptionsNameTheFieldAndValue) {
         HeightOptions options;
         const char* expected;
     } cases[] = {
-        {zFactorOption(-2), "HeightOptions::zFactor -2 "},
-        {zFactorOption(std::numeric_limits<double>::quiet_NaN()), "HeightOptions::zFactor nan "},
-        {zFactorOption(std::numeric_limits<double>::infinity()), "HeightOptions::zFactor inf "},
+        {zFactorOption(-2), "z_factor -2 "},
+        {zFactorOption(std::numeric_limits<double>::quiet_NaN()), "z_factor nan "},
+        {zFactorOption(std::numeric_limits<double>::infinity()), "z_factor inf "},
         {{"ft", 2}, "exclude each other"},
-        {zUnitOption("furlong"), "HeightOptions::zUnit \"furlong\" is not a vertical unit"},
-        {zUnitOption(" "), "HeightOptions::zUnit \" \" is not a vertical unit"},
+        {zUnitOption("furlong"), "z_unit \"furlong\" is not a vertical unit"},
+        {zUnitOption(" "), "z_unit \" \" is not a vertical unit"},
     };
     for (const auto& c : cases) {
         const std::string message = messageOf([&] { loadDem(dem, c.options); });

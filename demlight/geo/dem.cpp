@@ -52,13 +52,13 @@ std::string trimmed(const std::string& s) {
 
 void checkHeightOptions(const HeightOptions& o) {
     if (o.zFactor != 0 && !(std::isfinite(o.zFactor) && o.zFactor > 0))
-        throw Error("HeightOptions::zFactor " + formatValue(o.zFactor) +
+        throw ParameterError("{z_factor} " + formatValue(o.zFactor) +
                     " must be a finite number > 0 (metres per height unit; 0 = not set)");
     if (o.zFactor != 0 && !o.zUnit.empty())
-        throw Error("HeightOptions::zUnit \"" + o.zUnit + "\" and HeightOptions::zFactor " +
+        throw ParameterError("{z_unit} \"" + o.zUnit + "\" and {z_factor} " +
                     formatValue(o.zFactor) + " exclude each other: set one");
     if (!o.zUnit.empty() && (trimmed(o.zUnit).empty() || !metresPerUnit(o.zUnit)))
-        throw Error("HeightOptions::zUnit \"" + o.zUnit + "\" is not a vertical unit demlight knows (" +
+        throw ParameterError("{z_unit} \"" + o.zUnit + "\" is not a vertical unit demlight knows (" +
                     kKnownUnitsText + ")");
 }
 
@@ -84,9 +84,9 @@ HeightTransform heightTransform(const RasterBand& band, const HeightOptions& o) 
         tr.toMetres = *metres;
         tr.source = "band";
     } else {
-        throw Error("'" + band.path + "' declares its heights in unit \"" + band.unit +
-                    "\", which demlight cannot convert to metres; set HeightOptions::zUnit to the unit it "
-                    "means (" + kKnownUnitsText + ") or HeightOptions::zFactor to metres per unit");
+        throw ParameterError("'" + band.path + "' declares its heights in unit \"" + band.unit +
+                             "\", which demlight cannot convert to metres; set {z_unit} to the unit it means (" +
+                             kKnownUnitsText + ") or {z_factor} to metres per unit");
     }
     return tr;
 }

@@ -218,7 +218,7 @@ void removeStaleFoldersOnce(const fs::path& folder) {
 void checkNotInput(const std::string& path, const std::string& inputPath) {
     std::error_code ec;
     if (!inputPath.empty() && fs::exists(path, ec) && fs::equivalent(fs::path(path), fs::path(inputPath), ec))
-        throw Error("output '" + path + "' would overwrite its input; choose another -o");
+        throw ParameterError("{output} '" + path + "' would overwrite its input; choose another {output}");
 }
 
 void checkOutputFile(const std::string& path) {

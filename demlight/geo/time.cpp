@@ -460,8 +460,9 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
 
     if (tzName.empty()) {
         if (!f.offset)
-            throw Error("time '" + text +
-                        "' has no zone: add an offset like +02:00 or Z, or give a time zone (an IANA name such as Europe/Zurich)");
+            throw ParameterError("time '" + text +
+                                 "' has no zone: add an offset like +02:00 or Z, or give {tz} ZONE (an IANA name "
+                                 "such as Europe/Zurich)");
         return {toSys(local, *f.offset), TimeZoneSpec::fixedOffset(*f.offset)};
     }
 
@@ -472,9 +473,9 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
         const UtcInstant t = toSys(local, *f.offset);
         const chr::seconds zoneOffset = spec.offsetAt(t);
         if (zoneOffset != *f.offset)
-            throw Error("time '" + text + "' has offset " + offsetText(*f.offset) + " but " +
-                        tzName + " is at " + offsetText(zoneOffset) +
-                        " then: drop the offset or the zone, or make them agree");
+            throw ParameterError("time '" + text + "' has offset " + offsetText(*f.offset) + " but " + tzName +
+                                 " is at " + offsetText(zoneOffset) +
+                                 " then: drop the offset or the {tz}, or make them agree");
         return {t, spec};
     }
 

@@ -20,8 +20,8 @@ std::optional<double> parseFiniteNumber(const std::string& text, bool trailingSp
     return v;
 }
 
-std::array<double, 3> parseColor(const std::string& text, const std::string& option) {
-    const auto bad = [&] { return Error(option + " '" + text + "': expected three linear values >= 0 like 1,0.9,0.8"); };
+std::array<double, 3> parseColor(const std::string& text, const std::string& field) {
+    const auto bad = [&] { return FieldError(field, " '" + text + "': expected three linear values >= 0 like 1,0.9,0.8"); };
     std::array<double, 3> c{};
     std::stringstream ss(text);
     std::string part;
@@ -37,31 +37,21 @@ std::array<double, 3> parseColor(const std::string& text, const std::string& opt
 
 std::chrono::milliseconds parseStepOption(const std::string& text, std::chrono::milliseconds bareUnit) {
     try {
-        return parseDurationOr(text, "step", bareUnit);
+        return parseDurationOr(text, "{step}", bareUnit);
     } catch (const Error& e) {
-        throw Error("--" + std::string(e.what()));
+        throw ParameterError(e.what());  // the message names the parameter as {step}
     }
 }
 
-ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz) {
-    try {
-        return parseZonedInstant(time, tz);
-    } catch (const Error& e) {
-        std::string m = e.what();
-        for (const auto& [from, to] : {std::pair<std::string, std::string>{"or give a time zone", "or give --tz ZONE"},
-                                       {"drop the offset or the zone", "drop the offset or the --tz"}})
-            if (const auto at = m.find(from); at != std::string::npos) m.replace(at, from.size(), to);
-        throw Error(m);
-    }
-}
+ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz) { return parseZonedInstant(time, tz); }
 
 LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
     LocalDays days{{}, {}, zoneOfDays(o.tz), std::nullopt};
     const bool range = !o.startDate.empty() || !o.endDate.empty();
     const int given = int(!o.date.empty()) + int(range) + int(!o.month.empty()) + int(!o.year.empty());
-    const std::string choices = o.periods ? "--date D, --start D --end D, --month YYYY-MM or --year YYYY"
-                                          : "--date D, or both --start D and --end D";
-    if (given > 1) throw Error(command + ": give one of " + choices + ", not several");
+    const std::string choices = o.periods ? "{date} D, {start} D {end} D, {month} YYYY-MM or {year} YYYY"
+                                          : "{date} D, or both {start} D and {end} D";
+    if (given > 1) throw ParameterError(command + ": give one of " + choices + ", not several");
     if (!o.date.empty()) {
         days.first = days.last = parseDate(o.date);
     } else if (!o.month.empty()) {
@@ -73,17 +63,17 @@ LocalDays parseDayOptions(const DayOptions& o, const std::string& command) {
         days.first = year.first;
         days.last = year.last;
     } else if (o.startDate.empty() || o.endDate.empty()) {
-        throw Error(command + ": give " + choices);
+        throw ParameterError(command + ": give " + choices);
     } else if (o.periods && (o.startDate.find('T') != std::string::npos || o.endDate.find('T') != std::string::npos)) {
         const UtcInstant start = parseTimeOptions(o.startDate, o.tz).utc, end = parseTimeOptions(o.endDate, o.tz).utc;
-        if (end <= start) throw Error(command + ": --end " + o.endDate + " is not after --start " + o.startDate);
+        if (end <= start) throw ParameterError(command + ": {end} " + o.endDate + " is not after {start} " + o.startDate);
         days.interval = std::pair(start, end);
         days.first = localDayOf(start, days.zone).date;
         days.last = localDayOf(end, days.zone).date;
     } else {
         days.first = parseDate(o.startDate);
         days.last = parseDate(o.endDate);
-        if (days.last < days.first) throw Error(command + ": --end " + o.endDate + " is before --start " + o.startDate);
+        if (days.last < days.first) throw ParameterError(command + ": {end} " + o.endDate + " is before {start} " + o.startDate);
     }
     return days;
 }
@@ -98,10 +88,10 @@ std::vector<double> parseLinkeOption(const std::string& text) {
     std::string part;
     while (std::getline(ss, part, ',')) {
         const std::optional<double> v = parseFiniteNumber(part, /*trailingSpaces=*/true);
-        if (!v) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
+        if (!v) throw ParameterError("{linke} '" + text + "': expected a number or 12 comma-separated monthly numbers like 3.1");
         values.push_back(*v);
     }
-    if (values.empty()) throw Error("--linke '" + text + "': expected a number or 12 comma-separated monthly numbers");
+    if (values.empty()) throw ParameterError("{linke} '" + text + "': expected a number or 12 comma-separated monthly numbers");
     return values;
 }
 

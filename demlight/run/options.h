@@ -20,13 +20,13 @@ namespace demlight {
 /// is not exactly that. The parameter parsers' number rule.
 std::optional<double> parseFiniteNumber(const std::string& text, bool trailingSpaces = false);
 
-/// "R,G,B" linear, each >= 0; throws Error naming `option`.
-std::array<double, 3> parseColor(const std::string& text, const std::string& option);
+/// "R,G,B" linear, each >= 0; throws FieldError naming `field`.
+std::array<double, 3> parseColor(const std::string& text, const std::string& field);
 
 /// A duration (the step of a period): 10m, 1h30m, 90s; a bare number counts `bareUnit`s.
 std::chrono::milliseconds parseStepOption(const std::string& text, std::chrono::milliseconds bareUnit);
 
-/// An instant: parseZonedInstant, its messages naming the time zone parameter.
+/// An instant: parseZonedInstant (its messages name the time zone parameter as {tz}).
 ZonedInstant parseTimeOptions(const std::string& time, const std::string& tz);
 
 /// The local days of a period: one date, a start and an end date, and with periods also a

@@ -39,9 +39,9 @@ std::function<std::size_t(const DemSource&)> haloOf(std::size_t (*halo)(const De
 }  // namespace
 
 HorizonRequest horizonRequest(const HorizonParameters& p, bool point) {
-    if (!p.azimuthsDeg.empty() && p.directions != 0) throw Error("give either --azimuth DEG [DEG ...] or --directions N");
+    if (!p.azimuthsDeg.empty() && p.directions != 0) throw ParameterError("give either {azimuth} DEG [DEG ...] or {directions} N");
     if (p.azimuthsDeg.empty() && p.directions == 0 && !point)
-        throw Error("give either --azimuth DEG [DEG ...] or --directions N");
+        throw ParameterError("give either {azimuth} DEG [DEG ...] or {directions} N");
     HorizonRequest request;
     request.azimuthsDeg = p.azimuthsDeg;
     const int directions = p.azimuthsDeg.empty() && p.directions == 0 ? kPointProfileDirections : p.directions;
@@ -101,7 +101,7 @@ SkyRequest skyRequest(const SkyParameters& p) {
     SkyRequest request;
     request.model = parseSkyModel(p.model);
     if (request.model == SkyModel::Hemisphere && !p.patches.empty())
-        throw Error("--patches needs --model stewart-langer (the hemisphere model has no sky patches)");
+        throw ParameterError("{patches} needs {model} stewart-langer (the hemisphere model has no sky patches)");
     if (!p.patches.empty()) request.patches = parseSkyPatches(p.patches);
     request.directions = p.directions;
     request.albedo = p.albedo;
@@ -138,15 +138,15 @@ LightRequest lightRequest(const LightParameters& p) {
     r.time = parseTimeOptions(p.time, p.tz);
     r.model = parseSunModel(p.model);
     r.skyModel = parseSkyModel(p.skyModel);
-    if (!p.sunColor.empty()) r.sunColor = parseColor(p.sunColor, "--sun-color");
-    if (!p.skyColor.empty()) r.skyColor = parseColor(p.skyColor, "--sky-color");
+    if (!p.sunColor.empty()) r.sunColor = parseColor(p.sunColor, "sun_color");
+    if (!p.skyColor.empty()) r.skyColor = parseColor(p.skyColor, "sky_color");
     if (!p.colorRaster.empty() && (p.albedo || !p.albedoRaster.empty()))
-        throw Error("--color-raster gives the albedo of each channel; do not combine it with " +
-                    std::string(p.albedo ? "--albedo" : "--albedo-raster"));
+        throw ParameterError("{color_raster} gives the albedo of each channel; do not combine it with " +
+                             std::string(p.albedo ? "{albedo}" : "{albedo_raster}"));
     r.albedo = p.albedo;
     r.albedoRaster = p.albedoRaster;
     r.colorRaster = p.colorRaster;
-    r.colorEncoding = parseColorEncoding(p.colorEncoding, "--color-encoding");
+    r.colorEncoding = parseColorEncoding(p.colorEncoding, "color_encoding");
     r.cloudShadow = p.cloudShadow;
     r.skyDirections = p.skyDirections;
     r.sunDiameterDeg = p.sunDiameterDeg;
@@ -228,11 +228,11 @@ SunhoursRequest sunhoursRequest(const SunhoursParameters& p) {
     r.lastDay = days.last;
     r.step = parseStepOption(p.step, std::chrono::minutes(1));
     if (r.step < std::chrono::seconds(6) || r.step > std::chrono::hours(2))
-        throw Error("--step " + p.step + ": must be from 6 s to 2 h");
+        throw ParameterError("{step} " + p.step + ": must be from 6 s to 2 h");
     r.sunDiameterDeg = p.sunDiameterDeg;
     r.albedo = p.albedo;
     r.skyDirections = p.skyDirections;
-    if (p.horizonMode != "auto") r.stackDirections = parseHorizonMode(p.horizonMode, "--horizon-mode");
+    if (p.horizonMode != "auto") r.stackDirections = parseHorizonMode(p.horizonMode, "horizon_mode");
     r.canopy = p.canopy;
     r.search = p.search;
     return r;

@@ -15,8 +15,10 @@
 #include "demlight/products/sun.h"
 #include "demlight/products/sunhours.h"
 #include "demlight/run/options.h"
+#include "demlight/run/parameters.h"
 #include "demlight/run/runner.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -132,5 +134,66 @@ struct SunhoursParameters : RasterParameters {
 SunhoursRequest sunhoursRequest(const SunhoursParameters& p);
 ProductWork<SunhoursResult> sunhoursWork(const SunhoursRequest& request, const SunhoursParameters& p);
 ProductWork<SunhoursResult> sunhoursWork(const SunhoursParameters& p);
+
+// ---- The raster commands as every front end sees them -------------------------------------
+
+/// A raster command's declaration (demlight/run/parameters.h) and the values set through it: the
+/// command line parses into it, Python sets keywords on it, QGIS's form is made from it.
+class RasterCommand {
+public:
+    virtual ~RasterCommand() = default;
+    RasterCommand(const RasterCommand&) = delete;
+    RasterCommand& operator=(const RasterCommand&) = delete;
+
+    ParameterSet& declaration() { return set_; }
+    const ParameterSet& declaration() const { return set_; }
+    /// The work of the values set; throws Error (often a ParameterError) on values that do not
+    /// go together.
+    virtual RasterWork work() const = 0;
+
+    /// The DEM and the output raster: parameters of the command line and QGIS (Python passes the
+    /// DEM to the call and the output to Result.write).
+    std::string demPath;
+    OutputOptions out;
+    bool verbose = false;  ///< the command line's scene-plan notes
+
+protected:
+    RasterCommand(std::string name, std::string description) : set_(std::move(name), std::move(description)) {}
+
+private:
+    ParameterSet set_;
+};
+
+/// A raster command whose product's parameters are a P.
+template <class P>
+class RasterCommandOf final : public RasterCommand {
+public:
+    using Declare = void (*)(RasterCommandOf&);
+    using MakeWork = RasterWork (*)(const P&);
+    RasterCommandOf(std::string name, std::string description, Declare declare, MakeWork makeWork)
+        : RasterCommand(std::move(name), std::move(description)), makeWork_(makeWork) {
+        declare(*this);
+    }
+    RasterWork work() const override { return makeWork_(values); }
+
+    P values;
+
+private:
+    MakeWork makeWork_;
+};
+
+std::unique_ptr<RasterCommandOf<HorizonParameters>> horizonCommand();
+std::unique_ptr<RasterCommandOf<SunParameters>> sunCommand();
+std::unique_ptr<RasterCommandOf<SkyParameters>> skyCommand();
+std::unique_ptr<RasterCommandOf<ApertureParameters>> apertureCommand();
+std::unique_ptr<RasterCommandOf<LightParameters>> lightCommand();
+std::unique_ptr<RasterCommandOf<IrradianceParameters>> irradianceCommand();
+std::unique_ptr<RasterCommandOf<InsolationParameters>> insolationCommand();
+std::unique_ptr<RasterCommandOf<SunhoursParameters>> sunhoursCommand();
+
+/// The raster commands' names, in the order the command line lists them.
+const std::vector<std::string>& rasterCommandNames();
+/// A fresh raster command by name (rasterCommandNames); throws Error for another name.
+std::unique_ptr<RasterCommand> makeRasterCommand(const std::string& name);
 
 }  // namespace demlight

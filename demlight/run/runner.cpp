@@ -68,7 +68,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::
         const auto& s = tiling.srcwin;
         if (s[2] == 0 || s[3] == 0 || s[0] >= dem.width() || s[1] >= dem.height() || s[2] > dem.width() - s[0] ||
             s[3] > dem.height() - s[1])
-            throw Error("--srcwin " + std::to_string(s[0]) + " " + std::to_string(s[1]) + " " + std::to_string(s[2]) +
+            throw ParameterError("{srcwin} " + std::to_string(s[0]) + " " + std::to_string(s[1]) + " " + std::to_string(s[2]) +
                         " " + std::to_string(s[3]) + ": the window must be non-empty and inside the " +
                         std::to_string(dem.width()) + " x " + std::to_string(dem.height()) + " DEM");
         run.extent = {s[0], s[1], s[0] + s[2], s[1] + s[3]};
@@ -86,15 +86,15 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::
             const std::string need =
                 wholeMegabytes(std::max(openingBytes, memoryBudgetFor(plan.smallestTileBytes)) / 1e6);
             const std::string given = tiling.memoryLimitMB > 0
-                                          ? "--memory-limit " + streamed(tiling.memoryLimitMB) + " MB"
-                                          : "the default --memory-limit (half of this machine's memory, " +
+                                          ? "{memory_limit} " + streamed(tiling.memoryLimitMB) + " MB"
+                                          : "the default {memory_limit} (half of this machine's memory, " +
                                                 wholeMegabytes(limit / 1e6) + " MB)";
-            throw Error(given + " is less than this command needs on this " + std::to_string(dem.width()) + " x " +
+            throw ParameterError(given + " is less than this command needs on this " + std::to_string(dem.width()) + " x " +
                         std::to_string(dem.height()) + " DEM: at least " + need +
                         " MB (the program, its pass over the DEM's heights, GDAL's block cache, and the smallest "
                         "tile with its halo of " +
-                        std::to_string(halo) + " cells); give --memory-limit " + need +
-                        " or more, or a shorter --max-distance");
+                        std::to_string(halo) + " cells); give {memory_limit} " + need +
+                        " or more, or a shorter {max_distance}");
         }
         tile = plan.shape;
     } else {
@@ -106,7 +106,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::
             used = 0;
         }
         if (used != tiling.tileSize.size() || n < 16 || n > 1000000)
-            throw Error("--tile-size '" + tiling.tileSize + "': expected auto or a whole number of cells from 16 to 1000000");
+            throw ParameterError("{tile_size} '" + tiling.tileSize + "': expected auto or a whole number of cells from 16 to 1000000");
         tile = {static_cast<std::size_t>(n), static_cast<std::size_t>(n)};
     }
     run.ref = dem.geometry().band.ref;
@@ -118,7 +118,7 @@ RasterRun planRasterRun(const DemSource& dem, const TilingOptions& tiling, std::
                       " x " + std::to_string(tile.rows) + " cells, each with a halo of " + std::to_string(halo) + " cells");
         if (halo >= std::max(dem.width(), dem.height()))
             ctx.note("note: the search reaches across the whole DEM, so every tile reads and sweeps all of it: tiles "
-                      "then bound the output's memory only and multiply the time; a --max-distance shorter than the "
+                      "then bound the output's memory only and multiply the time; a shorter search distance than the "
                       "DEM makes tiles cheap");
     }
     return run;

@@ -75,12 +75,6 @@ Cancelled.__doc__ = "The work was stopped: a progress callback returned False."
 #: The raster commands, one function each.
 COMMANDS = tuple(_demlight.raster_commands())
 
-# Command-line options that are not keyword arguments: the output and its storage (Result.write
-# takes the path, format and creation options; it writes Float32), the
-# notes of a terminal, and the DEM argument.
-# Point queries (at, at_xy, point_format) print values; the module returns rasters.
-_NOT_KEYWORDS = {"output", "of", "co", "ot", "verbose", "help", "quiet", "dem", "at", "at_xy", "point_format",
-                 "json"}
 # Options applied when a DEM is opened (demlight.open), not by a product on an open DEM.
 _OPEN_KEYWORDS = ("z_unit", "z_factor")
 
@@ -278,27 +272,24 @@ def _option_text(name, value):
     return str(value)
 
 
-def _arguments(command, dem_label, options):
-    """The command line of `command` with these keyword options (None = the option's default)."""
+def _arguments(command, options):
+    """The keywords of a call as the library takes them: (keyword, [values as text]) in the order
+    given, None (the default) left out; unknown keywords raise TypeError."""
     spec = _options(command)
-    args = [command, dem_label, "-o", "python-result.tif"] if dem_label else [command]
+    keywords = []
     for name, value in options.items():
         if name not in spec:
             raise _unknown_keyword(command, name, spec)
         if value is None:
             continue
-        flag = "--" + name.replace("_", "-")
         if spec[name]["flag"]:
             if value:
-                args.append(flag)
+                keywords.append((name, []))
         elif isinstance(value, (list, tuple)):
-            if spec[name]["expected"] > 1 and len(value) == spec[name]["expected"]:
-                args += [flag] + [_option_text(name, v) for v in value]
-            else:
-                args += ["%s=%s" % (flag, _option_text(name, v)) for v in value]
+            keywords.append((name, [_option_text(name, v) for v in value]))
         else:
-            args.append("%s=%s" % (flag, _option_text(name, value)))
-    return args
+            keywords.append((name, [_option_text(name, value)]))
+    return keywords
 
 
 def _unknown_keyword(command, name, known):
@@ -312,30 +303,24 @@ def _unknown_keyword(command, name, known):
 
 
 def _output_format(command, value):
-    """`value` spelt as the command's output format choice it names in any case ('cog' is
-    'COG'); anything else as given, for the writer to refuse."""
-    for o in _command_options(command):
-        if "of" in o["names"]:
+    """`value` spelt as the output format it names in any case ('cog' is 'COG'); anything else as
+    given, for the writer to refuse."""
+    for o in _declaration(command)["options"]:
+        if o["name"] == "format":
             for choice in o["choices"]:
                 if str(value).lower() == choice.lower():
                     return choice
     return str(value)
 
 
-# The command line's output flags, as the keywords of Result.write and demlight.dask.run.
-_OUTPUT_FLAGS = (("-o", None), ("--output", None), ("--of", "format"), ("-of", "format"),
-                 ("--co", "creation_options"), ("-co", "creation_options"))
-
-
 def _output_error(error, path_keyword):
-    """`error` (a demlight.Error of writing) with the output flags its message names spelt as
-    keywords: 'choose another -o' is 'choose another path'."""
+    """`error` (a demlight.Error of writing) with the output path named as `path_keyword` (the
+    declaration names it path, as Result.write does; demlight.dask.run calls it out_path)."""
     import re
 
-    text = str(error)
-    for flag, keyword in _OUTPUT_FLAGS:
-        text = re.sub(r"(^|[\s'\"(])%s(?![\w-])" % re.escape(flag), lambda m: m.group(1) + (keyword or path_keyword), text)
-    return type(error)(text)
+    if path_keyword == "path":
+        return error
+    return type(error)(re.sub(r"\bpath\b", path_keyword, str(error)))
 
 
 def _command_line(command, dem, options):
@@ -447,41 +432,36 @@ class Result:
 
 
 @_functools.lru_cache(maxsize=None)
+def _declarations():
+    return {c["name"]: c for c in _json.loads(_demlight.options_json())["commands"]}
+
+
+def _declaration(command):
+    """The command's declaration (demlight/run/parameters.h) as JSON: name, description, and its
+    options with keyword, aliases, label, unit, python_help, type, choices, range, default, ..."""
+    try:
+        return _declarations()[command]
+    except KeyError:
+        raise Error("no command '%s'" % command) from None
+
+
 def _command_options(command):
-    """The options of `demlight COMMAND` as `demlight options --json` describes them: long names,
-    description, default ("" for none), type as --help shows it, flag, values per use, required."""
-    for c in _json.loads(_demlight.options_json())["commands"]:
-        if c["name"] == command:
-            return [{"names": [f[2:] for f in o["flags"] if f.startswith("--")],
-                     "positional": o["positional"],
-                     "description": o["description"],
-                     "default": o["default"] or "",
-                     "type": o["type_name"],
-                     "flag": o["flag"],
-                     "expected": o["max_values"],
-                     "choices": o["choices"],
-                     "required": o["required"]} for o in c["options"]]
-    raise Error("no command '%s'" % command)
+    """The options of `command` that are Python keywords, in their declared order."""
+    return [o for o in _declaration(command)["options"] if "python" in o["front_ends"]]
 
 
 @_functools.lru_cache(maxsize=None)
 def _options(command):
-    """Keyword name (aliases included) -> the command-line option's facts (names, description,
-    default, type, ...)."""
+    """Keyword name (aliases included) -> the option's declaration."""
     spec = {}
     for o in _command_options(command):
-        if o["positional"]:
-            continue
-        keywords = [n.replace("-", "_") for n in o["names"]]
-        if keywords[0] in _NOT_KEYWORDS:
-            continue
-        for k in keywords:
-            spec[k] = dict(o, keyword=keywords[0], aliases=keywords[1:])
+        for k in [o["keyword"]] + o["aliases"]:
+            spec[k] = o
     return spec
 
 
 def _run(command, dem, transform=None, crs=None, nodata=None, progress=None, **options):
-    call = _demlight.parse(_arguments(command, "DEM", options))
+    call = _demlight.parse(command, _arguments(command, options))
     opened = _as_dem(dem, transform, crs, nodata, {k: options[k] for k in _OPEN_KEYWORDS if k in options})
     rasters = call.compute(opened._dem, progress)
     return Result(command, rasters, call, opened, {k: v for k, v in options.items() if k not in _OPEN_KEYWORDS})
@@ -538,23 +518,45 @@ def _bands_doc(command):
     return lines + [""]
 
 
-_TYPES = {"FLOAT": float, "UINT": int, "INT": int, "NUMBER": float}
+_TYPES = {"FLOAT": float, "UINT": int, "INT": int}
 
 
 def _default(o):
     text = o["default"]
-    if not text or o["flag"]:
+    if text is None or o["flag"]:
         return None
-    kind = _TYPES.get(o["type"].split(":")[0].strip(), str)  # "FLOAT:[0, 20]": the type, then its check
+    kind = _TYPES.get(o["type"], str)
     try:
         return kind(text)
     except ValueError:
         return text
 
 
+def _option_doc(o):
+    """An option's lines in a docstring: keyword (aliases) : type, unit, default; its help."""
+    head = o["keyword"]
+    if o["aliases"]:
+        head += " (also %s)" % ", ".join(o["aliases"])
+    if o["type"]:
+        head += " : %s" % o["type"].lower()
+        if o["max_values"] > 1:
+            head += " x %d" % o["max_values"]
+        elif o["max_values"] < 0:
+            head += " (a sequence)"
+    if o["unit"]:
+        head += " [%s]" % o["unit"]
+    if o["choices"]:
+        head += ", one of %s" % ", ".join(o["choices"])
+    if o["required"]:
+        head += ", required"
+    if o["default"] is not None:
+        head += ", default %s" % o["default"]
+    return [head] + _textwrap.wrap(o["python_help"], 92, initial_indent="    ", subsequent_indent="    ")
+
+
 def _docstring(command):
     lines = [
-        "%s (demlight %s)." % (_demlight.command_description(command), command),
+        "%s (demlight %s)." % (_declaration(command)["description"], command),
         "",
         "demlight.%s(dem, *, transform=None, crs=None, nodata=None, progress=None, **options) -> Result" % command,
         "",
@@ -565,34 +567,14 @@ def _docstring(command):
         "threads with the GIL held; returning False raises demlight.Cancelled. Ctrl-C stops the",
         "work (KeyboardInterrupt). The GIL is released while demlight computes.",
         "",
-        "Options: those of `demlight %s` (its --help), with underscores for dashes; the same" % command,
+        "Options: those of `demlight %s` (its --help), as keywords; the same" % command,
         "defaults, units and checks. Times: ISO 8601 strings with an offset or Z, local times with",
         "tz=, or timezone-aware datetime objects; days: 'YYYY-MM-DD' or datetime.date; steps:",
         "'10m', '90s' or datetime.timedelta. Lists (azimuth, srcwin) as Python sequences.",
         "",
     ] + _bands_doc(command)
-    seen = set()
     for o in _command_options(command):
-        if o["positional"]:
-            continue
-        keywords = [n.replace("-", "_") for n in o["names"]]
-        if keywords[0] in _NOT_KEYWORDS or keywords[0] in seen:
-            continue
-        seen.add(keywords[0])
-        head = keywords[0]
-        if len(keywords) > 1:
-            head += " (also %s)" % ", ".join(keywords[1:])
-        if o["type"]:
-            head += " : %s" % o["type"].lower()
-            if o["expected"] > 1:
-                head += " x %d" % o["expected"]
-        if o["required"]:
-            head += ", required"
-        if o["default"]:
-            head += ", default %s" % o["default"]
-        lines.append(head)
-        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
-                                subsequent_indent="    ")
+        lines += _option_doc(o)
     lines += ["", "Returns a demlight.Result: .bands, .units, .metadata, .write(path), .to_xarray().",
               "Raises demlight.Error with the library's message (options named as keywords)."]
     return "\n".join(lines)
@@ -607,15 +589,8 @@ def _make_command(command):
     params = [_inspect.Parameter("dem", _inspect.Parameter.POSITIONAL_OR_KEYWORD)]
     for name in ("transform", "crs", "nodata", "progress"):
         params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=None))
-    seen = set(p.name for p in params)
     for o in _command_options(command):
-        if o["positional"]:
-            continue
-        keyword = o["names"][0].replace("-", "_")
-        if keyword in _NOT_KEYWORDS or keyword in seen:
-            continue
-        seen.add(keyword)
-        params.append(_inspect.Parameter(keyword, _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
+        params.append(_inspect.Parameter(o["keyword"], _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
     product.__signature__ = _inspect.Signature(params)
     return product
 
@@ -627,34 +602,24 @@ del _command
 
 
 def sunpos(time, lat, lon, **options):
-    return _json.loads(_demlight.sunpos_json(_arguments("sunpos", None, dict(time=time, lat=lat, lon=lon, **options))))
+    return _json.loads(_demlight.sunpos_json(_arguments("sunpos", dict(time=time, lat=lat, lon=lon, **options))))
 
 
 def _sunpos_signature():
-    params, seen = [], set()
+    params = []
     for o in _command_options("sunpos"):
-        keyword = o["names"][0].replace("-", "_") if o["names"] else None
-        if not keyword or keyword in _NOT_KEYWORDS or keyword in seen:
-            continue
-        seen.add(keyword)
         if o["required"]:
-            params.append(_inspect.Parameter(keyword, _inspect.Parameter.POSITIONAL_OR_KEYWORD))
+            params.append(_inspect.Parameter(o["keyword"], _inspect.Parameter.POSITIONAL_OR_KEYWORD))
         else:
-            params.append(_inspect.Parameter(keyword, _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
+            params.append(_inspect.Parameter(o["keyword"], _inspect.Parameter.KEYWORD_ONLY, default=_default(o)))
     return _inspect.Signature(sorted(params, key=lambda p: p.kind))
 
 
 def _sunpos_doc():
-    lines = ["%s (demlight sunpos)." % _demlight.command_description("sunpos"), "",
+    lines = ["%s (demlight sunpos)." % _declaration("sunpos")["description"], "",
              "demlight.sunpos%s -> dict" % _sunpos_signature(), ""]
     for o in _command_options("sunpos"):
-        keyword = o["names"][0].replace("-", "_") if o["names"] else None
-        if not keyword or keyword in _NOT_KEYWORDS:
-            continue
-        head = keyword + (", required" if o["required"] else "") + (", default %s" % o["default"] if o["default"] else "")
-        lines.append(head)
-        lines += _textwrap.wrap(_demlight.keywords_for_flags(o["description"]), 92, initial_indent="    ",
-                                subsequent_indent="    ")
+        lines += _option_doc(o)
     lines += ["", "time also as a timezone-aware datetime. Returns what `demlight sunpos --json` prints, as a dict:",
               "utc, local, zone (the instant and its zone); latitude_deg, longitude_deg, elevation_m,",
               "pressure_hpa, temperature_c (the site); zenith_deg and elevation_deg (topocentric,",

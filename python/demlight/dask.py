@@ -62,7 +62,7 @@ def _stamp(path):
 
 def _compute(product, dem_path, arguments, window):
     """A task: one window of the command, on a worker."""
-    call = _core.parse(arguments)
+    call = _core.parse(product, arguments)
     dem = _open(dem_path, call.z_unit, call.z_factor, _stamp(dem_path))
     return call.compute_window(dem, list(window), None)
 
@@ -91,8 +91,8 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
         client = get_client()
     from distributed import as_completed
 
-    arguments = _demlight._arguments(product, "DEM", options)
-    call = _core.parse(arguments)
+    arguments = _demlight._arguments(product, options)
+    call = _core.parse(product, arguments)
     dem = _demlight.open(dem_path, z_unit=call.z_unit or None, z_factor=call.z_factor or None)
     parts = windows(call.extent(dem._dem), chunks)
     if out_path is None:

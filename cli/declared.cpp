@@ -1,0 +1,81 @@
+#include "cli/declared.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace demlight::cli {
+
+namespace {
+
+std::string numberText(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+/// What --help shows after the type: "[0, 20]", "NUMBER > 0", "{auto,full}".
+std::string checkDescription(const Parameter& p) {
+    if (!p.choices.empty()) {
+        std::string list;
+        for (const std::string& c : p.choices) list += (list.empty() ? "" : ",") + c;
+        return "{" + list + "}";
+    }
+    if (p.range) {
+        const ValueRange& r = *p.range;
+        if (std::isfinite(r.hi))
+            return std::string(r.lowOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) + "]";
+        return std::string(r.lowOpen ? "NUMBER > " : "NUMBER >= ") + numberText(r.lo);
+    }
+    return {};
+}
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ",") + n;
+    return out;
+}
+
+}  // namespace
+
+CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) {
+    CLI::App* cmd = app.add_subcommand(set.command(), set.description());
+    ctx.declarations[set.command()] = &set;
+    std::map<std::string, CLI::Option*> made;
+    for (Parameter& p : set.parameters()) {
+        if (!p.shownIn(kCommandLine)) continue;
+        const std::string help = renderNames(p.help, &set, Naming::CommandLine);
+        const std::string names = p.positional ? p.cliFlags : joined(p.commandLineNames());
+        CLI::Option* opt = nullptr;
+        if (p.kind == ValueKind::Flag) {
+            opt = cmd->add_flag_callback(names, [&p] { p.store({}); }, help);
+        } else {
+            opt = cmd->add_option(
+                names,
+                [&p](const CLI::results_t& values) {
+                    p.store(values);
+                    return true;
+                },
+                help);
+            opt->type_name(p.typeName);
+            if (p.maxValues < 0) {
+                opt->expected(p.minValues, -1);
+                opt->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+            } else {
+                opt->expected(p.minValues, p.maxValues);
+            }
+            if (p.defaultText) opt->default_str(*p.defaultText);
+            const Parameter* param = &p;
+            opt->check(CLI::Validator([param](std::string& v) { return param->problem(v); }, checkDescription(p)));
+        }
+        if (p.required) opt->required();
+        made[p.name] = opt;
+    }
+    for (const Parameter& p : set.parameters())
+        for (const std::string& other : p.excludes)
+            if (made.count(p.name) && made.count(other)) made[p.name]->excludes(made[other]);
+    cmd->parse_complete_callback([&ctx, &set] { ctx.running = &set; });
+    return cmd;
+}
+
+}  // namespace demlight::cli
