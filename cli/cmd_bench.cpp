@@ -3,6 +3,7 @@
 // DIR/bench.svg, drawn by gnuplot when it is installed). With --peers, GRASS r.horizon runs on
 // the same crop, directions and distance, and is scored against the same reference.
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "cli/progress_bar.h"
 #include "demlight/geo/output_file.h"
 #include "demlight/products/bench.h"
@@ -25,6 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct BenchOptions {
+    ParameterSet set{"bench", "Speed against accuracy of the horizon methods on your DEM (CSV and chart)"};
     DemOptions dem;
     std::string outDir;
     std::size_t crop = 400;
@@ -342,40 +344,32 @@ void runBench(const BenchOptions& o, const CliContext& ctx) {
 
 void registerBench(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<BenchOptions>();
-    CLI::App* cmd = app.add_subcommand("bench", "Speed against accuracy of the horizon methods on your DEM (CSV and chart)");
-    ctx.outputs[cmd->get_name()].kind = "folder";
-    addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outDir, "Output folder: bench.csv, bench.gnuplot, bench_labels.csv, bench.png, bench.svg")
-        ->required()
-        ->type_name("DIR");
-    cmd->add_option("--crop", o->crop, "Cells a side of the centred crop measured (0 = the whole DEM)")
-        ->check(finiteRange(0, 1e6))
-        ->capture_default_str();
-    cmd->add_option("--sample", o->sample, "Cells scored against the reference ray march")
-        ->check(finiteRange(1, 1e6))
-        ->capture_default_str();
-    cmd->add_option("--directions", o->directions, "Direction counts timed for each sweep method")
-        ->check(finiteRange(1, 4096))
-        ->expected(1, -1)
-        ->capture_default_str();
-    cmd->add_option("--repeats", o->repeats, "Timed runs of each method (the median counts)")
-        ->check(finiteRange(1, 100))
-        ->capture_default_str();
-    cmd->add_flag("--peers", o->peers, "Also time and score GRASS r.horizon on the same crop, directions and distance");
-    cmd->add_option("--peer-directions", o->peerDirections, "Directions of the peers' run (a multiple of 4)")
-        ->check(finiteRange(4, 360))
+    ParameterSet& set = o->set;
+    declareDemOptions(set, o->dem);
+    set.add("output", o->outDir, "Output folder",
+            "Output folder: bench.csv, bench.gnuplot, bench_labels.csv, bench.png, bench.svg")
+        .flags("-o,--output")
+        .type("DIR")
+        .mandatory();
+    set.add("crop", o->crop, "Crop side (cells)", "Cells a side of the centred crop measured (0 = the whole DEM)")
+        .within(0, 1e6);
+    set.add("sample", o->sample, "Scored cells", "Cells scored against the reference ray march").within(1, 1e6);
+    set.add("directions", o->directions, "Direction counts", "Direction counts timed for each sweep method")
+        .within(1, 4096)
+        .byDefault("4 16 32");
+    set.add("repeats", o->repeats, "Timed runs", "Timed runs of each method (the median counts)").within(1, 100);
+    set.add("peers", o->peers, "Also run GRASS r.horizon",
+            "Also time and score GRASS r.horizon on the same crop, directions and distance");
+    set.add("peer_directions", o->peerDirections, "Peer directions", "Directions of the peers' run (a multiple of 4)")
+        .within(4, 360)
         // r.horizon's directions run counterclockwise from east: they are the even compass
         // azimuths of the sweeps only when north is one of them.
-        ->check(CLI::Validator(
-            [](const std::string& s) {
-                return s.find_first_not_of("0123456789") == std::string::npos && std::stoul(s) % 4 == 0
-                           ? std::string()
-                           : "must be a multiple of 4";
-            },
-            "multiple of 4"))
-        ->capture_default_str();
-    addSearchOptions(cmd, o->search);
+        .check([](std::string& s) { return std::stoul(s) % 4 == 0 ? std::string() : "must be a multiple of 4"; });
     o->search.request.threads = 1;  // one core by default: comparable with r.horizon's one
+    declareSearchOptions(set, o->search);
+    commandLineOnly(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
+    ctx.outputs[cmd->get_name()].kind = "folder";
     cmd->callback([o, &ctx] { runBench(*o, ctx); });
 }
 

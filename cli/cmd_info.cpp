@@ -2,6 +2,7 @@
 // lighting it, heights in metres as demlight reads them.
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/products/info.h"
 #include "demlight/core/error.h"
 
@@ -18,6 +19,7 @@ namespace demlight::cli {
 namespace {
 
 struct InfoOptions {
+    ParameterSet set{"info", "Describe a DEM: size, CRS, extent, metric cell size, elevations, nodata, convergence"};
     DemOptions dem;
     bool json = false;
 };
@@ -64,10 +66,11 @@ void runInfo(const InfoOptions& o, const CliContext& ctx) {
 
 void registerInfo(CLI::App& app, CliContext& ctx) {
     auto opts = std::make_shared<InfoOptions>();
-    CLI::App* cmd = app.add_subcommand("info", "Describe a DEM: size, CRS, extent, metric cell size, "
-                                               "elevations, nodata, convergence");
-    addDemArgument(cmd, opts->dem);
-    cmd->add_flag("--json", opts->json, "Print one JSON object instead of text");
+    ParameterSet& set = opts->set;
+    declareDemOptions(set, opts->dem);
+    set.add("json", opts->json, "JSON", "Print one JSON object instead of text");
+    commandLineOnly(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     cmd->callback([opts, &ctx] { runInfo(*opts, ctx); });
 }
 

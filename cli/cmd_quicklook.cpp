@@ -1,6 +1,7 @@
 // demlight quicklook RASTER -o OUT.png [--band N|NAME]: one band of any raster (demlight's outputs
 // above all) as a picture with a colour bar and a title (demlight/products/quicklook.h).
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/geo/image_out.h"
 #include "demlight/products/quicklook.h"
 
@@ -10,6 +11,7 @@ namespace demlight::cli {
 namespace {
 
 struct QuicklookOptions {
+    ParameterSet set{"quicklook", "Picture of one band of a raster: colour map, colour bar with its unit, title"};
     std::string input, outPath, band = "1", range, title;
     std::size_t size = QuicklookRequest{}.mapSize;
 };
@@ -46,23 +48,26 @@ void runQuicklook(const QuicklookOptions& o, const CliContext& ctx) {
 
 void registerQuicklook(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<QuicklookOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "quicklook", "Picture of one band of a raster: colour map, colour bar with its unit, title");
+    ParameterSet& set = o->set;
+    Parameter& input = set.add("raster", o->input, "Raster",
+                               "Raster to look at (any GDAL raster; demlight's outputs name their bands)")
+                           .flags("RASTER")
+                           .mandatory();
+    input.positional = true;
+    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg)")
+        .flags("-o,--output")
+        .type("OUT.png")
+        .mandatory();
+    set.add("band", o->band, "Band", "Band: its number (1 = first) or its description (e.g. global)").type("N|NAME");
+    set.add("range", o->range, "Colour map range (low,high)",
+            "Values at the ends of the colour map (default: the 1st and 99th percentiles)")
+        .type("LOW,HIGH");
+    set.add("size", o->size, "Map size (pixels)", "Longer side of the map in pixels (the title and bar are added)")
+        .within(16, 16384);
+    set.add("title", o->title, "Title", "Title (default: product, band and time or period from the file's metadata)");
+    notInPython(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     ctx.outputs[cmd->get_name()].kind = "picture";
-    cmd->add_option("RASTER", o->input, "Raster to look at (any GDAL raster; demlight's outputs name their bands)")
-        ->required();
-    cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg)")
-        ->required()
-        ->type_name("OUT.png");
-    cmd->add_option("--band", o->band, "Band: its number (1 = first) or its description (e.g. global)")
-        ->capture_default_str()
-        ->type_name("N|NAME");
-    cmd->add_option("--range", o->range, "Values at the ends of the colour map (default: the 1st and 99th percentiles)")
-        ->type_name("LOW,HIGH");
-    cmd->add_option("--size", o->size, "Longer side of the map in pixels (the title and bar are added)")
-        ->capture_default_str()
-        ->check(CLI::Range(16, 16384));
-    cmd->add_option("--title", o->title, "Title (default: product, band and time or period from the file's metadata)");
     cmd->callback([o, &ctx] { runQuicklook(*o, ctx); });
 }
 

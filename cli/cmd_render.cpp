@@ -1,6 +1,7 @@
 // demlight render DEM -o OUT.png --time T [--tz ZONE]: a picture of the lit DEM for a person
 // (demlight/products/render.h).
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/geo/image_out.h"
 #include "cli/progress_bar.h"
 #include "demlight/products/render.h"
@@ -11,6 +12,7 @@ namespace demlight::cli {
 namespace {
 
 struct RenderOptions {
+    ParameterSet set{"render", "Picture of the lit DEM (PNG, JPEG, EXR, ...) at one instant"};
     DemOptions dem;
     std::string outPath;
     SearchOptions search;
@@ -50,20 +52,23 @@ void runRender(const RenderOptions& o, const CliContext& ctx) {
 
 void registerRender(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<RenderOptions>();
-    CLI::App* cmd = app.add_subcommand("render", "Picture of the lit DEM (PNG, JPEG, EXR, ...) at one instant");
+    ParameterSet& set = o->set;
+    declareDemOptions(set, o->dem);
+    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg, .exr)")
+        .flags("-o,--output")
+        .type("OUT.png")
+        .mandatory();
+    declareTime(set, o->time, o->tz);
+    declarePictureOptions(set, o->picture);
+    set.add("sky_directions", o->skyDirections, "Sky directions",
+            "Horizon directions for the sky fill (default: " + std::to_string(kAutoSkyDirections) +
+                " with {quality} auto, " + std::to_string(kFullSkyDirections) + " with full)")
+        .within(4, 1024);
+    declareSunDiameter(set, o->sunDiameterDeg);
+    declareSearchOptions(set, o->search);
+    notInPython(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     ctx.outputs[cmd->get_name()].kind = "picture";
-    addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg, .exr)")
-        ->required()
-        ->type_name("OUT.png");
-    addTimeOptions(cmd, o->time, o->tz);
-    addPictureOptions(cmd, o->picture);
-    cmd->add_option("--sky-directions", o->skyDirections,
-                    "Horizon directions for the sky fill (default: " + std::to_string(kAutoSkyDirections) +
-                        " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
-        ->check(finiteRange(4, 1024));
-    addSunDiameterOption(cmd, o->sunDiameterDeg);
-    addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runRender(*o, ctx); });
 }
 

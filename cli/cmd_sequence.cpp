@@ -1,12 +1,14 @@
 // demlight sequence FIT.tif -o OUT.tif --time T: reconstructs sun_irradiance at any instant of a
 // time-lapse's sequence fit (demlight/products/sequence.h).
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "demlight/products/sequence.h"
 
 namespace demlight::cli {
 namespace {
 
 struct SequenceOptions {
+    ParameterSet set{"sequence", "Reconstruct a lightmap at any instant from a timelapse --fit-degree sequence_fit.tif"};
     std::string fitPath;
     OutputOptions out;
     std::string time, tz;
@@ -27,11 +29,16 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
 
 void registerSequence(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<SequenceOptions>();
-    CLI::App* cmd = app.add_subcommand("sequence", "Reconstruct a lightmap at any instant from a "
-                                                   "timelapse --fit-degree sequence_fit.tif");
-    cmd->add_option("FIT", o->fitPath, "sequence_fit.tif written by demlight timelapse --fit-degree")->required();
-    addOutputOptions(cmd, o->out);
-    addTimeOptions(cmd, o->time, o->tz);
+    ParameterSet& set = o->set;
+    Parameter& fit = set.add("fit", o->fitPath, "Sequence fit raster",
+                             "sequence_fit.tif written by demlight timelapse --fit-degree")
+                         .flags("FIT")
+                         .mandatory();
+    fit.positional = true;
+    declareOutput(set, o->out);
+    declareTime(set, o->time, o->tz);
+    notInPython(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     cmd->callback([o, &ctx] { runSequence(*o, ctx); });
 }
 

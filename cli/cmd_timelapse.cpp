@@ -9,6 +9,7 @@
 // are removed first, so frames of two runs never mix). A run in tiles (--tile-size, --memory-limit)
 // or on a --srcwin window writes the GeoTIFFs and frames.csv only: pictures are of whole frames.
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "cli/progress_bar.h"
 #include "cli/view_options.h"
 #include "demlight/geo/image_out.h"
@@ -35,6 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct TimelapseOptions {
+    ParameterSet set{"timelapse", "A lightmap and preview per instant, and an animated GIF"};
     DemOptions dem;
     std::string outDir;
     TilingOptions tiling;
@@ -277,7 +279,7 @@ private:
 TimelapseRequest timelapseRequest(const TimelapseOptions& o, const std::set<std::string>& formats, const Dem& dem) {
     TimelapseRequest r;
     r.frames = chooseFrames(o, dem);
-    r.stackDirections = parseHorizonMode(o.horizonMode, "--horizon-mode");
+    r.stackDirections = parseHorizonMode(o.horizonMode, "horizon_mode");
     r.skyDirections = o.skyDirections;
     r.sunDiameterDeg = o.sunDiameterDeg;
     r.lightmaps = formats.count("tif") > 0;
@@ -476,61 +478,64 @@ void runTimelapse(const TimelapseOptions& o, const CliContext& ctx) {
 
 void registerTimelapse(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<TimelapseOptions>();
-    CLI::App* cmd = app.add_subcommand("timelapse", "A lightmap and preview per instant, and an animated GIF");
+    ParameterSet& set = o->set;
+    declareDemOptions(set, o->dem);
+    set.add("output", o->outDir, "Output folder", "Output folder (created if missing; must be empty unless {overwrite})")
+        .flags("-o,--output")
+        .type("DIR")
+        .mandatory();
+    set.add("overwrite", o->overwrite, "Overwrite an earlier time-lapse",
+            "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 and "
+            "sequence_fit.tif of an earlier run there are removed first (other files are left)");
+    set.add("start", o->start, "First instant", "First instant (ISO 8601 with offset, or local with {tz})");
+    set.add("end", o->end, "Last instant", "Last instant (inclusive when on a step)");
+    set.add("date", o->date, "Day", "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
+    set.add("tz", o->tz, "Time zone",
+            "IANA time zone of local times and of {date} (required with {date}; UTC for universal time)")
+        .field("zone");
+    set.add("step", o->step, "Time step", "Time between frames: 15m, 1h, 90s, 1h30m (a bare number = minutes)");
+    set.add("max_frames", o->maxFrames, "Most frames",
+            "Refuse a sequence of more frames than this (guards against a mistyped {step})")
+        .within(1, 1000000);
+    set.add("horizon_mode", o->horizonMode, "Horizon mode",
+            "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N directions swept once, horizons "
+            "interpolated in azimuth; N = 64 by default)")
+        .field("stackDirections");
+    set.add("formats", o->formats, "Outputs", "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)");
+    set.add("creation_options", o->creationOptions, "GDAL creation options",
+            "GDAL creation option KEY=VALUE of its GeoTIFFs (frames, sky_k.tif, sequence_fit.tif; repeatable), over "
+            "the defaults (tiled, ZSTD level 1, PREDICTOR=3): e.g. COMPRESS=DEFLATE for readers without ZSTD, "
+            "PREDICTOR=1 for slightly faster frames in larger files")
+        .flags("--co")
+        .type("KEY=VALUE")
+        .forHowItRuns();
+    set.add("fps", o->fps, "GIF frames per second", "GIF frames per second").within(1, 100);
+    set.add("gif_size", o->gifSize, "GIF size (pixels)", "Longest GIF side (pixels); frames are box-downsampled")
+        .within(16, 100000);
+    set.add("sky_directions", o->skyDirections, "Sky directions",
+            "Horizon directions for the sky term (default: " + std::to_string(kAutoSkyDirections) +
+                " with {quality} auto, " + std::to_string(kFullSkyDirections) +
+                " with full; {horizon_mode} interpolated:N uses its N)")
+        .within(4, 1024);
+    declarePictureOptions(set, o->picture);
+    set.add("view", o->view, "Oblique previews",
+            "Previews (png, gif, mp4) in an oblique view from one camera, as demlight view draws it (camera options "
+            "below), instead of top-down");
+    const std::size_t firstCamera = set.parameters().size();
+    declareViewCameraOptions(set, o->camera);
+    // A camera option without view would be ignored: it needs it.
+    for (std::size_t i = firstCamera; i < set.parameters().size(); ++i) set.parameters()[i].onlyWith("view");
+    set.add("fit_degree", o->fitDegree, "Fit degree",
+            "Also store sun_irradiance as per-cell Legendre polynomials of this degree in DIR/sequence_fit.tif (0 = "
+            "off); read back with demlight sequence")
+        .within(0, 12);
+    declareCanopy(set, o->canopy);
+    declareSunDiameter(set, o->sunDiameterDeg);
+    declareSearchOptions(set, o->search);
+    declareTiling(set, o->tiling);
+    notInPython(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     ctx.outputs[cmd->get_name()].kind = "folder";
-    addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outDir, "Output folder (created if missing; must be empty unless --overwrite)")
-        ->required()
-        ->type_name("DIR");
-    cmd->add_flag("--overwrite", o->overwrite,
-                  "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 "
-                  "and sequence_fit.tif of an earlier run there are removed first (other files are left)");
-    cmd->add_option("--start", o->start, "First instant (ISO 8601 with offset, or local with --tz)");
-    cmd->add_option("--end", o->end, "Last instant (inclusive when on a step)");
-    cmd->add_option("--date", o->date, "Local day YYYY-MM-DD: sunrise to sunset at the DEM centre");
-    cmd->add_option("--tz", o->tz, "IANA time zone of local times and of --date (required with --date; UTC for universal time)");
-    cmd->add_option("--step", o->step, "Time between frames: 15m, 1h, 90s, 1h30m (a bare number = minutes)")
-        ->capture_default_str();
-    cmd->add_option("--max-frames", o->maxFrames, "Refuse a sequence of more frames than this (guards against a mistyped --step)")
-        ->check(finiteRange(1, 1000000))
-        ->capture_default_str();
-    cmd->add_option("--horizon-mode", o->horizonMode,
-                    "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N directions swept once, "
-                    "horizons interpolated in azimuth; N = 64 by default)")
-        ->capture_default_str();
-    cmd->add_option("--formats", o->formats, "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)")
-        ->capture_default_str();
-    cmd->add_option("--co", o->creationOptions,
-                    "GDAL creation option KEY=VALUE of its GeoTIFFs (frames, sky_k.tif, sequence_fit.tif; also -co; "
-                    "repeatable), over the defaults (tiled, ZSTD level 1, PREDICTOR=3): e.g. -co COMPRESS=DEFLATE "
-                    "for readers without ZSTD, -co PREDICTOR=1 for slightly faster frames in larger files");
-    cmd->add_option("--fps", o->fps, "GIF frames per second")->check(finiteRange(1, 100))->capture_default_str();
-    cmd->add_option("--gif-size", o->gifSize, "Longest GIF side (pixels); frames are box-downsampled")
-        ->check(finiteRange(16, 100000))
-        ->capture_default_str();
-    cmd->add_option("--sky-directions", o->skyDirections,
-                    "Horizon directions for the sky term (default: " + std::to_string(kAutoSkyDirections) +
-                        " with --quality auto, " + std::to_string(kFullSkyDirections) +
-                        " with full; --horizon-mode interpolated:N uses its N)")
-        ->check(finiteRange(4, 1024));
-    addPictureOptions(cmd, o->picture);
-    CLI::Option* view = cmd->add_flag("--view", o->view,
-                                      "Previews (png, gif, mp4) in an oblique view from one camera, as demlight view "
-                                      "draws it (camera options below), instead of top-down");
-    addViewCameraOptions(cmd, o->camera);
-    // A camera option without --view would be ignored: it needs it.
-    for (const char* name : {"--camera-azimuth", "--camera-elevation", "--camera-distance", "--eye", "--eye-xy",
-                             "--target", "--target-xy", "--fov", "--size", "--exaggeration", "--tree-line",
-                             "--snow-line", "--no-haze", "--no-sky", "--visibility", "--nodata"})
-        cmd->get_option(name)->needs(view);
-    cmd->add_option("--fit-degree", o->fitDegree,
-                    "Also store sun_irradiance as per-cell Legendre polynomials of this degree in "
-                    "DIR/sequence_fit.tif (0 = off); read back with demlight sequence")
-        ->check(finiteRange(0, 12));
-    addCanopyOptions(cmd, o->canopy);
-    addSunDiameterOption(cmd, o->sunDiameterDeg);
-    addSearchOptions(cmd, o->search);
-    addTilingOptions(cmd, o->tiling);
     cmd->callback([o, &ctx, cmd] {
         o->albedoGiven = cmd->get_option("--albedo")->count() > 0;
         runTimelapse(*o, ctx);

@@ -1,6 +1,7 @@
 // demlight view DEM -o OUT.png --time T [--tz ZONE]: an oblique, perspective picture of the lit
 // terrain through an atmosphere (demlight/products/view.h).
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "cli/view_options.h"
 #include "demlight/geo/image_out.h"
 #include "demlight/products/view.h"
@@ -9,6 +10,7 @@ namespace demlight::cli {
 namespace {
 
 struct ViewOptions {
+    ParameterSet set{"view", "Oblique perspective picture of the lit terrain through haze, with sky"};
     DemOptions dem;
     std::string outPath;
     SearchOptions search;
@@ -61,30 +63,30 @@ void runView(const ViewOptions& o, const CliContext& ctx) {
 
 void registerView(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<ViewOptions>();
-    CLI::App* cmd = app.add_subcommand("view", "Oblique perspective picture of the lit terrain through haze, with sky");
+    ParameterSet& set = o->set;
+    declareDemOptions(set, o->dem);
+    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg, .exr)")
+        .flags("-o,--output")
+        .type("OUT.png")
+        .mandatory();
+    declareTime(set, o->time, o->tz);
+    declareViewCameraOptions(set, o->camera);
+    declareColorRaster(set, o->colorRaster, o->colorEncoding, "the ground's albedo per channel");
+    set.add("albedo", o->albedo, "Ground albedo",
+            "Grey ground albedo (0-1) instead of the default landscape (vegetation, rock, snow by height and slope)")
+        .within(0.0, 1.0)
+        .notWith("color_raster");
+    set.add("exposure", o->exposure, "Exposure", "Multiplies linear light before gamma").within(0, 1000);
+    set.add("sky_directions", o->skyDirections, "Sky directions",
+            "Horizon directions of the sky term (default: " + std::to_string(kAutoSkyDirections) + " with {quality} auto, " +
+                std::to_string(kFullSkyDirections) + " with full)")
+        .within(1, 1024);
+    declareSunDiameter(set, o->sunDiameterDeg);
+    declareSearchOptions(set, o->search);
+    notInPython(set);
+    CLI::App* cmd = addDeclaredCommand(app, set, ctx);
     ctx.outputs[cmd->get_name()].kind = "picture";
-    addDemArgument(cmd, o->dem);
-    cmd->add_option("-o,--output", o->outPath, "Output picture; format from the extension (.png, .jpg, .exr)")
-        ->required()
-        ->type_name("OUT.png");
-    addTimeOptions(cmd, o->time, o->tz);
-    addViewCameraOptions(cmd, o->camera);
-    addColorRasterOptions(cmd, o->colorRaster, o->colorEncoding, "the ground's albedo per channel");
-    cmd->add_option("--albedo", o->albedo,
-                    "Grey ground albedo (0-1) instead of the default landscape (vegetation, rock, snow by height and slope)")
-        ->check(finiteRange(0.0, 1.0))
-        ->excludes("--color-raster");
-    cmd->add_option("--exposure", o->exposure, "Multiplies linear light before gamma")
-        ->capture_default_str()
-        ->check(finiteRange(0, 1000));
-    cmd->add_option("--sky-directions", o->skyDirections,
-                    "Horizon directions of the sky term (default: " + std::to_string(kAutoSkyDirections) +
-                        " with --quality auto, " + std::to_string(kFullSkyDirections) + " with full)")
-        ->check(finiteRange(1, 1024));
-    addSunDiameterOption(cmd, o->sunDiameterDeg);
-    addSearchOptions(cmd, o->search);
     cmd->callback([o, &ctx] { runView(*o, ctx); });
 }
-
 
 }  // namespace demlight::cli

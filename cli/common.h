@@ -29,17 +29,13 @@
 
 namespace demlight::cli {
 
-/// -o, -of, -co: where and how an output raster is written.
-void addOutputOptions(CLI::App* cmd, OutputOptions& o);
-
 /// The DEM argument and how its heights are read (--z-unit, --z-factor).
 struct DemOptions {
     std::string path;
     HeightOptions heights;  ///< --z-unit, --z-factor
 };
-void addDemArgument(CLI::App* cmd, DemOptions& o);
-/// The same, into a path and a command's HeightOptions.
-void addDemArgument(CLI::App* cmd, std::string& path, HeightOptions& heights);
+/// The DEM and its heights (demlight/run/common_parameters.h) into DemOptions.
+void declareDemOptions(ParameterSet& set, DemOptions& o);
 DemSource openDem(const DemOptions& o, const CliContext& ctx);
 DemSource openDem(const std::string& path, const HeightOptions& heights, const CliContext& ctx);
 
@@ -48,15 +44,11 @@ struct SearchOptions {
     SearchRequest request;
     bool verbose = false;
 };
-void addSearchOptions(CLI::App* cmd, SearchOptions& o);
-void addSearchOptions(CLI::App* cmd, SearchRequest& request, bool& verbose);
+void declareSearchOptions(ParameterSet& set, SearchOptions& o);
 
 /// Notes about the plan the product will make: unused options, and with -v the plan itself.
 void notePlan(const SearchOptions& o, const Terrain& terrain, const CliContext& ctx);
 void notePlan(const SearchRequest& request, bool verbose, const Terrain& terrain, const CliContext& ctx);
-
-/// --tile-size, --memory-limit and --srcwin of the raster products.
-void addTilingOptions(CLI::App* cmd, TilingOptions& o);
 
 /// The run context of a command: its command line, notes on stderr unless quiet, and Ctrl-C
 /// stopping a write.
@@ -90,23 +82,11 @@ RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const st
                                        const std::vector<RasterTarget>& targets, const SearchRequest* search,
                                        bool verbose, const CliContext& ctx);
 
-/// A range check that also rejects NaN and infinities (CLI::Range lets NaN through). lowOpen:
-/// lo excluded.
-CLI::Validator finiteRange(double lo, double hi, bool lowOpen = false);
-/// The --color-raster and --color-encoding options of pictures and light.
-void addColorRasterOptions(CLI::App* cmd, std::string& path, std::string& encoding, const std::string& use);
-
-
-/// --time and --tz of every command at one instant.
-void addTimeOptions(CLI::App* cmd, std::string& time, std::string& tz);
-/// --date D, or --start D --end D, and --tz of the commands over local days; with periods also
-/// --month YYYY-MM, --year YYYY, and --start/--end as local times (an interval within days).
-/// Adds them (--month and --year when o.periods); `tzHelp` says what --tz is the zone of.
-void addDayOptions(CLI::App* cmd, DayOptions& o, const std::string& tzHelp);
-/// --sun-diameter (degrees).
-void addSunDiameterOption(CLI::App* cmd, double& diameterDeg);
-/// --canopy RASTER and --transmissivity (demlight/products/canopy.h).
-void addCanopyOptions(CLI::App* cmd, CanopyRequest& canopy);
+/// The parameters of a command the Python package does not offer (pictures, time-lapses): shown
+/// by the command line and QGIS.
+void notInPython(ParameterSet& set);
+/// The parameters of a command only the command line offers.
+void commandLineOnly(ParameterSet& set);
 
 /// --color-raster, --color-encoding, --albedo, --exposure and --pixels of pictures.
 struct PictureOptions {
@@ -115,7 +95,7 @@ struct PictureOptions {
     double exposure = 1.0;
     std::string pixels = "ground";
 };
-void addPictureOptions(CLI::App* cmd, PictureOptions& o);
+void declarePictureOptions(ParameterSet& set, PictureOptions& o);
 PictureRequest pictureRequest(const PictureOptions& o);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.

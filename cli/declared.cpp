@@ -59,7 +59,7 @@ CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) 
                 help);
             opt->type_name(p.typeName);
             if (p.maxValues < 0) {
-                opt->expected(p.minValues, -1);
+                opt->expected(p.minValues, -1)->allow_extra_args(true);
                 opt->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
             } else {
                 opt->expected(p.minValues, p.maxValues);
@@ -74,6 +74,9 @@ CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) 
     for (const Parameter& p : set.parameters())
         for (const std::string& other : p.excludes)
             if (made.count(p.name) && made.count(other)) made[p.name]->excludes(made[other]);
+    for (const Parameter& p : set.parameters())
+        for (const std::string& other : p.needs)
+            if (made.count(p.name) && made.count(other)) made[p.name]->needs(made[other]);
     cmd->parse_complete_callback([&ctx, &set] { ctx.running = &set; });
     return cmd;
 }

@@ -61,47 +61,49 @@ void applyViewCameraOptions(const ViewCameraOptions& o, ViewRequest& r) {
     r.nodata = o.nodata == "sea" ? ViewNodata::Sea : ViewNodata::Hole;
 }
 
-void addViewCameraOptions(CLI::App* cmd, ViewCameraOptions& o) {
-    cmd->add_option("--camera-azimuth", o.cameraAzimuthDeg,
-                    "Camera's azimuth from the target, degrees from true north (180: south of it, looking north)")
-        ->capture_default_str()
-        ->check(finiteRange(-360, 360));
-    cmd->add_option("--camera-elevation", o.cameraElevationDeg, "Camera's elevation angle above the target (degrees)")
-        ->capture_default_str()
-        ->check(finiteRange(-89.9, 89.9));
-    cmd->add_option("--camera-distance", o.cameraDistanceM,
-                    "Camera's distance from the target (metres; default 0.75 x the DEM's diagonal)")
-        ->check(finiteRange(0, 1e8, true));
-    auto* eye = cmd->add_option("--eye", o.eye, "Camera position: WGS84 latitude, longitude, height (m)")
-                    ->type_name("LAT,LON,HEIGHT");
-    cmd->add_option("--eye-xy", o.eyeXy, "Camera position in the DEM's CRS and height (m)")
-        ->type_name("X,Y,HEIGHT")
-        ->excludes(eye);
-    auto* target = cmd->add_option("--target", o.target,
-                                   "Where the camera looks: WGS84 latitude, longitude[, height (m); default the terrain's]")
-                       ->type_name("LAT,LON[,HEIGHT]");
-    cmd->add_option("--target-xy", o.targetXy, "Where the camera looks, in the DEM's CRS[, height (m)]")
-        ->type_name("X,Y[,HEIGHT]")
-        ->excludes(target);
-    cmd->add_option("--fov", o.fovDeg, "Horizontal field of view (degrees)")->capture_default_str()->check(finiteRange(1, 150));
-    cmd->add_option("--size", o.size, "Picture size in pixels")->capture_default_str()->type_name("WxH");
-    cmd->add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the terrain")
-        ->capture_default_str()
-        ->check(finiteRange(0, 100, true));
-    cmd->add_option("--tree-line", o.treeLineM, "Default landscape: rock instead of vegetation above this height (m)")
-        ->capture_default_str()
-        ->check(finiteRange(-1e5, 1e5));
-    cmd->add_option("--snow-line", o.snowLineM, "Default landscape: snow above this height (m)")
-        ->capture_default_str()
-        ->check(finiteRange(-1e5, 1e5));
-    cmd->add_flag("--no-haze", o.noHaze, "No aerial perspective (haze) on the terrain");
-    cmd->add_flag("--no-sky", o.noSky, "No sky behind the terrain (transparent)");
-    cmd->add_option("--visibility", o.visibilityKm, "Meteorological visibility at sea level (km): the haze's density")
-        ->capture_default_str()
-        ->check(finiteRange(0, 1e6, true));
-    cmd->add_option("--nodata", o.nodata, "Nodata cells: hole (see through) or sea (flat water at 0 m)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"hole", "sea"}));
+void declareViewCameraOptions(ParameterSet& set, ViewCameraOptions& o) {
+    set.add("camera_azimuth", o.cameraAzimuthDeg, "Camera azimuth (deg)",
+            "Camera's azimuth from the target, degrees from true north (180: south of it, looking north)")
+        .within(-360, 360)
+        .inUnit("deg");
+    set.add("camera_elevation", o.cameraElevationDeg, "Camera elevation (deg)",
+            "Camera's elevation angle above the target (degrees)")
+        .within(-89.9, 89.9)
+        .inUnit("deg");
+    set.add("camera_distance", o.cameraDistanceM, "Camera distance (m)",
+            "Camera's distance from the target (metres; default 0.75 x the DEM's diagonal)")
+        .within(0, 1e8, true)
+        .inUnit("m");
+    set.add("eye", o.eye, "Camera position (lat, lon, height)", "Camera position: WGS84 latitude, longitude, height (m)")
+        .type("LAT,LON,HEIGHT")
+        .notWith("eye_xy");
+    set.add("eye_xy", o.eyeXy, "Camera position (x, y, height)", "Camera position in the DEM's CRS and height (m)")
+        .type("X,Y,HEIGHT")
+        .notWith("eye");
+    set.add("target", o.target, "Target (lat, lon[, height])",
+            "Where the camera looks: WGS84 latitude, longitude[, height (m); default the terrain's]")
+        .type("LAT,LON[,HEIGHT]")
+        .notWith("target_xy");
+    set.add("target_xy", o.targetXy, "Target (x, y[, height])", "Where the camera looks, in the DEM's CRS[, height (m)]")
+        .type("X,Y[,HEIGHT]")
+        .notWith("target");
+    set.add("fov", o.fovDeg, "Field of view (deg)", "Horizontal field of view (degrees)").within(1, 150).inUnit("deg");
+    set.add("size", o.size, "Picture size (WxH)", "Picture size in pixels").type("WxH");
+    set.add("exaggeration", o.exaggeration, "Vertical exaggeration", "Vertical exaggeration of the terrain")
+        .within(0, 100, true);
+    set.add("tree_line", o.treeLineM, "Tree line (m)", "Default landscape: rock instead of vegetation above this height (m)")
+        .within(-1e5, 1e5)
+        .inUnit("m");
+    set.add("snow_line", o.snowLineM, "Snow line (m)", "Default landscape: snow above this height (m)")
+        .within(-1e5, 1e5)
+        .inUnit("m");
+    set.add("no_haze", o.noHaze, "No haze", "No aerial perspective (haze) on the terrain");
+    set.add("no_sky", o.noSky, "No sky", "No sky behind the terrain (transparent)");
+    set.add("visibility", o.visibilityKm, "Visibility (km)", "Meteorological visibility at sea level (km): the haze's density")
+        .within(0, 1e6, true)
+        .inUnit("km");
+    set.add("nodata", o.nodata, "Nodata cells", "Nodata cells: hole (see through) or sea (flat water at 0 m)")
+        .oneOf({"hole", "sea"});
 }
 
 }  // namespace demlight::cli

@@ -1,6 +1,8 @@
 // The camera and atmosphere options of an oblique view, shared by `view` and `timelapse --view`.
 #pragma once
 
+#include "demlight/run/parameters.h"
+
 #include "demlight/products/view.h"
 
 #include <CLI/CLI.hpp>
@@ -26,7 +28,7 @@ struct ViewCameraOptions {
 /// --camera-azimuth, --camera-elevation, --camera-distance, --eye, --eye-xy, --target,
 /// --target-xy, --fov, --size, --exaggeration, --tree-line, --snow-line, --no-haze, --no-sky,
 /// --visibility and --nodata.
-void addViewCameraOptions(CLI::App* cmd, ViewCameraOptions& o);
+void declareViewCameraOptions(ParameterSet& set, ViewCameraOptions& o);
 
 /// The camera, landscape and atmosphere fields of `request` from the options.
 void applyViewCameraOptions(const ViewCameraOptions& o, ViewRequest& request);

@@ -66,6 +66,7 @@ struct Parameter {
     std::vector<std::string> choices;
     bool required = false;
     std::vector<std::string> excludes;  ///< parameters it cannot be combined with
+    std::vector<std::string> needs;     ///< parameters it is given with
     std::vector<std::string> fields;    ///< request fields it sets (FieldError::field)
     std::string label;                  ///< short, for forms (at most 40 characters)
     std::string help;                   ///< one line or a few sentences; names as {name}
@@ -92,6 +93,7 @@ struct Parameter {
     Parameter& oneOf(std::vector<std::string> c) { choices = std::move(c); return *this; }
     Parameter& mandatory() { required = true; return *this; }
     Parameter& notWith(std::string other) { excludes.push_back(std::move(other)); return *this; }
+    Parameter& onlyWith(std::string other) { needs.push_back(std::move(other)); return *this; }
     Parameter& field(std::string f) { fields.push_back(std::move(f)); return *this; }
     Parameter& inUnit(std::string u) { unit = std::move(u); return *this; }
     Parameter& only(unsigned ends) { frontEnds = ends; return *this; }
@@ -235,6 +237,7 @@ Parameter& ParameterSet::add(std::string name, T& target, std::string label, std
         p.typeName = typeNameOf<V>();
         p.maxValues = -1;
         p.store = [&target](const std::vector<std::string>& v) {
+            target.clear();  // the values of all uses come at once, and replace a default
             for (const std::string& s : v) target.push_back(fromText<V>(s));
         };
     } else {

@@ -537,6 +537,8 @@ def _option_doc(o):
     head = o["keyword"]
     if o["aliases"]:
         head += " (also %s)" % ", ".join(o["aliases"])
+    if o["required"]:
+        head += ", required"
     if o["type"]:
         head += " : %s" % o["type"].lower()
         if o["max_values"] > 1:
@@ -547,8 +549,6 @@ def _option_doc(o):
         head += " [%s]" % o["unit"]
     if o["choices"]:
         head += ", one of %s" % ", ".join(o["choices"])
-    if o["required"]:
-        head += ", required"
     if o["default"] is not None:
         head += ", default %s" % o["default"]
     return [head] + _textwrap.wrap(o["python_help"], 92, initial_indent="    ", subsequent_indent="    ")
