@@ -353,7 +353,9 @@ void registerBench(CLI::App& app, CliContext& ctx) {
         .mandatory();
     set.add("crop", o->crop, "Crop side (cells)", "Cells a side of the centred crop measured (0 = the whole DEM)")
         .within(0, 1e6);
-    set.add("sample", o->sample, "Scored cells", "Cells scored against the reference ray march").within(1, 1e6);
+    set.add("sample", o->sample, "Scored cells", "Cells scored against the reference ray march")
+        .within(1, 1e6)
+        .field("sampleCells");
     set.add("directions", o->directions, "Direction counts", "Direction counts timed for each sweep method")
         .within(1, 4096)
         .byDefault("4 16 32");

@@ -63,7 +63,8 @@ void registerQuicklook(CLI::App& app, CliContext& ctx) {
             "Values at the ends of the colour map (default: the 1st and 99th percentiles)")
         .type("LOW,HIGH");
     set.add("size", o->size, "Map size (pixels)", "Longer side of the map in pixels (the title and bar are added)")
-        .within(16, 16384);
+        .within(16, 16384)
+        .field("mapSize");
     set.add("title", o->title, "Title", "Title (default: product, band and time or period from the file's metadata)");
     notInPython(set);
     CLI::App* cmd = addDeclaredCommand(app, set, ctx);

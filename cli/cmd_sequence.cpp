@@ -8,7 +8,7 @@ namespace demlight::cli {
 namespace {
 
 struct SequenceOptions {
-    ParameterSet set{"sequence", "Reconstruct a lightmap at any instant from a timelapse --fit-degree sequence_fit.tif"};
+    ParameterSet set{"sequence", "Reconstruct a lightmap at any instant from the sequence_fit.tif of a time-lapse with a fit degree"};
     std::string fitPath;
     OutputOptions out;
     std::string time, tz;
@@ -31,7 +31,7 @@ void registerSequence(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<SequenceOptions>();
     ParameterSet& set = o->set;
     Parameter& fit = set.add("fit", o->fitPath, "Sequence fit raster",
-                             "sequence_fit.tif written by demlight timelapse --fit-degree")
+                             "sequence_fit.tif written by a time-lapse with a fit degree (demlight timelapse)")
                          .flags("FIT")
                          .mandatory();
     fit.positional = true;

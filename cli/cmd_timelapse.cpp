@@ -484,7 +484,7 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
         .flags("-o,--output")
         .type("DIR")
         .mandatory();
-    set.add("overwrite", o->overwrite, "Overwrite an earlier time-lapse",
+    set.add("overwrite", o->overwrite, "Replace an earlier run",
             "Write into a folder that is not empty: the frames, sky_k.tif, frames.csv, timelapse.gif/.mp4 and "
             "sequence_fit.tif of an earlier run there are removed first (other files are left)");
     set.add("start", o->start, "First instant", "First instant (ISO 8601 with offset, or local with {tz})");
@@ -501,7 +501,8 @@ void registerTimelapse(CLI::App& app, CliContext& ctx) {
             "exact (a sweep per frame along its sun azimuth) or interpolated[:N] (N directions swept once, horizons "
             "interpolated in azimuth; N = 64 by default)")
         .field("stackDirections");
-    set.add("formats", o->formats, "Outputs", "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)");
+    set.add("formats", o->formats, "Outputs", "Outputs: comma list of tif, png, gif, mp4 (mp4 needs ffmpeg on PATH)")
+        .field("previews");
     set.add("creation_options", o->creationOptions, "GDAL creation options",
             "GDAL creation option KEY=VALUE of its GeoTIFFs (frames, sky_k.tif, sequence_fit.tif; repeatable), over "
             "the defaults (tiled, ZSTD level 1, PREDICTOR=3): e.g. COMPRESS=DEFLATE for readers without ZSTD, "

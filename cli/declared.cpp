@@ -1,6 +1,7 @@
 #include "cli/declared.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -40,6 +41,10 @@ std::string joined(const std::vector<std::string>& names) {
 
 CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand(set.command(), set.description());
+    // Run by the QGIS provider, a bad value is reported as the library's errors are, naming the
+    // parameter by its label (main's describeError), not as CLI11's usage error naming a flag.
+    const char* names = std::getenv("DEMLIGHT_PARAMETER_NAMES");
+    const bool labels = names && std::string(names) == "qgis";
     ctx.declarations[set.command()] = &set;
     std::map<std::string, CLI::Option*> made;
     for (Parameter& p : set.parameters()) {
@@ -66,7 +71,16 @@ CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) 
             }
             if (p.defaultText) opt->default_str(*p.defaultText);
             const Parameter* param = &p;
-            opt->check(CLI::Validator([param](std::string& v) { return param->problem(v); }, checkDescription(p)));
+            opt->check(CLI::Validator(
+                [param, labels, &ctx, &set](std::string& v) {
+                    std::string problem = param->problem(v);
+                    if (!problem.empty() && labels) {
+                        ctx.running = &set;
+                        throw ParameterError("{" + param->name + "}: " + problem);
+                    }
+                    return problem;
+                },
+                checkDescription(p)));
         }
         if (p.required) opt->required();
         made[p.name] = opt;

@@ -74,10 +74,10 @@ void declareViewCameraOptions(ParameterSet& set, ViewCameraOptions& o) {
             "Camera's distance from the target (metres; default 0.75 x the DEM's diagonal)")
         .within(0, 1e8, true)
         .inUnit("m");
-    set.add("eye", o.eye, "Camera position (lat, lon, height)", "Camera position: WGS84 latitude, longitude, height (m)")
+    set.add("eye", o.eye, "Camera (lat, lon, height)", "Camera position: WGS84 latitude, longitude, height (m)")
         .type("LAT,LON,HEIGHT")
         .notWith("eye_xy");
-    set.add("eye_xy", o.eyeXy, "Camera position (x, y, height)", "Camera position in the DEM's CRS and height (m)")
+    set.add("eye_xy", o.eyeXy, "Camera (x, y, height)", "Camera position in the DEM's CRS and height (m)")
         .type("X,Y,HEIGHT")
         .notWith("eye");
     set.add("target", o.target, "Target (lat, lon[, height])",
@@ -87,7 +87,10 @@ void declareViewCameraOptions(ParameterSet& set, ViewCameraOptions& o) {
     set.add("target_xy", o.targetXy, "Target (x, y[, height])", "Where the camera looks, in the DEM's CRS[, height (m)]")
         .type("X,Y[,HEIGHT]")
         .notWith("target");
-    set.add("fov", o.fovDeg, "Field of view (deg)", "Horizontal field of view (degrees)").within(1, 150).inUnit("deg");
+    set.add("fov", o.fovDeg, "Field of view (deg)", "Horizontal field of view (degrees)")
+        .within(1, 150)
+        .inUnit("deg")
+        .field("fieldOfView");
     set.add("size", o.size, "Picture size (WxH)", "Picture size in pixels").type("WxH");
     set.add("exaggeration", o.exaggeration, "Vertical exaggeration", "Vertical exaggeration of the terrain")
         .within(0, 100, true);

@@ -126,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCommand{"NoSectors", "sky {dem} -o {out} --patches sectors:0", "sectors"},
         BadCommand{"NegativeThreads", "horizon {dem} -o {out} --azimuth 90 --threads -1",
                    "demlight: error: --threads: must be >= 0, got -1"},
-        BadCommand{"FormatPng", "horizon {dem} -o {out} --azimuth 90 --of PNG", "must be GTiff or COG"},
+        BadCommand{"FormatPng", "horizon {dem} -o {out} --azimuth 90 --of PNG", "--of: 'PNG' is not one of GTiff, COG"},
         BadCommand{"BogusCompression", "horizon {dem} -o {out} --azimuth 90 -co COMPRESS=BOGUS",
                    "invalid creation option for GTiff"},
         BadCommand{"UnknownCogOption", "horizon {dem} -o {out} --azimuth 90 --of COG -co NOSUCHKEY=1",

@@ -101,7 +101,7 @@ TEST(TimeParse, OffsetMustAgreeWithTz) {
 TEST(TimeParse, MissingZoneIsAnError) {
     EXPECT_EQ(parseError("2024-06-21T05:30:00", ""),
               "time '2024-06-21T05:30:00' has no zone: add an offset like +02:00 or Z, or give a time "
-              "zone (an IANA name such as Europe/Zurich)");
+              "zone (tz, an IANA name such as Europe/Zurich)");
 }
 
 TEST(TimeParse, UnknownZoneIsAnError) {

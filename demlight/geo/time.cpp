@@ -461,8 +461,8 @@ ZonedInstant parseZonedInstant(const std::string& text, const std::string& tzNam
     if (tzName.empty()) {
         if (!f.offset)
             throw ParameterError("time '" + text +
-                                 "' has no zone: add an offset like +02:00 or Z, or give {tz} ZONE (an IANA name "
-                                 "such as Europe/Zurich)");
+                                 "' has no zone: add an offset like +02:00 or Z, or give a time zone ({tz}, an "
+                                 "IANA name such as Europe/Zurich)");
         return {toSys(local, *f.offset), TimeZoneSpec::fixedOffset(*f.offset)};
     }
 

@@ -73,7 +73,7 @@ void declareSearch(ParameterSet& set, SearchRequest& r, bool& verbose) {
         .within(0, kUnbounded, /*lowOpen=*/true)
         .inUnit("m")
         .field("maxDistanceM");
-    set.add("refraction", r.refraction, "Terrain refraction coefficient",
+    set.add("refraction", r.refraction, "Refraction coefficient",
             "Refraction coefficient k for terrain sight lines; earth radius R/(1-k); 0 = pure geometry")
         .within(0.0, 0.99)
         .forHowItRuns();
@@ -141,7 +141,8 @@ void declareDays(ParameterSet& set, DayOptions& o, const std::string& tzHelp) {
             .field("firstDay");
         set.add("end", o.endDate, "End",
                 "End of a range: a last local day YYYY-MM-DD (inclusive), or a local time YYYY-MM-DDTHH:MM[:SS]")
-            .field("lastDay");
+            .field("lastDay")
+            .field("interval");
         set.add("month", o.month, "Month", "Local calendar month YYYY-MM");
         set.add("year", o.year, "Year", "Local calendar year YYYY");
     } else {

@@ -30,8 +30,12 @@ std::string rangeProblem(const ValueRange& r, double v, const std::string& text)
     return std::string("must be ") + (r.lowOpen ? "> " : ">= ") + numberText(r.lo) + ", got " + text;
 }
 
+/// Digits, with a leading minus sign allowed (a negative value is then refused by the range,
+/// naming its bound).
 bool wholeNumber(const std::string& text) {
-    return !text.empty() && text.size() < 20 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const std::size_t first = !text.empty() && text[0] == '-' ? 1 : 0;
+    return text.size() > first && text.size() < 20 &&
+           std::all_of(text.begin() + long(first), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 }  // namespace
@@ -44,6 +48,7 @@ std::string Parameter::problem(std::string& value) const {
         if (kind == ValueKind::Integer) {
             if (!wholeNumber(value)) return "expected a whole number, got '" + value + "'";
             v = std::stod(value);
+            if (*v < 0 && !negative && !range) return "must be >= 0, got " + value;
         } else {
             v = parseFiniteNumber(value);
             if (!v) return "expected a finite number, got '" + value + "'";

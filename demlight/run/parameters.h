@@ -61,6 +61,7 @@ struct Parameter {
     ValueKind kind = ValueKind::Text;
     std::string typeName;              ///< for --help: FLOAT, UINT, TEXT, PATH, TIME, ...
     int minValues = 1, maxValues = 1;  ///< values per use; maxValues -1: repeatable
+    bool negative = false;             ///< an Integer may be negative (a signed target)
     std::optional<std::string> defaultText;
     std::optional<ValueRange> range;
     std::vector<std::string> choices;
@@ -195,7 +196,9 @@ T fromText(const std::string& text) {
         return static_cast<T>(std::stod(text));
     } else {
         static_assert(std::is_integral_v<T>);
-        return static_cast<T>(std::stoull(text));
+        // problem() has refused a negative value for an unsigned target.
+        if constexpr (std::is_signed_v<T>) return static_cast<T>(std::stoll(text));
+        else return static_cast<T>(std::stoull(text));
     }
 }
 
@@ -230,6 +233,7 @@ Parameter& ParameterSet::add(std::string name, T& target, std::string label, std
         using V = typename T::value_type;
         p.kind = kindOf<V>();
         p.typeName = typeNameOf<V>();
+        if constexpr (std::is_integral_v<V>) p.negative = std::is_signed_v<V>;
         p.store = [&target](const std::vector<std::string>& v) { target = fromText<V>(v.front()); };
     } else if constexpr (IsVector<T>::value) {
         using V = typename T::value_type;
@@ -243,6 +247,7 @@ Parameter& ParameterSet::add(std::string name, T& target, std::string label, std
     } else {
         p.kind = kindOf<T>();
         p.typeName = typeNameOf<T>();
+        if constexpr (std::is_integral_v<T>) p.negative = std::is_signed_v<T>;
         p.store = [&target](const std::vector<std::string>& v) { target = fromText<T>(v.front()); };
         if constexpr (std::is_same_v<T, std::string>) {
             if (!target.empty()) p.defaultText = target;

@@ -1,6 +1,9 @@
-"""One Processing algorithm per demlight command, built from the command's own description
-(`demlight options --json`): its options become parameters, its help text the algorithm's help,
-and running it runs the CLI, so its outputs are the CLI's."""
+"""One Processing algorithm per demlight command, built from the command's declaration
+(`demlight options --json`): each parameter QGIS shows becomes a Processing parameter with the
+declaration's short label, its help as the tooltip, its choices as a drop-down and its range as
+the number's limits; the algorithm's help is written from the same declaration. Running it runs
+the CLI, so its outputs are the CLI's; the CLI's error messages name the parameters by their
+labels here (DEMLIGHT_PARAMETER_NAMES=qgis)."""
 
 import shlex
 
@@ -17,14 +20,6 @@ INPUT = "INPUT"
 OUTPUT = "OUTPUT"
 _OUTPUT_OPTION = "output"
 
-# Options shown under "Advanced parameters" in the dialog: how the job runs rather than what it
-# computes (a presentation choice; every option stays available to qgis_process).
-_ADVANCED = {"z-unit", "z-factor", "co", "threads", "tolerance", "refraction", "verbose", "tile-size",
-             "memory-limit", "srcwin", "pressure", "temperature"}
-
-# Options of point queries, which print values instead of writing the raster an algorithm returns.
-_POINT_QUERY = {"at", "at-xy", "point-format"}
-
 # Picture outputs (render): the formats the CLI picks from the extension (cli/cmd_render.cpp help).
 _PICTURE_FILTER = "PNG (*.png);;JPEG (*.jpg *.jpeg);;OpenEXR (*.exr)"
 
@@ -34,10 +29,19 @@ _METADATA_PREFIX = "DEMLIGHT_"
 
 
 def parameter_name(option):
-    """The Processing parameter of a CLI option: --sky-directions -> SKY_DIRECTIONS."""
+    """The Processing parameter of an option: the DEM is INPUT, the output OUTPUT, the rest the
+    command line's long name in capitals (--sky-directions -> SKY_DIRECTIONS, --of -> OF)."""
     if option["positional"]:
         return INPUT
-    return option["name"].upper().replace("-", "_")
+    if option["name"] == _OUTPUT_OPTION:
+        return OUTPUT
+    long = next(f for f in option["flags"] if f.startswith("--"))
+    return long[2:].upper().replace("-", "_")
+
+
+def shown(option):
+    """Whether QGIS shows the option (the declaration's front ends)."""
+    return "qgis" in option["front_ends"]
 
 
 def companion_output_name(key):
@@ -57,24 +61,38 @@ def is_algorithm(command):
 
 
 def _is_number(option):
-    return option["max_values"] == 1 and option["type"] in ("FLOAT", "INT", "UINT") and not option["choices"]
+    return option["max_values"] == 1 and option["type"] in ("FLOAT", "INT") and not option["choices"]
 
 
 def _is_integer(option):
-    return option["type"] in ("INT", "UINT")
+    return option["type"] == "INT"
 
 
 def _spelling(option):
     """The option as the CLI's help names it first: --sky-directions, not its older --directions."""
-    long = "--" + option["name"]
-    return long if long in option["flags"] else "-" + option["name"]
+    return next(f for f in option["flags"] if f.startswith("--"))
 
 
 def _typed_default(option):
     default = option["default"]
     if default is None or not _is_number(option):
         return default
-    return int(default) if _is_integer(option) else float(default)
+    return int(float(default)) if _is_integer(option) else float(default)
+
+
+def help_text(command):
+    """The algorithm's help, written for QGIS from the declaration: what it does, then a line per
+    parameter with its label and help (no command-line syntax). Plain lines: the dialog shows each
+    as a paragraph, qgis_process help prints them as they are."""
+    lines = [command["description"] + "."]
+    for option in command["options"]:
+        if not shown(option):
+            continue
+        label = option["label"]
+        if option["choices"]:
+            label += " (" + ", ".join(option["choices"]) + ")"
+        lines.append(f"{label}: {option['qgis_help']}")
+    return "\n".join(lines)
 
 
 class DemlightAlgorithm(QgsProcessingAlgorithm):
@@ -98,17 +116,15 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         return self._command["description"]
 
     def shortHelpString(self):
-        # HTML for the dialog; only what HTML requires is escaped, so qgis_process help prints
-        # the CLI's text as it is.
-        text = self._command["help"].replace("&", "&amp;").replace("<", "&lt;")
-        return "<pre>" + text + "</pre>"
+        return help_text(self._command)
 
     def initAlgorithm(self, config=None):
         for option in self._command["options"]:
-            if option["name"] in _POINT_QUERY:
+            if not shown(option):
                 continue
             parameter = self._parameter(option)
-            if option["name"] in _ADVANCED:
+            parameter.setHelp(option["qgis_help"])  # the tooltip
+            if option["advanced"]:
                 parameter.setFlags(parameter.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
             self.addParameter(parameter)
         for key in self._command["companions"]:
@@ -116,7 +132,7 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                                                           f"Raster named by {key} in {OUTPUT}'s metadata"))
 
     def _parameter(self, option):
-        name, label, optional = parameter_name(option), option["description"], not option["required"]
+        name, label, optional = parameter_name(option), option["label"], not option["required"]
         if option["positional"]:
             return QgsProcessingParameterRasterLayer(name, label)
         if option["name"] == _OUTPUT_OPTION:
@@ -134,9 +150,12 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                                               usesStaticStrings=True)
         if _is_number(option):
             kind = QgsProcessingParameterNumber.Integer if _is_integer(option) else QgsProcessingParameterNumber.Double
-            return QgsProcessingParameterNumber(name, label, kind, _typed_default(option), optional)
-        if option["max_values"] != 1:
-            label += " [values separated by spaces]"
+            parameter = QgsProcessingParameterNumber(name, label, kind, _typed_default(option), optional)
+            if option["range"]:  # an open lower end (> 0): its bound itself is left to the CLI's check
+                parameter.setMinimum(option["range"]["min"])
+                if option["range"]["max"] is not None:
+                    parameter.setMaximum(option["range"]["max"])
+            return parameter
         return QgsProcessingParameterString(name, label, option["default"], False, optional)
 
     def _arguments(self, parameters, context):
@@ -146,7 +165,7 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
         args = [self._executable, self._command["name"]]
         outputs, source = {}, None
         for option in self._command["options"]:
-            if option["name"] in _POINT_QUERY:
+            if not shown(option):
                 continue
             name = parameter_name(option)
             if option["positional"]:
@@ -188,11 +207,8 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
                 continue
             if option["max_values"] == 1:
                 args += [flag, value]
-            elif option["max_values"] == -1:
-                for item in value.split():
-                    args += [flag, item]  # repeatable: one value per use
             else:
-                args += [flag] + value.split()
+                args += [flag] + value.split()  # several values, separated by spaces
         return args, outputs, source
 
     def processAlgorithm(self, parameters, context, feedback):
@@ -210,7 +226,7 @@ class DemlightAlgorithm(QgsProcessingAlgorithm):
             if not line.startswith(cli.ERROR_PREFIX):  # errors go into the exception, once
                 feedback.pushConsoleInfo(line)
 
-        code, messages = cli.run(args, on_progress, on_line, feedback.isCanceled)
+        code, messages = cli.run(args, on_progress, on_line, feedback.isCanceled, parameter_names="qgis")
         if feedback.isCanceled():
             raise QgsProcessingException("demlight: cancelled")
         if code != 0:

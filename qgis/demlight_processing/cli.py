@@ -64,15 +64,17 @@ def parse_progress(line):
     return (m.group("stage"), int(m.group("percent"))) if m else None
 
 
-def run(arguments, on_progress, on_line, is_cancelled, poll_s=0.2):
-    """Runs demlight with `arguments` (the executable first). Progress lines go to
+def run(arguments, on_progress, on_line, is_cancelled, poll_s=0.2, parameter_names=None):
+    """Runs demlight with `arguments` (the executable first); with parameter_names="qgis" its
+    error messages name parameters by their QGIS labels. Progress lines go to
     on_progress(stage, percent), every other stderr or stdout line to on_line(line). When
     is_cancelled() turns true the CLI is sent SIGINT, as Ctrl-C would (it stops at a safe point
     and leaves no partial output), and killed if it has not stopped after a grace period.
     Returns (exit code, the lines that were not progress)."""
     try:
+        env = dict(os.environ, DEMLIGHT_PARAMETER_NAMES=parameter_names) if parameter_names else None
         proc = subprocess.Popen(arguments, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
-                                encoding="utf-8", errors="replace")
+                                encoding="utf-8", errors="replace", env=env)
     except OSError as e:
         raise DemlightError(f"cannot run {arguments[0]}: {e}") from e
     lines = queue.Queue()

@@ -8,6 +8,7 @@ Run: python3 -m pytest -q qgis/tests (scripts/test.sh does)."""
 
 import hashlib
 import json
+import re
 import os
 import shutil
 import shlex
@@ -80,9 +81,14 @@ def test_options_describe_every_raster_command_with_its_help():
     options = {o["name"]: o for o in commands["sun"]["options"]}
     assert options["time"]["required"] and options["time"]["flags"] == ["--time"]
     assert options["quality"]["choices"] == ["auto", "full"] and options["quality"]["default"] == "auto"
-    assert options["sun-diameter"]["type"] == "FLOAT" and float(options["sun-diameter"]["default"]) > 0
-    assert options["co"]["max_values"] == -1 and options["srcwin"]["min_values"] == 4
-    assert options["verbose"]["flag"] and options["DEM"]["positional"]
+    assert options["sun_diameter"]["type"] == "FLOAT" and float(options["sun_diameter"]["default"]) > 0
+    assert options["sun_diameter"]["label"] == "Sun diameter (deg)" and options["sun_diameter"]["unit"] == "deg"
+    assert options["sun_diameter"]["range"] == {"min": 0, "max": 20, "min_open": False}
+    assert options["creation_options"]["flags"] == ["--co"] and options["creation_options"]["max_values"] == -1
+    assert options["srcwin"]["min_values"] == 4 and options["srcwin"]["advanced"]
+    assert options["verbose"]["flag"] and options["verbose"]["front_ends"] == ["cli"]
+    assert options["dem"]["positional"] and options["dem"]["front_ends"] == ["cli", "qgis"]
+    assert options["max_distance"]["qgis_help"].count('"Quality"') == 1
 
 
 def test_progress_lines_are_read_and_cancel_stops_the_cli(tmp_path):
@@ -142,13 +148,36 @@ def test_qgis_process_lists_the_raster_commands(qgis):
                       "view", "timelapse", "sunhours", "sequence", "quicklook"}
 
 
-def test_qgis_process_help_is_the_cli_help(qgis):
+def test_qgis_process_help_is_written_for_qgis(qgis):
+    """The algorithm's help comes from the declaration: each parameter by its label with its help,
+    no command-line syntax, no <pre>; qgis_process lists the parameters by name."""
+    import re
     text = qgis("help", "demlight:sun").stdout
-    cli_help = subprocess.run([demlight_executable(), "sun", "--help"], capture_output=True, text=True,
-                              check=True).stdout
-    assert cli_help.strip() in text
+    assert "<pre>" not in text and "<p>" not in text and not re.search(r"--[a-z]", text), text
+    for label in ("Time zone: IANA time zone", "Max distance (m): Horizon search distance", "Quality (auto, full)",
+                  "Sun model (horizon, aperture, aperture-smooth)"):
+        assert label in text, label
     for parameter in ("INPUT", "OUTPUT", "TIME", "TZ", "QUALITY", "SUN_DIAMETER", "OF", "CO"):
         assert f"\n{parameter}:" in text, parameter
+
+
+def test_qgis_process_errors_name_parameters_by_their_labels(qgis, dem, tmp_path):
+    # QGIS refuses what its form can check itself (the range of a number) ...
+    done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", "TIME=2024-06-21T07:30Z", "MAX_DISTANCE=-3",
+                f"OUTPUT={tmp_path / 'bad.tif'}")
+    assert done.returncode != 0 and "MAX_DISTANCE" in done.stdout + done.stderr
+    # ... and the CLI's messages name parameters by their labels: a value outside an open range,
+    # a time without a zone, a window outside the DEM.
+    for extra, expected in ((["MAX_DISTANCE=0"], '"Max distance (m)": must be > 0'),
+                            ([], 'give a time zone ("Time zone", an IANA name'),
+                            (["SRCWIN=0 0 5000 5000"], '"Source window (cells)" 0 0 5000 5000: the window')):
+        time = "TIME=2024-06-21T07:30" if not extra else "TIME=2024-06-21T07:30Z"
+        done = qgis("run", "demlight:sun", "--", f"INPUT={dem}", time, *extra, f"OUTPUT={tmp_path / 'bad.tif'}")
+        assert done.returncode != 0
+        errors = [l for l in (done.stdout + done.stderr).splitlines() if "demlight: error" in l]
+        assert any(expected in l for l in errors), done.stdout + done.stderr
+        assert not any(re.search(r"--[a-z]", l) for l in errors), errors
+    assert not list(tmp_path.iterdir())
 
 
 def test_qgis_process_sun_equals_the_cli(qgis, dem, tmp_path):
@@ -341,3 +370,61 @@ print("ERROR=" + repr(plugin["error"]) + " VERSION=" + plugin["version_installed
     subprocess.run([program, "plugins", "enable", "demlight_processing"], env=env, capture_output=True, timeout=300)
     listing = subprocess.run([program, "list"], env=env, capture_output=True, text=True, timeout=300).stdout
     assert "demlight:sun" in listing, listing
+
+
+# Runs in its own Python (QGIS initialised offscreen with its GUI): opens each demlight
+# algorithm's Processing dialog and prints, per algorithm, the labels of its parameters as the
+# dialog shows them, their tooltips, the help panel's text and which parameters are drop-downs.
+_DIALOG_SCRIPT = r"""
+import json, sys
+from qgis.core import QgsApplication, QgsProcessingParameterEnum
+app = QgsApplication([], True)
+app.initQgis()
+sys.path[:0] = [sys.argv[1], QgsApplication.pkgDataPath() + "/python/plugins"]
+from processing.core.Processing import Processing
+Processing.initialize()
+from demlight_processing.provider import DemlightProvider
+provider = DemlightProvider()
+QgsApplication.processingRegistry().addProvider(provider)
+from processing.gui.AlgorithmDialog import AlgorithmDialog
+from qgis.PyQt.QtWidgets import QCheckBox, QLabel
+out = {}
+for alg in provider.algorithms():
+    dialog = AlgorithmDialog(alg.create(), False, None)
+    labels = [w.text() for kind in (QLabel, QCheckBox) for w in dialog.findChildren(kind) if w.text()]
+    out[alg.name()] = {
+        "descriptions": [p.description() for p in alg.parameterDefinitions()],
+        "labels": labels,
+        "tooltips": [p.help() for p in alg.parameterDefinitions()],
+        "help": alg.shortHelpString(),
+        "enums": [p.name() for p in alg.parameterDefinitions() if isinstance(p, QgsProcessingParameterEnum)],
+    }
+    dialog.close()
+print("DIALOGS " + json.dumps(out))
+"""
+
+
+def test_every_dialog_has_short_labels_tooltips_help_without_flags_and_drop_downs(tmp_path):
+    if qgis_process_program() is None:
+        pytest.skip("QGIS not installed: install the Debian packages qgis and python3-qgis")
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen", QGIS_CUSTOM_CONFIG_PATH=str(tmp_path / "profile"))
+    env[cli.EXECUTABLE_ENV] = demlight_executable()
+    done = subprocess.run(["/usr/bin/python3", "-c", _DIALOG_SCRIPT, os.path.join(REPO, "qgis")], env=env,
+                          capture_output=True, text=True, timeout=600)
+    lines = [l for l in done.stdout.splitlines() if l.startswith("DIALOGS ")]
+    assert done.returncode == 0 and lines, done.stdout + done.stderr
+    dialogs = json.loads(lines[-1][len("DIALOGS "):])
+    declared = {c["name"]: c for c in cli.load_commands(demlight_executable())["commands"]}
+    assert {"sun", "sky", "horizon", "timelapse", "view"} <= set(dialogs)
+    for name, d in dialogs.items():
+        # Each parameter's label as the dialog shows it (QGIS adds " [optional]" to optional ones).
+        for label in d["descriptions"]:
+            shown = [l for l in d["labels"] if l.startswith(label)]
+            assert label and shown, (name, label, d["labels"])
+            assert all(len(l) <= 40 for l in shown), (name, shown)
+        assert all(d["tooltips"]), name
+        assert not re.search(r"--[a-z]", d["help"]) and "<pre>" not in d["help"], (name, d["help"])
+        # Every option with choices is a drop-down.
+        choices = {o["name"] for o in declared[name]["options"] if o["choices"] and "qgis" in o["front_ends"]}
+        assert len(d["enums"]) == len(choices), (name, d["enums"], choices)
+    assert "MODEL" in dialogs["sun"]["enums"]  # sun's model was free text once

@@ -507,3 +507,47 @@ def test_horizon_profile_refuses_bad_arguments():
                    {"at_xy": observer, "directions": 0}):
         with pytest.raises(demlight.Error):
             demlight.horizon_profile(dem, **kwargs)
+
+
+def test_signatures_and_docstrings_are_the_declarations(cli):
+    # The Python signatures are made from the same declarations as the command line's options:
+    # every option `demlight options --json` offers to Python is a keyword of the function, in
+    # its order, with its default; its help (naming keywords, never flags) is in the docstring.
+    import inspect
+
+    declared = {c["name"]: c for c in json.loads(cli("options", "--json").stdout)["commands"]}
+    assert set(demlight.COMMANDS) <= set(declared)
+    for command in list(demlight.COMMANDS) + ["sunpos"]:
+        options = [o for o in declared[command]["options"] if "python" in o["front_ends"]]
+        signature = inspect.signature(getattr(demlight, command)).parameters
+        keywords = [name for name in signature if name not in ("dem", "transform", "crs", "nodata", "progress")]
+        assert sorted(keywords) == sorted(o["keyword"] for o in options), command
+        doc = getattr(demlight, command).__doc__
+        for o in options:
+            assert o["python_help"].split()[0] in doc, (command, o["keyword"])
+            assert "--" not in o["python_help"], (command, o["keyword"], o["python_help"])
+            default = signature[o["keyword"]].default
+            if o["default"] is not None and o["type"] in ("FLOAT", "INT") and o["max_values"] == 1:
+                assert default == float(o["default"]), (command, o["keyword"])
+        # The command line's own options (-o, -v, --of, --co, --at) are not keywords.
+        flags_only = [o["name"] for o in declared[command]["options"] if "python" not in o["front_ends"]]
+        assert not set(flags_only) & set(keywords), command
+
+
+def test_every_bad_value_is_refused_naming_its_keyword():
+    # Each keyword with a range or choices, given a value outside them: demlight.Error naming the
+    # keyword, never a flag, before any work.
+    checked = 0
+    for command in demlight.COMMANDS:
+        for o in demlight._command_options(command):
+            if not o["range"] and not o["choices"]:
+                continue
+            value = "no-such-choice" if o["choices"] else -1e12
+            if o["max_values"] != 1:
+                value = [value] * max(o["min_values"], 1)
+            with pytest.raises(demlight.Error) as e:
+                getattr(demlight, command)(str(ROCKY), **{o["keyword"]: value})
+            message = str(e.value)
+            assert message.startswith(o["keyword"]) and "--" not in message, (command, message)
+            checked += 1
+    assert checked > 60
