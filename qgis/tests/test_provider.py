@@ -393,6 +393,7 @@ for alg in provider.algorithms():
     dialog = AlgorithmDialog(alg.create(), False, None)
     labels = [w.text() for kind in (QLabel, QCheckBox) for w in dialog.findChildren(kind) if w.text()]
     out[alg.name()] = {
+        "names": [p.name() for p in alg.parameterDefinitions()],
         "descriptions": [p.description() for p in alg.parameterDefinitions()],
         "labels": labels,
         "tooltips": [p.help() for p in alg.parameterDefinitions()],
@@ -416,7 +417,12 @@ def test_every_dialog_has_short_labels_tooltips_help_without_flags_and_drop_down
     dialogs = json.loads(lines[-1][len("DIALOGS "):])
     declared = {c["name"]: c for c in cli.load_commands(demlight_executable())["commands"]}
     assert {"sun", "sky", "horizon", "timelapse", "view"} <= set(dialogs)
+    from demlight_processing.algorithm import parameter_name
     for name, d in dialogs.items():
+        # The form is the declaration: the parameters QGIS is offered, in order, with their labels.
+        offered = [o for o in declared[name]["options"] if "qgis" in o["front_ends"]]
+        assert d["names"] == [parameter_name(o) for o in offered], name
+        assert d["descriptions"] == [o["label"] for o in offered], name
         # Each parameter's label as the dialog shows it (QGIS adds " [optional]" to optional ones).
         for label in d["descriptions"]:
             shown = [l for l in d["labels"] if l.startswith(label)]
