@@ -34,6 +34,13 @@ std::ptrdiff_t outStep(const HullBlock& block) {
     return block.outRowStep != 0 ? block.outRowStep : static_cast<std::ptrdiff_t>(block.stride);
 }
 
+/// The spacing the float kernels count distances in (HullGeometry::spacingM).
+double uniformSpacing(const HullGeometry& geometry) {
+    const std::size_t n = geometry.sigmaM.size();
+    if (geometry.spacingM > 0.0) return geometry.spacingM;
+    return n > 1 ? geometry.sigmaM.back() / static_cast<double>(n - 1) : 1.0;
+}
+
 /// Line b's factor on sigmaM (HullGeometry::lineScale).
 double lineFactor(const HullGeometry& geometry, std::size_t b) {
     return geometry.lineScale.empty() ? 1.0 : geometry.lineScale[b];
@@ -152,7 +159,7 @@ HullSlopeBound hullSlopeErrorBound(const HullGeometry& geometry, double maxAbsGM
     if (n < 2) return {};
     const auto ulp = [](double x) { return x > 0.0 ? std::ldexp(1.0, std::ilogb(x) - 23) : 0.0; };
     double dMin = std::numeric_limits<double>::infinity(), offMax = 0.0;
-    const double spacing = geometry.sigmaM.back() / static_cast<double>(n - 1);
+    const double spacing = uniformSpacing(geometry);
     for (std::size_t i = 1; i < n; ++i) {
         dMin = std::min(dMin, geometry.sigmaM[i] - geometry.sigmaM[i - 1]);
         offMax = std::max(offMax, std::abs(geometry.sigmaM[i] - static_cast<double>(i) * spacing));
@@ -189,7 +196,7 @@ bool makeRowTables(const HullGeometry& geometry, HullScratch& scratch, RowTables
     if (n >= (std::size_t{1} << 24))
         throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
     // The uniform spacing the row differences are scaled by, and each sample's offset from it.
-    const double spacing = n > 1 ? geometry.sigmaM.back() / static_cast<double>(n - 1) : 1.0;
+    const double spacing = uniformSpacing(geometry);
     scratch.rowTables.resize(3 * n);
     float* drop = scratch.rowTables.data();
     float* curve = drop + n;

@@ -46,6 +46,10 @@ struct HullGeometry {
     /// line but not along them (rows of a geographic grid, each walked at its own cell width).
     /// With factors sigmaM must be uniform (sigmaM[i] = i * sigmaM[1] up to float rounding).
     std::vector<double> lineScale;
+    /// The uniform spacing the float kernels count distances in (each sample's offset from
+    /// i * spacingM is kept apart); 0: sigmaM's mean step. Give it where the first samples of
+    /// lines of different lengths must round alike (a window's walk and its DEM's).
+    double spacingM = 0.0;
 };
 
 /// A block of lines in a row-major array: sample i of line b is at heightsM[i * stride + b] (metres,
