@@ -81,23 +81,23 @@ void walkAxisBlock(const Terrain& t, const LineGeometry& geo, double invR, long 
     s.heights.resize(steps.n * kLinesPerBlock);
     s.slopes.resize(steps.n * kLinesPerBlock);
     const std::ptrdiff_t startCol = steps.mStart - geo.majorLo;
-    for (std::size_t b = 0; b < lines; ++b) {
-        const float* row = H + (j0 - geo.minorLo + static_cast<long>(b)) * W + startCol;
-        for (std::size_t i = 0; i < steps.n; ++i)
-            s.heights[i * kLinesPerBlock + b] = row[static_cast<std::ptrdiff_t>(i) * steps.mStep];
+    const float* rows[kLinesPerBlock];
+    for (std::size_t b = 0; b < lines; ++b) rows[b] = H + (j0 - geo.minorLo + static_cast<long>(b)) * W + startCol;
+    // A sample of every line at a time: one cache line written whole, the rows read in step.
+    for (std::size_t i = 0; i < steps.n; ++i) {
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * steps.mStep;
+        for (std::size_t b = 0; b < lines; ++b) s.heights[i * kLinesPerBlock + b] = rows[b][at];
     }
     HullBlock block{s.heights.data(), s.slopes.data(), kLinesPerBlock, lines};
     block.firstOutRow = steps.firstServed;
     hullSlopes(g, block, s.hull);
-    for (std::size_t b = 0; b < lines; ++b) {
-        const std::ptrdiff_t rowStart = (j0 - geo.minorLo + static_cast<long>(b)) * W + startCol;
-        const float* row = H + rowStart;
-        float* out = planeA + rowStart;
+    float* outRows[kLinesPerBlock];
+    for (std::size_t b = 0; b < lines; ++b) outRows[b] = planeA + (rows[b] - H);
+    for (std::size_t i = steps.firstServed; i < steps.n; ++i) {
+        const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * steps.mStep;
         // Nodata cells keep what they hold (NaN), as the walk of lines one by one leaves them.
-        for (std::size_t i = steps.firstServed; i < steps.n; ++i) {
-            const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * steps.mStep;
-            if (row[at] == row[at]) out[at] = s.slopes[i * kLinesPerBlock + b];
-        }
+        for (std::size_t b = 0; b < lines; ++b)
+            if (rows[b][at] == rows[b][at]) outRows[b][at] = s.slopes[i * kLinesPerBlock + b];
     }
 }
 
