@@ -2,28 +2,34 @@
 #include "demlight/lighting/sweep/axis_walk.h"
 
 #include "demlight/lighting/hull_lanes.h"
+#include "demlight/lighting/sweep/hull.h"
 #include "demlight/lighting/sweep/walk.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace demlight::sweep {
 namespace {
 
-/// The block's walk on the major axis: from the far end of the terrain (no range limit, so every
-/// line starts there, in a tile as in its DEM) to the nearest window step; window steps start
-/// firstServed steps in.
+/// The block's walk on the major axis to the nearest window step; window steps start firstServed
+/// steps in. Without a range limit from the far end of the terrain (every line starts there, in
+/// a tile as in its DEM); with one from extensionSteps beyond the farthest window step (which
+/// covers maxDistanceM), as the walk of lines one by one starts.
 struct AxisSteps {
     long mStart, mStep;
     std::size_t n, firstServed;
 };
 
-AxisSteps axisSteps(const LineGeometry& geo) {
+AxisSteps axisSteps(const LineGeometry& geo, bool limited) {
     const long win0 = static_cast<long>(geo.majorWin0), win1 = static_cast<long>(geo.majorWin1);
     const long serveFar = geo.farSign > 0 ? win1 - 1 : win0;
     const long serveNear = geo.farSign > 0 ? win0 : win1 - 1;
-    const long mStart = geo.mFar;
+    const long mStart = limited ? std::clamp(serveFar + geo.farSign * geo.extensionSteps, std::min(geo.mFar, geo.mNear),
+                                             std::max(geo.mFar, geo.mNear))
+                                : geo.mFar;
     return {mStart, -geo.farSign, static_cast<std::size_t>(std::abs(serveNear - mStart)) + 1,
             static_cast<std::size_t>(std::abs(serveFar - mStart))};
 }
@@ -32,52 +38,208 @@ struct AxisScratch {
     HullGeometry geometry;
     HullScratch hull;
     std::vector<float> heights, slopes;  // a transposed block: sample i of line b at [i * 16 + b]
+    std::vector<std::size_t> segments, lineSegments;  // a group's / a line's chunk starts (walk steps)
+    std::vector<long> chunks, lineChunks;            // and their chunks
+    std::vector<HullPoint> prevHull[kLinesPerBlock];
 };
+
+/// The block's samples: sample i of line b (window minor index j0 + b) at heights[i * step + b],
+/// its slope at out[i * step + b]; lines along columns in place, along rows a transposed copy.
+struct AxisLanes {
+    const float* heights;
+    float* out;
+    std::ptrdiff_t step;
+    long j0;
+};
+
+/// Distance from the full grid's far edge of line j's sample at major index m, with the bits the
+/// walk of lines one by one gives it (line_geometry.h: sigmaAt, else a row's own steps).
+double sampleSigma(const LineGeometry& geo, long m, long j) {
+    if (!geo.sigmaAt.empty()) return geo.sigmaAt[static_cast<std::size_t>(m)];
+    return static_cast<double>(std::abs(m - geo.mEdge)) * geo.stepLengthM[static_cast<std::size_t>(j)];
+}
+
+/// Line j's range-limit chunks over the walk (floor(sigma / L), anchored to the full grid's far
+/// edge as the walk of lines one by one cuts them): the walk steps where each starts, and its
+/// chunk. Found by bisection (sigma grows along the walk).
+void chunkStarts(const LineGeometry& geo, const AxisSteps& steps, long j, double maxDistanceM,
+                 std::vector<std::size_t>& starts, std::vector<long>& chunks) {
+    const auto chunkAt = [&](std::size_t i) {
+        return static_cast<long>(std::floor(
+            sampleSigma(geo, steps.mStart + static_cast<long>(i) * steps.mStep, j) / maxDistanceM));
+    };
+    starts.assign(1, 0);
+    chunks.assign(1, chunkAt(0));
+    const long last = chunkAt(steps.n - 1);
+    while (chunks.back() < last) {
+        std::size_t lo = starts.back() + 1, hi = steps.n - 1;  // first step of a later chunk in [lo, hi]
+        while (lo < hi) {
+            const std::size_t mid = (lo + hi) / 2;
+            if (chunkAt(mid) > chunks.back()) hi = mid; else lo = mid + 1;
+        }
+        starts.push_back(lo);
+        chunks.push_back(chunkAt(lo));
+    }
+}
+
+/// The kernel over lines [b0, b1) of the block from walk step `start` (a chunk's first) to `end`:
+/// each sample's slope to the hull of its chunk's samples before it.
+void kernelSegment(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes,
+                   std::size_t b0, std::size_t b1, std::size_t start, std::size_t end, AxisScratch& s) {
+    HullGeometry& g = s.geometry;
+    const std::size_t n = end - start;
+    g.sigmaM.resize(n);
+    if (!geo.xMajor) {
+        g.lineScale.clear();
+        g.spacingM = (geo.sigmaAt[static_cast<std::size_t>(geo.mEdge == 0 ? geo.majorSize - 1 : 0)] -
+                      geo.sigmaAt[static_cast<std::size_t>(geo.mEdge)]) /
+                     static_cast<double>(std::max<std::size_t>(geo.majorSize - 1, 1));
+        const long m0 = steps.mStart + static_cast<long>(start) * steps.mStep;
+        const double sigma0 = geo.sigmaAt[static_cast<std::size_t>(m0)];
+        for (std::size_t i = 0; i < n; ++i)
+            g.sigmaM[i] = geo.sigmaAt[static_cast<std::size_t>(m0 + static_cast<long>(i) * steps.mStep)] - sigma0;
+    } else {
+        g.spacingM = 0.0;
+        for (std::size_t i = 0; i < n; ++i) g.sigmaM[i] = static_cast<double>(i);
+        g.lineScale.resize(b1 - b0);
+        for (std::size_t b = b0; b < b1; ++b)
+            g.lineScale[b - b0] = geo.stepLengthM[static_cast<std::size_t>(lanes.j0) + b];
+    }
+    const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(start) * lanes.step + static_cast<std::ptrdiff_t>(b0);
+    HullBlock block{lanes.heights + at, lanes.out + at, kLinesPerBlock, b1 - b0};
+    block.heightsRowStep = block.outRowStep = lanes.step;
+    block.firstOutRow = steps.firstServed > start ? steps.firstServed - start : 0;
+    hullSlopes(g, block, s.hull);
+}
+
+/// The previous chunk's part of the range limit for lines [b0, b1) and the cells of the chunk
+/// from walk step `start` to `end`, whose previous chunk starts at `prevStart`: each cell's slope
+/// is raised to the steepest to a previous-chunk sample within maxDistanceM. As limitRangePass
+/// does it: walking the cells near to far, the samples in range grow at their far end, so an
+/// upper hull grown in that order holds exactly them, whatever step the walk started at (a
+/// tile's and its DEM's agree), and a binary search finds the tangent. A cell is skipped where
+/// the highest of those samples at the distance that makes it steepest cannot beat its slope.
+void prevChunkPart(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes, std::size_t b0,
+                   std::size_t b1, std::size_t prevStart, std::size_t start, std::size_t end, double maxDistanceM,
+                   double invR, AxisScratch& s) {
+    const double halfInvR = 0.5 * invR;
+    const std::size_t first = std::max(start, steps.firstServed);
+    struct Grown {
+        std::size_t next, top;
+        double maxG;
+    };
+    Grown grown[kLinesPerBlock];
+    for (std::size_t b = b0; b < b1; ++b) {
+        grown[b] = {start, 0, -std::numeric_limits<double>::infinity()};
+        if (s.prevHull[b].size() < start - prevStart) s.prevHull[b].resize(start - prevStart);
+    }
+    for (std::size_t i = end; i-- > first;) {
+        const long m = steps.mStart + static_cast<long>(i) * steps.mStep;
+        for (std::size_t b = b0; b < b1; ++b) {
+            const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * lanes.step + static_cast<std::ptrdiff_t>(b);
+            const float hc = lanes.heights[at];
+            if (std::isnan(hc)) continue;
+            const long j = lanes.j0 + static_cast<long>(b);
+            const double sigmaC = sampleSigma(geo, m, j);
+            const double gCell = static_cast<double>(hc) - sigmaC * sigmaC * halfInvR;
+            const double limit = sigmaC - maxDistanceM;
+            Grown& gr = grown[b];
+            HullPoint* hull = s.prevHull[b].data();
+            while (gr.next > prevStart) {
+                const std::size_t p = gr.next - 1;
+                const long mp = steps.mStart + static_cast<long>(p) * steps.mStep;
+                const double sigmaP = sampleSigma(geo, mp, j);
+                if (sigmaP < limit) break;
+                gr.next = p;
+                const float hp = lanes.heights[static_cast<std::ptrdiff_t>(p) * lanes.step + static_cast<std::ptrdiff_t>(b)];
+                if (std::isnan(hp)) continue;
+                const HullPoint pt{sigmaP, static_cast<double>(hp) - sigmaP * sigmaP * halfInvR};
+                gr.maxG = std::max(gr.maxG, pt.g);
+                // Points arrive farther each time: keep right turns only.
+                while (gr.top >= 2) {
+                    const HullPoint& o = hull[gr.top - 2];
+                    const HullPoint& a = hull[gr.top - 1];
+                    if ((o.sigmaM - a.sigmaM) * (pt.g - o.g) - (a.g - o.g) * (o.sigmaM - pt.sigmaM) < 0.0) break;
+                    --gr.top;
+                }
+                hull[gr.top++] = pt;
+            }
+            if (gr.top == 0) continue;
+            float& cell = lanes.out[at];
+            const double rise = gr.maxG - gCell;
+            const double boundDistM = sigmaC - (rise >= 0.0 ? hull[0].sigmaM : hull[gr.top - 1].sigmaM);
+            if (static_cast<float>(rise / boundDistM - sigmaC * invR) <= cell) continue;
+            std::size_t lo = 0, hi = gr.top - 1;
+            while (lo < hi) {
+                const std::size_t mid = (lo + hi) / 2;
+                if (steeperFrom(hull[mid + 1], hull[mid], sigmaC, gCell)) lo = mid + 1; else hi = mid;
+            }
+            cell = std::max(cell, rangeSlope(hull[lo].g, hull[lo].sigmaM, gCell, sigmaC, invR));
+        }
+    }
+}
+
+/// The range-limited walk of lines [0, lines) of the block: each line's chunks through the kernel
+/// (lines whose chunks start at the same steps together), then the previous chunk's part.
+void limitedLanes(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes,
+                  std::size_t lines, double maxDistanceM, double invR, AxisScratch& s) {
+    for (std::size_t b0 = 0; b0 < lines;) {
+        chunkStarts(geo, steps, lanes.j0 + static_cast<long>(b0), maxDistanceM, s.segments, s.chunks);
+        std::size_t b1 = b0 + 1;
+        // Lines along columns share their distances; along rows of a geographic grid neighbours
+        // mostly share their chunk starts.
+        if (!geo.sigmaAt.empty()) {
+            b1 = lines;
+        } else {
+            for (; b1 < lines; ++b1) {
+                chunkStarts(geo, steps, lanes.j0 + static_cast<long>(b1), maxDistanceM, s.lineSegments, s.lineChunks);
+                if (s.lineSegments != s.segments) break;
+            }
+        }
+        const std::size_t nSeg = s.segments.size();
+        for (std::size_t k = 0; k < nSeg; ++k) {
+            const std::size_t start = s.segments[k], end = k + 1 < nSeg ? s.segments[k + 1] : steps.n;
+            if (end <= steps.firstServed) continue;
+            kernelSegment(geo, steps, lanes, b0, b1, start, end, s);
+            if (k > 0 && s.chunks[k - 1] == s.chunks[k] - 1)
+                prevChunkPart(geo, steps, lanes, b0, b1, s.segments[k - 1], start, end, maxDistanceM, invR, s);
+        }
+        b0 = b1;
+    }
+}
 
 }  // namespace
 
-bool axisKernelServes(const LineGeometry& geo, bool limited) {
+bool axisKernelServes(const LineGeometry& geo) {
     // The kernel counts rows in exact floats.
-    return geo.slope == 0.0 && geo.delay == 0 && !limited && geo.majorSize < (std::size_t{1} << 24);
+    return geo.slope == 0.0 && geo.delay == 0 && geo.majorSize < (std::size_t{1} << 24);
 }
 
-void walkAxisBlock(const Terrain& t, const LineGeometry& geo, double invR, long kBegin, long kEnd, float* planeA) {
+void walkAxisBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM, bool limited,
+                   long kBegin, long kEnd, float* planeA) {
     // On an axis line k runs through the cells of minor index k and serves only those.
     const long j0 = std::max({kBegin, static_cast<long>(geo.minorWin0), geo.minorLo});
     const long j1 = std::min({kEnd, static_cast<long>(geo.minorWin1), geo.minorHi});
     if (j0 >= j1) return;
     thread_local AxisScratch s;
-    const AxisSteps steps = axisSteps(geo);
+    const AxisSteps steps = axisSteps(geo, limited);
     const auto lines = static_cast<std::size_t>(j1 - j0);
     const std::ptrdiff_t W = static_cast<std::ptrdiff_t>(t.width());
     const float* H = t.heightsM.data();
     HullGeometry& g = s.geometry;
     g.invRadius = invR;
-    g.sigmaM.resize(steps.n);
     if (!geo.xMajor) {
-        // Lines along columns: the rows' distances from the far edge (the same for every line),
-        // counted from the walk's first row; heights and slopes in place, a row apart.
-        g.lineScale.clear();
-        // Counted in the full grid's mean step, whatever part of it this walk covers.
-        g.spacingM = (geo.sigmaAt[static_cast<std::size_t>(geo.mEdge == 0 ? geo.majorSize - 1 : 0)] -
-                      geo.sigmaAt[static_cast<std::size_t>(geo.mEdge)]) /
-                     static_cast<double>(std::max<std::size_t>(geo.majorSize - 1, 1));
-        const double sigma0 = geo.sigmaAt[static_cast<std::size_t>(steps.mStart)];
-        for (std::size_t i = 0; i < steps.n; ++i)
-            g.sigmaM[i] = geo.sigmaAt[static_cast<std::size_t>(steps.mStart + static_cast<long>(i) * steps.mStep)] - sigma0;
+        // Lines along columns: heights and slopes in place, a row apart.
         const std::ptrdiff_t first = (steps.mStart - geo.majorLo) * W + (j0 - geo.minorLo);
-        HullBlock block{H + first, planeA + first, 0, lines};
-        block.heightsRowStep = block.outRowStep = steps.mStep * W;
-        block.firstOutRow = steps.firstServed;
-        hullSlopes(g, block, s.hull);
+        const AxisLanes lanes{H + first, planeA + first, steps.mStep * W, j0};
+        if (limited) return limitedLanes(geo, steps, lanes, lines, maxDistanceM, invR, s);
+        // The rows' distances from the far edge (the same for every line), counted from the
+        // walk's first row in the full grid's mean step, whatever part of it this walk covers.
+        kernelSegment(geo, steps, lanes, 0, lines, 0, steps.n, s);
         return;
     }
     // Lines along rows: each row its own step (a geographic grid's cell width), through a copy of
     // the block with the lines side by side.
-    g.lineScale.resize(lines);
-    g.spacingM = 0.0;
-    for (std::size_t i = 0; i < steps.n; ++i) g.sigmaM[i] = static_cast<double>(i);
-    for (std::size_t b = 0; b < lines; ++b) g.lineScale[b] = geo.stepLengthM[static_cast<std::size_t>(j0) + b];
     s.heights.resize(steps.n * kLinesPerBlock);
     s.slopes.resize(steps.n * kLinesPerBlock);
     const std::ptrdiff_t startCol = steps.mStart - geo.majorLo;
@@ -88,9 +250,11 @@ void walkAxisBlock(const Terrain& t, const LineGeometry& geo, double invR, long 
         const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * steps.mStep;
         for (std::size_t b = 0; b < lines; ++b) s.heights[i * kLinesPerBlock + b] = rows[b][at];
     }
-    HullBlock block{s.heights.data(), s.slopes.data(), kLinesPerBlock, lines};
-    block.firstOutRow = steps.firstServed;
-    hullSlopes(g, block, s.hull);
+    const AxisLanes lanes{s.heights.data(), s.slopes.data(), kLinesPerBlock, j0};
+    if (limited)
+        limitedLanes(geo, steps, lanes, lines, maxDistanceM, invR, s);
+    else
+        kernelSegment(geo, steps, lanes, 0, lines, 0, steps.n, s);
     float* outRows[kLinesPerBlock];
     for (std::size_t b = 0; b < lines; ++b) outRows[b] = planeA + (rows[b] - H);
     for (std::size_t i = steps.firstServed; i < steps.n; ++i) {
