@@ -41,6 +41,7 @@ struct AxisScratch {
     std::vector<std::size_t> segments, lineSegments;  // a group's / a line's chunk starts (walk steps)
     std::vector<long> chunks, lineChunks;            // and their chunks
     std::vector<HullPoint> prevHull[kLinesPerBlock];
+    std::vector<double> stepSigma;
 };
 
 /// The block's samples: sample i of line b (window minor index j0 + b) at heights[i * step + b],
@@ -118,40 +119,84 @@ void kernelSegment(const LineGeometry& geo, const AxisSteps& steps, const AxisLa
 /// does it: walking the cells near to far, the samples in range grow at their far end, so an
 /// upper hull grown in that order holds exactly them, whatever step the walk started at (a
 /// tile's and its DEM's agree), and a binary search finds the tangent. A cell is skipped where
-/// the highest of those samples at the distance that makes it steepest cannot beat its slope.
+/// the highest sample of the chunk (as far as walked) at the distance that makes it steepest
+/// cannot beat its slope, before the hull is grown to it (most cells: the hull grows only as far
+/// as the cells that need it); then the same test with the samples in range.
 void prevChunkPart(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes, std::size_t b0,
                    std::size_t b1, std::size_t prevStart, std::size_t start, std::size_t end, double maxDistanceM,
                    double invR, AxisScratch& s) {
     const double halfInvR = 0.5 * invR;
     const std::size_t first = std::max(start, steps.firstServed);
+    // Distances of the steps [prevStart, end): one table for lines along columns, else each
+    // line's own step times the steps from the edge (sampleSigma's bits either way).
+    const bool shared = !geo.sigmaAt.empty();
+    s.stepSigma.resize(end);
+    for (std::size_t i = prevStart; i < end; ++i) {
+        const long m = steps.mStart + static_cast<long>(i) * steps.mStep;
+        s.stepSigma[i] = shared ? geo.sigmaAt[static_cast<std::size_t>(m)] : static_cast<double>(std::abs(m - geo.mEdge));
+    }
+    const double* stepSigma = s.stepSigma.data();
     struct Grown {
         std::size_t next, top;
         double maxG;
     };
     Grown grown[kLinesPerBlock];
-    for (std::size_t b = b0; b < b1; ++b) {
+    // Per line: its step factor, the highest g of the chunk's walked samples, and the distances
+    // of its nearest and farthest walked samples' steps.
+    alignas(64) double scale[kLinesPerBlock], maxGChunk[kLinesPerBlock], sNear[kLinesPerBlock], sFar[kLinesPerBlock];
+    const std::size_t nb = b1 - b0;
+    for (std::size_t b = 0; b < nb; ++b) {
+        scale[b] = shared ? 1.0 : geo.stepLengthM[static_cast<std::size_t>(lanes.j0) + b0 + b];
+        maxGChunk[b] = -std::numeric_limits<double>::infinity();
+        sNear[b] = stepSigma[start - 1] * scale[b];
+        sFar[b] = stepSigma[prevStart] * scale[b];
         grown[b] = {start, 0, -std::numeric_limits<double>::infinity()};
         if (s.prevHull[b].size() < start - prevStart) s.prevHull[b].resize(start - prevStart);
     }
+    for (std::size_t p = prevStart; p < start; ++p) {
+        const float* hp = lanes.heights + static_cast<std::ptrdiff_t>(p) * lanes.step + static_cast<std::ptrdiff_t>(b0);
+        for (std::size_t b = 0; b < nb; ++b) {
+            const double sigmaP = stepSigma[p] * scale[b];
+            // (NaN at nodata: the comparison keeps the maximum.)
+            maxGChunk[b] = std::max(maxGChunk[b], static_cast<double>(hp[b]) - sigmaP * sigmaP * halfInvR);
+        }
+    }
+    bool anyPoint = false;
+    for (std::size_t b = 0; b < nb; ++b) anyPoint = anyPoint || maxGChunk[b] > -std::numeric_limits<double>::infinity();
+    if (!anyPoint) return;
     for (std::size_t i = end; i-- > first;) {
-        const long m = steps.mStart + static_cast<long>(i) * steps.mStep;
-        for (std::size_t b = b0; b < b1; ++b) {
-            const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * lanes.step + static_cast<std::ptrdiff_t>(b);
-            const float hc = lanes.heights[at];
-            if (std::isnan(hc)) continue;
-            const long j = lanes.j0 + static_cast<long>(b);
-            const double sigmaC = sampleSigma(geo, m, j);
-            const double gCell = static_cast<double>(hc) - sigmaC * sigmaC * halfInvR;
-            const double limit = sigmaC - maxDistanceM;
+        const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(i) * lanes.step + static_cast<std::ptrdiff_t>(b0);
+        const float* hc = lanes.heights + row;
+        float* out = lanes.out + row;
+        // The bound of the chunk's samples for every line at once: the highest g at the
+        // distance that makes it steepest bounds every sample's slope; with a relative margin of
+        // 1e-9 (far above the rounding of any order of these operations) below the cell's slope,
+        // no sample can raise it (rangeSlope rounds to float, monotonically). Nodata cells and
+        // lines without a sample in the chunk need nothing.
+        alignas(64) unsigned char need[kLinesPerBlock];
+        for (std::size_t b = 0; b < nb; ++b) {
+            const double sigmaC = stepSigma[i] * scale[b];
+            const double gCell = static_cast<double>(hc[b]) - sigmaC * sigmaC * halfInvR;
+            const double rise = maxGChunk[b] - gCell;
+            const double dist = sigmaC - (rise >= 0.0 ? sNear[b] : sFar[b]);
+            const double bound = rise / dist - sigmaC * invR;
+            const bool cannotRaise = bound + 1e-9 * std::abs(bound) < static_cast<double>(out[b]);
+            need[b] = !cannotRaise && hc[b] == hc[b] && maxGChunk[b] > -std::numeric_limits<double>::infinity();
+        }
+        for (std::size_t b = 0; b < nb; ++b) {
+            if (!need[b]) continue;
             Grown& gr = grown[b];
+            const double sigmaC = stepSigma[i] * scale[b];
+            const double gCell = static_cast<double>(hc[b]) - sigmaC * sigmaC * halfInvR;
+            float& cell = out[b];
+            const double limit = sigmaC - maxDistanceM;
             HullPoint* hull = s.prevHull[b].data();
             while (gr.next > prevStart) {
                 const std::size_t p = gr.next - 1;
-                const long mp = steps.mStart + static_cast<long>(p) * steps.mStep;
-                const double sigmaP = sampleSigma(geo, mp, j);
+                const double sigmaP = stepSigma[p] * scale[b];
                 if (sigmaP < limit) break;
                 gr.next = p;
-                const float hp = lanes.heights[static_cast<std::ptrdiff_t>(p) * lanes.step + static_cast<std::ptrdiff_t>(b)];
+                const float hp = lanes.heights[static_cast<std::ptrdiff_t>(p) * lanes.step + static_cast<std::ptrdiff_t>(b0 + b)];
                 if (std::isnan(hp)) continue;
                 const HullPoint pt{sigmaP, static_cast<double>(hp) - sigmaP * sigmaP * halfInvR};
                 gr.maxG = std::max(gr.maxG, pt.g);
@@ -165,7 +210,6 @@ void prevChunkPart(const LineGeometry& geo, const AxisSteps& steps, const AxisLa
                 hull[gr.top++] = pt;
             }
             if (gr.top == 0) continue;
-            float& cell = lanes.out[at];
             const double rise = gr.maxG - gCell;
             const double boundDistM = sigmaC - (rise >= 0.0 ? hull[0].sigmaM : hull[gr.top - 1].sigmaM);
             if (static_cast<float>(rise / boundDistM - sigmaC * invR) <= cell) continue;
