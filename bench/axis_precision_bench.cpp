@@ -7,7 +7,11 @@
 // With --sweep, also the library's sweep (true azimuths 0/90/180/270, no near field, the whole
 // DEM) against the double lines: on geographic grids the grid axes are those azimuths, so this
 // is the sweep's own change; elsewhere the sweep takes other lines and the row is left out.
-// Usage: demlight_axis_precision_bench [--sweep] DEM ...
+// With --max-distance L, each line is cut into chunks of L metres from its far edge (as the
+// range-limited sweep cuts it) and each chunk walked on its own: the error of the kernel's part of
+// a range-limited sweep (the previous chunk's part is added in double by the sweep, so the
+// difference of the maxima is at most this one).
+// Usage: demlight_axis_precision_bench [--sweep] [--max-distance L] DEM ...
 #include "demlight/core/angles.h"
 #include "demlight/core/fast_math.h"
 #include "demlight/geo/dem.h"
@@ -47,30 +51,53 @@ float toAngle(float slope) {
                : static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
 }
 
-/// Every cell's angle from its line, through the float kernel or the double reference.
-std::vector<float> lineAngles(const Terrain& t, const Direction& d, bool reference) {
+/// Every cell's angle from its line, through the float kernel or the double reference; with a
+/// finite maxDistanceM, each chunk of the line (floor(sigma / maxDistanceM)) walked on its own.
+std::vector<float> lineAngles(const Terrain& t, const Direction& d, bool reference,
+                              double maxDistanceM = std::numeric_limits<double>::infinity()) {
     const std::size_t w = t.width(), h = t.height();
     const std::size_t lines = d.alongRows ? h : w, n = d.alongRows ? w : h;
     const auto cellIndex = [&](std::size_t i, std::size_t b) {
         const std::size_t m = d.fromHighEnd ? n - 1 - i : i;
         return d.alongRows ? b * w + m : m * w + b;
     };
-    HullGeometry g;
-    g.invRadius = inverseEffectiveRadius(HorizonParams{});
-    g.sigmaM.assign(n, 0.0);
+    std::vector<double> sigma(n, 0.0);
     for (std::size_t i = 1; i < n; ++i)
-        g.sigmaM[i] = d.alongRows ? static_cast<double>(i)
-                                  : g.sigmaM[i - 1] + t.cellHeightM[d.fromHighEnd ? n - i : i - 1];
-    if (d.alongRows) g.lineScale = t.cellWidthM;
+        sigma[i] = d.alongRows ? static_cast<double>(i) : sigma[i - 1] + t.cellHeightM[d.fromHighEnd ? n - i : i - 1];
     std::vector<float> heights(n * lines), slopes(n * lines), angles(w * h);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t b = 0; b < lines; ++b) heights[i * lines + b] = t.heightsM.data()[cellIndex(i, b)];
     HullScratch scratch;
-    const HullBlock block{heights.data(), slopes.data(), lines, lines};
-    if (reference)
-        hullSlopesReference(g, block, scratch);
-    else
-        hullSlopes(g, block, scratch);
+    HullGeometry g;
+    g.invRadius = inverseEffectiveRadius(HorizonParams{});
+    // Samples [s0, s1) of lines [b0, b1) (all lines share the distances, or one line).
+    const auto walk = [&](std::size_t s0, std::size_t s1, std::size_t b0, std::size_t b1) {
+        g.sigmaM.assign(sigma.begin() + static_cast<std::ptrdiff_t>(s0), sigma.begin() + static_cast<std::ptrdiff_t>(s1));
+        for (double& x : g.sigmaM) x -= sigma[s0];
+        g.lineScale.clear();
+        if (d.alongRows) g.lineScale.assign(t.cellWidthM.begin() + static_cast<std::ptrdiff_t>(b0),
+                                            t.cellWidthM.begin() + static_cast<std::ptrdiff_t>(b1));
+        else g.spacingM = sigma[n - 1] / static_cast<double>(std::max<std::size_t>(n - 1, 1));
+        const HullBlock block{heights.data() + s0 * lines + b0, slopes.data() + s0 * lines + b0, lines, b1 - b0};
+        if (reference)
+            hullSlopesReference(g, block, scratch);
+        else
+            hullSlopes(g, block, scratch);
+    };
+    // Chunks of one set of distances (scale: a row's cell width along rows, else 1).
+    const auto chunks = [&](std::size_t b0, std::size_t b1, double scale) {
+        if (!std::isfinite(maxDistanceM)) return walk(0, n, b0, b1);
+        for (std::size_t s0 = 0, s1; s0 < n; s0 = s1) {
+            const double c = std::floor(sigma[s0] * scale / maxDistanceM);
+            for (s1 = s0 + 1; s1 < n && std::floor(sigma[s1] * scale / maxDistanceM) == c;) ++s1;
+            walk(s0, s1, b0, b1);
+        }
+    };
+    if (d.alongRows && std::isfinite(maxDistanceM)) {
+        for (std::size_t b = 0; b < lines; ++b) chunks(b, b + 1, t.cellWidthM[b]);
+    } else {
+        chunks(0, lines, 1.0);
+    }
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t b = 0; b < lines; ++b) angles[cellIndex(i, b)] = toAngle(slopes[i * lines + b]);
     return angles;
@@ -104,15 +131,18 @@ void report(const char* dem, const char* what, const std::vector<float>& a, cons
 
 int main(int argc, char** argv) {
     bool sweep = false;
+    double maxDistanceM = std::numeric_limits<double>::infinity();
     std::vector<std::string> dems;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--sweep") == 0)
             sweep = true;
+        else if (std::strcmp(argv[i], "--max-distance") == 0 && i + 1 < argc)
+            maxDistanceM = std::stod(argv[++i]);
         else
             dems.emplace_back(argv[i]);
     }
     if (dems.empty()) {
-        std::fprintf(stderr, "usage: %s [--sweep] DEM ...\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [--sweep] [--max-distance L] DEM ...\n", argv[0]);
         return 2;
     }
     try {
@@ -122,9 +152,9 @@ int main(int argc, char** argv) {
             const Terrain& t = dem.terrain;
             const std::string name = path.substr(path.find_last_of('/') + 1);
             for (const Direction& d : kDirections) {
-                const std::vector<float> ref = lineAngles(t, d, true);
-                report(name.c_str(), d.name, lineAngles(t, d, false), ref);
-                if (sweep && dem.crs.geographic) {
+                const std::vector<float> ref = lineAngles(t, d, true, maxDistanceM);
+                report(name.c_str(), d.name, lineAngles(t, d, false, maxDistanceM), ref);
+                if (sweep && dem.crs.geographic && !std::isfinite(maxDistanceM)) {
                     HorizonParams p;
                     p.azimuthDeg = d.trueAzimuthDeg;
                     p.threads = 2;

@@ -38,8 +38,8 @@ struct AxisScratch {
     HullGeometry geometry;
     HullScratch hull;
     std::vector<float> heights, slopes;  // a transposed block: sample i of line b at [i * 16 + b]
-    std::vector<std::size_t> segments, lineSegments;  // a group's / a line's chunk starts (walk steps)
-    std::vector<long> chunks, lineChunks;            // and their chunks
+    std::vector<std::size_t> starts[kLinesPerBlock];  // each line's chunk starts (walk steps)
+    std::vector<long> chunks[kLinesPerBlock];         // and their chunks
     std::vector<HullPoint> prevHull[kLinesPerBlock];
     std::vector<double> stepSigma;
 };
@@ -223,32 +223,48 @@ void prevChunkPart(const LineGeometry& geo, const AxisSteps& steps, const AxisLa
     }
 }
 
-/// The range-limited walk of lines [0, lines) of the block: each line's chunks through the kernel
-/// (lines whose chunks start at the same steps together), then the previous chunk's part.
-void limitedLanes(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes,
-                  std::size_t lines, double maxDistanceM, double invR, AxisScratch& s) {
-    for (std::size_t b0 = 0; b0 < lines;) {
-        chunkStarts(geo, steps, lanes.j0 + static_cast<long>(b0), maxDistanceM, s.segments, s.chunks);
-        std::size_t b1 = b0 + 1;
-        // Lines along columns share their distances; along rows of a geographic grid neighbours
-        // mostly share their chunk starts.
-        if (!geo.sigmaAt.empty()) {
-            b1 = lines;
-        } else {
-            for (; b1 < lines; ++b1) {
-                chunkStarts(geo, steps, lanes.j0 + static_cast<long>(b1), maxDistanceM, s.lineSegments, s.lineChunks);
-                if (s.lineSegments != s.segments) break;
-            }
+/// The range-limited walk of lines [0, lines) of the block, chunk by chunk: each chunk through
+/// the kernel, then its previous chunk's part. Lines along columns share their distances, so
+/// their chunks; along rows of a geographic grid each line has its own, and the lines whose
+/// chunk starts and ends at the same steps (most neighbours) go together.
+void limitedLanes(const LineGeometry& geo, const AxisSteps& steps, const AxisLanes& lanes, std::size_t lines,
+                  double maxDistanceM, double invR, AxisScratch& s) {
+    const std::size_t own = geo.sigmaAt.empty() ? lines : 1;  // sets of chunks
+    std::size_t cursor[kLinesPerBlock];
+    for (std::size_t b = 0; b < own; ++b) {
+        chunkStarts(geo, steps, lanes.j0 + static_cast<long>(b), maxDistanceM, s.starts[b], s.chunks[b]);
+        cursor[b] = 0;
+    }
+    struct Segment {
+        std::size_t start = 0, end = 0, prevStart = 0;
+        bool present = false, previous = false;
+        bool operator==(const Segment&) const = default;
+    };
+    for (;;) {
+        // The nearest chunk not yet walked by some line.
+        long chunk = std::numeric_limits<long>::max();
+        for (std::size_t b = 0; b < own; ++b)
+            if (cursor[b] < s.chunks[b].size()) chunk = std::min(chunk, s.chunks[b][cursor[b]]);
+        if (chunk == std::numeric_limits<long>::max()) return;
+        Segment seg[kLinesPerBlock];
+        for (std::size_t b = 0; b < own; ++b) {
+            const std::size_t k = cursor[b];
+            if (k >= s.chunks[b].size() || s.chunks[b][k] != chunk) continue;
+            seg[b].present = true;
+            seg[b].start = s.starts[b][k];
+            seg[b].end = k + 1 < s.starts[b].size() ? s.starts[b][k + 1] : steps.n;
+            seg[b].previous = k > 0 && s.chunks[b][k - 1] == chunk - 1;
+            seg[b].prevStart = k > 0 ? s.starts[b][k - 1] : 0;
+            ++cursor[b];
         }
-        const std::size_t nSeg = s.segments.size();
-        for (std::size_t k = 0; k < nSeg; ++k) {
-            const std::size_t start = s.segments[k], end = k + 1 < nSeg ? s.segments[k + 1] : steps.n;
-            if (end <= steps.firstServed) continue;
-            kernelSegment(geo, steps, lanes, b0, b1, start, end, s);
-            if (k > 0 && s.chunks[k - 1] == s.chunks[k] - 1)
-                prevChunkPart(geo, steps, lanes, b0, b1, s.segments[k - 1], start, end, maxDistanceM, invR, s);
+        for (std::size_t b0 = 0, b1; b0 < own; b0 = b1) {
+            for (b1 = b0 + 1; b1 < own && seg[b1] == seg[b0];) ++b1;
+            const Segment& g = seg[b0];
+            if (!g.present || g.end <= steps.firstServed) continue;
+            const std::size_t l0 = own == 1 ? 0 : b0, l1 = own == 1 ? lines : b1;
+            kernelSegment(geo, steps, lanes, l0, l1, g.start, g.end, s);
+            if (g.previous) prevChunkPart(geo, steps, lanes, l0, l1, g.prevStart, g.start, g.end, maxDistanceM, invR, s);
         }
-        b0 = b1;
     }
 }
 
