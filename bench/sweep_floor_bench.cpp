@@ -245,7 +245,7 @@ enum class Kernel { scalar, doubleLanes, floatLanes, hullLanes, hullLanesUniform
 /// scalar one the rest.
 void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
     const auto blocks = static_cast<std::size_t>((l.width + kBlock - 1) / kBlock);
-    demlight::parallelFor(0, blocks, threads, [&](std::size_t blk) {
+    demlight::parallelFor(0, blocks, [&](std::size_t blk) {
         thread_local std::vector<double> hull;
         hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
         const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);

@@ -120,7 +120,7 @@ TEST(Grid, NonNanSpanIsBetweenTheEndRunsOfNan) {
 
 TEST(ParallelFor, VisitsEveryIndexOnce) {
     std::vector<std::atomic<int>> hits(1000);
-    parallelFor(0, hits.size(), 2, [&](std::size_t i) { hits[i]++; });
+    parallelFor(0, hits.size(), [&](std::size_t i) { hits[i]++; });
     for (const auto& h : hits) EXPECT_EQ(h.load(), 1);
 }
 
@@ -132,7 +132,7 @@ TEST(ParallelFor, RunsOnTheThreadsOfTheRunItIsCalledIn) {
         std::atomic<int> onOtherThreads{0};
         withThreads(1, [&] {
             const std::thread::id caller = std::this_thread::get_id();
-            parallelFor(0, 64, asked, [&](std::size_t) {
+            parallelFor(0, 64, [&](std::size_t) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(1));
                 if (std::this_thread::get_id() != caller) ++onOtherThreads;
             });

@@ -52,8 +52,6 @@ struct HorizonParams {
     double refraction = kDefaultRefraction;
     /// false = flat earth (no curvature drop, refraction unused).
     bool curvature = true;
-    /// Worker threads (0 = all cores). Output bits do not depend on it.
-    int threads = 0;
     /// Compute only these output cells (others are left NaN / 0); occluders come from anywhere.
     /// In the terrain's own coordinates.
     std::optional<CellWindow> window;

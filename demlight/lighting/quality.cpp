@@ -264,7 +264,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     return plan;
 }
 
-HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads) {
+HorizonParams planHorizonParams(const ScenePlan& plan, double refraction) {
     HorizonParams p;
     p.maxDistanceM = plan.maxDistanceM;
     p.curvature = plan.curvature;
@@ -273,16 +273,13 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.nearFieldSteps = plan.nearFieldSteps;
     p.farFieldCrossings = plan.farFieldCrossings;
-    p.threads = threads;
     return p;
 }
 
-SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction,
-                                  int threads) {
+SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction) {
     SunFrameParams p;
     p.sunDiameterDeg = sunDiameterDeg;
     p.refraction = refraction;
-    p.threads = threads;
     p.curvature = plan.curvature;
     p.directionToleranceDeg = plan.directionToleranceDeg;
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
@@ -293,9 +290,9 @@ SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, 
 }
 
 HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
-                                 double refraction, int threads) {
+                                 double refraction) {
     if (directions == 0) throw Error("the number of directions must be at least 1");
-    HorizonParams p = planHorizonParams(plan, refraction, threads);
+    HorizonParams p = planHorizonParams(plan, refraction);
     p.nearestLine = plan.integralNearestLine;
     p.truncationFlags = false;  // integrals never read them
     if (plan.quality == Quality::Full) return p;

@@ -162,7 +162,6 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
     HorizonParams& hp = plan.following;
     hp.refraction = params.refraction;
     hp.curvature = params.curvature;
-    hp.threads = params.threads;
     hp.truncationFlags = false;
     hp.nearestLine = params.nearestLine;
     hp.nearFieldSteps = params.nearFieldSteps;
@@ -237,7 +236,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     if (highestSun <= -params.sunDiameterDeg / 2) {
         // The whole disk is below the horizon everywhere: night (rows on every thread).
         const std::size_t w = t.width();
-        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+        parallelFor(0, t.height(), [&](std::size_t row) {
             const float* h = t.heightsM.rowPtr(row);
             float* vis = frame.light.visibility.rowPtr(row);
             float* irr = frame.light.irradiance.rowPtr(row);
@@ -289,7 +288,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     if (horizons.size() == 1) {
         // One sweep: the sun's angles of a row into buffers, then the vectorised shading pass.
         const std::size_t width = t.width();
-        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+        parallelFor(0, t.height(), [&](std::size_t row) {
             thread_local std::vector<double> buffer;
             buffer.resize(5 * width);
             detail::SunRowAngles angles{buffer.data(), buffer.data() + width, buffer.data() + 2 * width,
@@ -309,7 +308,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         });
         return frame;
     }
-    parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+    parallelFor(0, t.height(), [&](std::size_t row) {
         forEachSunInRow(field, row, t.width(), [&](std::size_t col, const SunAngles& sun) {
             if (std::isnan(t.heightsM(col, row))) return;
             const SunTerms terms = sunTerms(normals.at(col, row), horizonAt(col, row, sun.azimuthDeg), sun,

@@ -42,7 +42,6 @@ struct SunFrameParams {
     int nearFieldSteps = 0;
     /// As HorizonParams::farFieldCrossings (the scene plan's).
     bool farFieldCrossings = true;
-    int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.
     SunSweepStrategy strategy = SunSweepStrategy::Cheapest;
 };

@@ -56,7 +56,7 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
 }
 
 HorizonParams horizonParams(const SearchRequest& search, const ScenePlan& plan) {
-    return planHorizonParams(plan, search.refraction, search.threads);
+    return planHorizonParams(plan, search.refraction);
 }
 
 HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
@@ -73,11 +73,11 @@ HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& p
 
 HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
                              std::size_t directions) {
-    return planIntegralParams(terrain, plan, directions, search.refraction, search.threads);
+    return planIntegralParams(terrain, plan, directions, search.refraction);
 }
 
 SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan) {
-    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, search.refraction, search.threads);
+    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, search.refraction);
     if (search.maxDistanceM) p.maxDistanceM = *search.maxDistanceM;
     return p;
 }
@@ -91,7 +91,7 @@ double sunFrameDistanceM(const SearchRequest& search, double sunDiameterDeg, con
 
 Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_t directions,
                       const HorizonParams& params, ProgressCounter* progress) {
-    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
+    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {});
     sweepDirections(terrain, params, directions,
                     [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
     return std::move(acc).finish(0.0).skyK;
