@@ -4,8 +4,9 @@
 // since before the near field, so the same file built in a worktree of an earlier
 // commit times that commit's sweep: run the two builds in alternation and quote the median of
 // the per-round ratios (docs/journal.md, "Against the sweep before the near field").
-// Usage: demlight_plan_bench DEM [REPEATS [AZIMUTH]]   (default 9 repeats; one azimuth in degrees
-// instead of the four, e.g. for a profiler)
+// Usage: demlight_plan_bench [--whole] DEM [REPEATS [AZIMUTH]]   (default 9 repeats; one azimuth in
+// degrees instead of the four, e.g. for a profiler; --whole: the plan's sweep over the whole DEM,
+// without its range limit, as sky and aperture integrals run it)
 #include "demlight/geo/dem.h"
 #include "demlight/lighting/horizon.h"
 #include "demlight/lighting/quality.h"
@@ -16,6 +17,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
+#include <string>
 #include <vector>
 
 namespace {
@@ -30,6 +33,11 @@ double threadSeconds() {
 
 int main(int argc, char** argv) {
     using namespace demlight;
+    const bool whole = argc > 1 && std::string(argv[1]) == "--whole";
+    if (whole) {
+        --argc;
+        ++argv;
+    }
     if (argc < 2) {
         std::fprintf(stderr, "usage: %s DEM [REPEATS]\n", argv[0]);
         return 2;
@@ -43,7 +51,8 @@ int main(int argc, char** argv) {
         const QualityBudget budget;
         const ScenePlan plan = planScene(t, Quality::Auto, budget);
         HorizonParams p = planHorizonParams(plan, budget.refraction, 1);
-        std::printf("search %.1f m", plan.maxDistanceM);
+        if (whole) p.maxDistanceM = std::numeric_limits<double>::infinity();
+        std::printf("search %.1f m", p.maxDistanceM);
         HorizonMap map;
         SweepBuffers buffers;
         const double cells = static_cast<double>(t.width()) * static_cast<double>(t.height());

@@ -421,7 +421,7 @@ int main(int argc, char** argv) {
         lines.sigma.assign(t.height(), 0.0);
         for (std::size_t r = 1; r < t.height(); ++r) lines.sigma[r] = lines.sigma[r - 1] + t.cellHeightM[r - 1];
         lines.invR = demlight::inverseEffectiveRadius(p);
-        lines.geometry = {lines.sigma, lines.invR};
+        lines.geometry = {lines.sigma, lines.invR, {}};
         lines.uniform = lines.geometry;
         for (std::size_t r = 0; r < t.height(); ++r)
             lines.uniform.sigmaM[r] = lines.sigma.back() * static_cast<double>(r) / static_cast<double>(t.height() - 1);

@@ -1,8 +1,9 @@
 // The hull kernel of a block of parallel lines (demlight/lighting/hull_lanes.h): the double
-// reference against a brute-force maximum over every earlier sample, and the AVX-512 float
-// kernel against the reference within hullSlopeErrorBound, on profiles built to stress its window
-// (deep pops past the five vertices it keeps, plateaus, nodata runs, ragged blocks) and on the
-// columns of real DEMs.
+// reference against a brute-force maximum over every earlier sample, the portable float kernel
+// against the reference within hullSlopeErrorBound, and the AVX-512 kernel bit for bit against
+// the portable one, on profiles built to stress its window (deep pops past the five vertices it
+// keeps, plateaus, nodata runs, ragged blocks) and on the columns of real DEMs.
+#include "demlight/core/error.h"
 #include "demlight/core/simd.h"
 #include "demlight/geo/dem.h"
 #include "demlight/lighting/horizon.h"
@@ -46,15 +47,22 @@ HullGeometry geometry(std::size_t n, double spacingM, double growth, double invR
     return g;
 }
 
-std::vector<float> run(const Profiles& p, bool vector) {
+enum class Kernel { reference, portable, vector };
+
+std::vector<float> run(const Profiles& p, Kernel kernel) {
     std::vector<float> out(p.heights.size(), 7.0f);
     HullScratch scratch;
     const HullBlock block{p.heights.data(), out.data(), p.stride, p.lines};
-    if (vector)
-        hullSlopesVector(p.geometry, block, scratch);
-    else
-        hullSlopesReference(p.geometry, block, scratch);
+    switch (kernel) {
+    case Kernel::reference: hullSlopesReference(p.geometry, block, scratch); break;
+    case Kernel::portable: hullSlopesPortable(p.geometry, block, scratch); break;
+    case Kernel::vector: hullSlopesVector(p.geometry, block, scratch); break;
+    }
     return out;
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
 /// The largest |h|, drop and |h - drop| of the profiles (the bound's maxAbsGM).
@@ -76,10 +84,14 @@ struct Agreement {
     std::size_t cells = 0;   // cells with a horizon in both
 };
 
-/// The vector kernel against the reference on p: nodata and no-horizon cells alike, every other
-/// cell within the bound; the samples outside the block's lines untouched.
+/// The float kernels against the reference on p: nodata and no-horizon cells alike, every other
+/// cell within the bound, the samples outside the block's lines untouched; and where the
+/// processor runs the AVX-512 kernel, its bits the portable kernel's.
 Agreement expectVectorMatchesReference(const Profiles& p, const std::string& what) {
-    const std::vector<float> ref = run(p, false), vec = run(p, true);
+    const std::vector<float> ref = run(p, Kernel::reference), vec = run(p, Kernel::portable);
+    if (hullVectorKernelAvailable()) {
+        EXPECT_TRUE(sameBits(run(p, Kernel::vector), vec)) << what << ": the AVX-512 kernel differs from the portable one";
+    }
     const HullSlopeBound limit = hullSlopeErrorBound(p.geometry, maxAbsG(p));
     Agreement a;
     std::size_t failures = 0;
@@ -142,7 +154,7 @@ TEST(HullLanes, ReferenceIsTheMaximumOverEveryEarlierSample) {
             // Nodata, plateaus (whole metres repeat) and rough ground.
             h = u < 0.1 ? kNaN : u < 0.4 ? std::round(static_cast<float>(20.0 * uniform(rng))) : static_cast<float>(300.0 * uniform(rng));
         }
-        const std::vector<float> ref = run(p, false);
+        const std::vector<float> ref = run(p, Kernel::reference);
         for (std::size_t b = 0; b < lines; ++b)
             for (std::size_t i = 0; i < n; ++i) {
                 const float h = p.at(i, b), got = ref[i * lines + b];
@@ -169,7 +181,6 @@ TEST(HullLanes, ReferenceIsTheMaximumOverEveryEarlierSample) {
 }
 
 TEST(HullLanes, VectorMatchesReferenceOnDeepPops) {
-    SKIP_WITHOUT_VECTOR_KERNEL();
     for (const double growth : {0.0, 2e-6}) {
         const Profiles p = rampsAndPeaks(40, 3000, geometry(3000, 30.0, growth, 1.0 / 7.3e6));
         expectVectorMatchesReference(p, growth > 0 ? "ramps, varying spacing" : "ramps, uniform spacing");
@@ -177,7 +188,6 @@ TEST(HullLanes, VectorMatchesReferenceOnDeepPops) {
 }
 
 TEST(HullLanes, VectorMatchesReferenceOnPlateausAndNodataRuns) {
-    SKIP_WITHOUT_VECTOR_KERNEL();
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     const std::size_t n = 2500, lines = 33;
@@ -208,7 +218,6 @@ TEST(HullLanes, VectorMatchesReferenceOnPlateausAndNodataRuns) {
 }
 
 TEST(HullLanes, VectorMatchesReferenceOnRoughGround) {
-    SKIP_WITHOUT_VECTOR_KERNEL();
     std::mt19937 rng(11);
     std::normal_distribution<double> step(0.0, 4.0);
     const std::size_t n = 4000, lines = 64;
@@ -238,7 +247,6 @@ Agreement expectColumnsMatch(const Terrain& t, const std::string& name) {
 }
 
 TEST(HullLanes, VectorMatchesReferenceOnSampleDems) {
-    SKIP_WITHOUT_VECTOR_KERNEL();
     for (const char* file : {"rocky_mountain_np_dem.tif", "luxembourg_elev_terra.tif", "harlem_dsm_trees_1m.tif"}) {
         const Terrain t = loadDem(std::string(DEMLIGHT_SAMPLES_DIR) + "/" + file).terrain;
         EXPECT_GT(expectColumnsMatch(t, file).cells, 0u) << file;
@@ -246,7 +254,6 @@ TEST(HullLanes, VectorMatchesReferenceOnSampleDems) {
 }
 
 TEST(HullLanes, VectorMatchesReferenceOnSharedDems) {
-    SKIP_WITHOUT_VECTOR_KERNEL();
     std::size_t found = 0;
     for (const char* file : {"N44W072.hgt", "N48W125_srtm1.tif"}) {
         // A band of columns across the whole height keeps the test short.
@@ -347,20 +354,96 @@ TEST(HullLanes, DispatchFollowsSimdPath) {
         hullSlopes(p.geometry, HullBlock{p.heights.data(), out.data(), p.stride, p.lines}, scratch);
         return out;
     };
-    const auto sameBits = [](const std::vector<float>& a, const std::vector<float>& b) {
-        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](float x, float y) {
-                   return std::memcmp(&x, &y, sizeof x) == 0;
-               });
-    };
+    const std::vector<float> portable = run(p, Kernel::portable);
     {
-        detail::ScopedSimdPath portable(SimdPath::Portable);
-        EXPECT_TRUE(sameBits(viaDispatch(), run(p, false)));
+        detail::ScopedSimdPath path(SimdPath::Portable);
+        EXPECT_TRUE(sameBits(viaDispatch(), portable));
     }
+    EXPECT_FALSE(sameBits(portable, run(p, Kernel::reference))) << "the float kernel should round differently from the double one";
     if (!hullVectorKernelAvailable()) GTEST_SKIP() << "no AVX-512 on this processor: only the portable path checked";
     detail::ScopedSimdPath avx512(SimdPath::Avx512);
-    const std::vector<float> vec = run(p, true);
-    EXPECT_TRUE(sameBits(viaDispatch(), vec));
-    EXPECT_FALSE(sameBits(vec, run(p, false))) << "the float kernel should round differently from the double one";
+    EXPECT_TRUE(sameBits(viaDispatch(), portable)) << "the AVX-512 path gives the portable path's bits";
+}
+
+/// Rows of a geographic grid walked along them: each line its own spacing (HullGeometry::lineScale).
+/// The reference is the brute-force maximum at each line's distances, the float kernels within
+/// the bound (a bound that ignored the factors would be too tight: the spacing ranges over 3x),
+/// and a block of one line a factor gives what the same line gives alone at its own spacing.
+TEST(HullLanes, LineFactorsGiveEachLineItsOwnSpacing) {
+    std::mt19937 rng(5);
+    std::normal_distribution<double> step(0.0, 6.0);
+    const std::size_t n = 1500, lines = 37;
+    const double invR = 1.0 / 7.3e6;
+    Profiles p{geometry(n, 1.0, 0.0, invR), std::vector<float>(n * lines), lines, lines};
+    for (std::size_t b = 0; b < lines; ++b) {
+        p.geometry.lineScale.push_back(10.0 + 20.0 * static_cast<double>(b) / lines);
+        double h = 300.0;
+        for (std::size_t i = 0; i < n; ++i) p.at(i, b) = (i + b) % 97 < 5 ? kNaN : static_cast<float>(h += step(rng));
+    }
+    const std::vector<float> ref = run(p, Kernel::reference);
+    for (std::size_t b = 0; b < lines; b += 6)
+        for (std::size_t i = 0; i < n; i += 37) {
+            if (std::isnan(p.at(i, b))) continue;
+            double best = -std::numeric_limits<double>::infinity();
+            for (std::size_t j = 0; j < i; ++j) {
+                if (std::isnan(p.at(j, b))) continue;
+                const double d = static_cast<double>(i - j) * p.geometry.lineScale[b];
+                best = std::max(best, (static_cast<double>(p.at(j, b)) - p.at(i, b)) / d - 0.5 * d * invR);
+            }
+            if (std::isinf(best))
+                EXPECT_EQ(ref[i * lines + b], best);
+            else
+                EXPECT_NEAR(ref[i * lines + b], best, 1e-6 * std::abs(best) + 1e-12) << "line " << b << " sample " << i;
+        }
+    expectVectorMatchesReference(p, "line factors");
+    // Line 20 alone, its spacing in sigmaM.
+    Profiles one{geometry(n, p.geometry.lineScale[20], 0.0, invR), std::vector<float>(n), 1, 1};
+    for (std::size_t i = 0; i < n; ++i) one.at(i, 0) = p.at(i, 20);
+    const std::vector<float> alone = run(one, Kernel::reference);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float a = alone[i], b = ref[i * lines + 20];
+        if (std::isnan(a) || std::isinf(a))
+            EXPECT_TRUE((std::isnan(a) && std::isnan(b)) || a == b) << i;
+        else
+            EXPECT_NEAR(a, b, 1e-6 * std::abs(a)) << i;
+    }
+    // Factors over a varying spacing are refused.
+    Profiles varying = p;
+    varying.geometry = geometry(n, 1.0, 1e-3, invR);
+    varying.geometry.lineScale = p.geometry.lineScale;
+    EXPECT_THROW(run(varying, Kernel::portable), Error);
+}
+
+/// Heights and output walked with their own row steps, upward (a negative step), and the first
+/// rows walked but not written: the same slopes as the block copied in walking order.
+TEST(HullLanes, RowStepsAndFirstOutputRow) {
+    const std::size_t n = 700, lines = 21, stride = 25, skip = 90;
+    Profiles p = rampsAndPeaks(lines, n, geometry(n, 20.0, 1e-6, 1.0 / 7.3e6));
+    // The same heights stored bottom row first, `stride` apart; the output 16 floats a row.
+    std::vector<float> upside(n * stride, kNaN);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t b = 0; b < lines; ++b) upside[(n - 1 - i) * stride + b] = p.at(i, b);
+    for (const Kernel kernel : {Kernel::reference, Kernel::portable, Kernel::vector}) {
+        if (kernel == Kernel::vector && !hullVectorKernelAvailable()) continue;
+        const std::vector<float> plain = run(p, kernel);
+        std::vector<float> out(n * 32, 7.0f);
+        HullBlock block{upside.data() + (n - 1) * stride, out.data(), 0, lines};
+        block.heightsRowStep = -static_cast<std::ptrdiff_t>(stride);
+        block.outRowStep = 32;
+        block.firstOutRow = skip;
+        HullScratch scratch;
+        if (kernel == Kernel::reference) hullSlopesReference(p.geometry, block, scratch);
+        if (kernel == Kernel::portable) hullSlopesPortable(p.geometry, block, scratch);
+        if (kernel == Kernel::vector) hullSlopesVector(p.geometry, block, scratch);
+        std::size_t wrong = 0;
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t b = 0; b < 32; ++b) {
+                const float got = out[i * 32 + b];
+                const float want = i < skip || b >= lines ? 7.0f : plain[i * p.stride + b];
+                wrong += std::memcmp(&got, &want, sizeof got) != 0;
+            }
+        EXPECT_EQ(wrong, 0u) << "kernel " << static_cast<int>(kernel);
+    }
 }
 
 }  // namespace

@@ -16,14 +16,38 @@ namespace {
 constexpr float kNoHorizon = -std::numeric_limits<float>::infinity();
 
 void checkBlock(const HullGeometry& geometry, const HullBlock& block) {
-    if (block.lines > block.stride)
+    if (block.heightsRowStep == 0 && block.outRowStep == 0 && block.lines > block.stride)
         throw Error("hull kernel: a block of " + std::to_string(block.lines) + " lines in rows of " +
                     std::to_string(block.stride) + " samples");
     if (!geometry.sigmaM.empty() && geometry.sigmaM.front() != 0.0)
         throw Error("hull kernel: sigmaM[0] must be 0, not " + std::to_string(geometry.sigmaM.front()));
+    if (!geometry.lineScale.empty() && geometry.lineScale.size() < block.lines)
+        throw Error("hull kernel: " + std::to_string(geometry.lineScale.size()) + " line factors for " +
+                    std::to_string(block.lines) + " lines");
+}
+
+/// The steps between a block's samples in its heights and its output (floats).
+std::ptrdiff_t heightsStep(const HullBlock& block) {
+    return block.heightsRowStep != 0 ? block.heightsRowStep : static_cast<std::ptrdiff_t>(block.stride);
+}
+std::ptrdiff_t outStep(const HullBlock& block) {
+    return block.outRowStep != 0 ? block.outRowStep : static_cast<std::ptrdiff_t>(block.stride);
+}
+
+/// The spacing the float kernels count distances in (HullGeometry::spacingM).
+double uniformSpacing(const HullGeometry& geometry) {
+    const std::size_t n = geometry.sigmaM.size();
+    if (geometry.spacingM > 0.0) return geometry.spacingM;
+    return n > 1 ? geometry.sigmaM.back() / static_cast<double>(n - 1) : 1.0;
+}
+
+/// Line b's factor on sigmaM (HullGeometry::lineScale).
+double lineFactor(const HullGeometry& geometry, std::size_t b) {
+    return geometry.lineScale.empty() ? 1.0 : geometry.lineScale[b];
 }
 
 void checkShear(const HullGeometry& geometry, const HullShear& grid) {
+    if (!geometry.lineScale.empty()) throw Error("hull kernel: sheared lines take no line factors");
     if (!(grid.shearCols >= 0.0 && grid.shearCols <= 1.0))
         throw Error("hull kernel: shearCols " + std::to_string(grid.shearCols) + " outside [0, 1]");
     if (geometry.sigmaM.size() != grid.height)
@@ -73,23 +97,26 @@ void hullSlopesReference(const HullGeometry& geometry, const HullBlock& block, H
     scratch.hullD.resize(2 * n * block.lines);
     std::vector<std::size_t> top(block.lines, 0);
     const double invR = geometry.invRadius;
+    const std::ptrdiff_t hStep = heightsStep(block), oStep = outStep(block);
     for (std::size_t i = 0; i < n; ++i) {
-        const double s = geometry.sigmaM[i];
-        const double drop = 0.5 * s * s * invR;
-        const float* h = block.heightsM + i * block.stride;
-        float* out = block.out + i * block.stride;
+        const float* h = block.heightsM + static_cast<std::ptrdiff_t>(i) * hStep;
+        float* out = block.out + static_cast<std::ptrdiff_t>(i) * oStep;
+        const bool written = i >= block.firstOutRow;
         for (std::size_t b = 0; b < block.lines; ++b) {
             if (std::isnan(h[b])) {
-                out[b] = h[b];
+                if (written) out[b] = h[b];
                 continue;
             }
+            const double s = geometry.sigmaM[i] * lineFactor(geometry, b);
+            const double drop = 0.5 * s * s * invR;
             double* v = scratch.hullD.data() + 2 * b * n;
             std::size_t t = top[b];
             const double g = static_cast<double>(h[b]) - drop;
             // Pop the top vertex v1 unless the slope to v2 (below it, farther) is under the slope
             // to v1: then v1 stands above the sight line to v2 and stays on the hull.
             while (t >= 2 && !((v[2 * t - 3] - g) * (s - v[2 * t - 2]) < (v[2 * t - 1] - g) * (s - v[2 * t - 4]))) --t;
-            out[b] = t >= 1 ? static_cast<float>((v[2 * t - 1] - g) / (s - v[2 * t - 2]) - s * invR) : kNoHorizon;
+            if (written)
+                out[b] = t >= 1 ? static_cast<float>((v[2 * t - 1] - g) / (s - v[2 * t - 2]) - s * invR) : kNoHorizon;
             v[2 * t] = s;
             v[2 * t + 1] = g;
             top[b] = t + 1;
@@ -132,14 +159,160 @@ HullSlopeBound hullSlopeErrorBound(const HullGeometry& geometry, double maxAbsGM
     if (n < 2) return {};
     const auto ulp = [](double x) { return x > 0.0 ? std::ldexp(1.0, std::ilogb(x) - 23) : 0.0; };
     double dMin = std::numeric_limits<double>::infinity(), offMax = 0.0;
-    const double spacing = geometry.sigmaM.back() / static_cast<double>(n - 1);
+    const double spacing = uniformSpacing(geometry);
     for (std::size_t i = 1; i < n; ++i) {
         dMin = std::min(dMin, geometry.sigmaM[i] - geometry.sigmaM[i - 1]);
         offMax = std::max(offMax, std::abs(geometry.sigmaM[i] - static_cast<double>(i) * spacing));
     }
-    const double relative = std::ldexp(1.0, -20) + 2.0 * ulp(offMax) / dMin;
-    const double curve = geometry.sigmaM.back() * geometry.invRadius;
-    return {2.0 * (2.0 * 3.0 * ulp(maxAbsGM) / dMin + relative * 2.0 * curve), 2.0 * relative};
+    // Line factors scale every distance of a line: the shortest step and the longest line matter.
+    double scaleMin = 1.0, scaleMax = 1.0;
+    if (!geometry.lineScale.empty()) {
+        const auto [lo, hi] = std::minmax_element(geometry.lineScale.begin(), geometry.lineScale.end());
+        scaleMin = *lo;
+        scaleMax = *hi;
+    }
+    dMin *= scaleMin;
+    const double gRoundings = geometry.lineScale.empty() ? 3.0 : 4.0;
+    const double relative = std::ldexp(1.0, -20) + 2.0 * ulp(offMax * scaleMax) / dMin;
+    const double curve = geometry.sigmaM.back() * scaleMax * geometry.invRadius;
+    return {2.0 * (2.0 * gRoundings * ulp(maxAbsGM) / dMin + relative * 2.0 * curve), 2.0 * relative};
+}
+
+namespace {
+
+/// Per-sample floats shared by every line: the drop sigma^2 / (2 R), the curvature term sigma / R,
+/// and the offset of sigma from a uniform spacing (sigma - i * spacing).
+struct RowTables {
+    const float* drop;
+    const float* curve;
+    const float* offset;
+    float spacing;
+    double spacingM;  // the same in double, for the line factors
+};
+
+/// The per-sample tables of the float kernels in scratch.rowTables; whether the offsets are not all 0.
+bool makeRowTables(const HullGeometry& geometry, HullScratch& scratch, RowTables& t) {
+    const std::size_t n = geometry.sigmaM.size();
+    if (n >= (std::size_t{1} << 24))
+        throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
+    // The uniform spacing the row differences are scaled by, and each sample's offset from it.
+    const double spacing = uniformSpacing(geometry);
+    scratch.rowTables.resize(3 * n);
+    float* drop = scratch.rowTables.data();
+    float* curve = drop + n;
+    float* offset = curve + n;
+    bool varying = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double s = geometry.sigmaM[i];
+        drop[i] = static_cast<float>(0.5 * s * s * geometry.invRadius);
+        curve[i] = static_cast<float>(s * geometry.invRadius);
+        const double off = s - static_cast<double>(i) * spacing;
+        // Offsets below float's rounding of a distance are none: the row differences are exact.
+        offset[i] = std::abs(off) > std::ldexp(spacing, -24) ? static_cast<float>(off) : 0.0f;
+        varying = varying || offset[i] != 0.0f;
+    }
+    t = {drop, curve, offset, static_cast<float>(spacing), spacing};
+    return varying;
+}
+
+/// A line's spacing and the factors of its drop r^2 s^2 / (2 R) and curvature term r s / R in
+/// float, where lines have factors (HullGeometry::lineScale; the tables serve the others).
+struct LineFloats {
+    float spacing, dropScale, curveScale;
+};
+LineFloats lineFloats(const HullGeometry& geometry, const RowTables& t, std::size_t b) {
+    const double s = t.spacingM * lineFactor(geometry, b);
+    return {static_cast<float>(s), static_cast<float>(0.5 * s * s * geometry.invRadius),
+            static_cast<float>(s * geometry.invRadius)};
+}
+
+/// The pop tests' distance from a vertex at `row` (with `offset`) to the sample at rf (with
+/// offR): in samples where the spacing is uniform (it cancels from the tests), metres otherwise.
+/// The integer difference is exact; the offsets are small, so the sum keeps float's relative
+/// precision.
+template <bool kVarying>
+inline float testDistance1(float rf, float row, float offR, float offset, float spacing) {
+    const float k = rf - row;
+    if constexpr (kVarying) return __builtin_fmaf(k, spacing, offR - offset);
+    return k;
+}
+
+/// One line of a block through the vector kernel's arithmetic (groupLines), a lane at a time: the
+/// pops a loop over its test, the tangent one division. hull: 3 n floats (g, row, offset of each
+/// vertex, bottom first).
+template <bool kVarying, bool kPerLine>
+void portableLine(const RowTables& t, const LineFloats& lf, const float* heights, std::ptrdiff_t hStep, float* out,
+                  std::ptrdiff_t oStep, std::size_t firstOut, std::size_t n, float* hull) {
+    float* const hg = hull;
+    float* const hr = hull + n;
+    float* const ho = hull + 2 * n;
+    const float spacing = kPerLine ? lf.spacing : t.spacing;
+    std::size_t top = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float h = heights[static_cast<std::ptrdiff_t>(i) * hStep];
+        float* const o = out + static_cast<std::ptrdiff_t>(i) * oStep;
+        if (std::isnan(h)) {
+            if (i >= firstOut) *o = h;
+            continue;
+        }
+        const float rf = static_cast<float>(i), offR = t.offset[i];
+        const float g = h - (kPerLine ? (rf * rf) * lf.dropScale : t.drop[i]);
+        // Pop the top vertex c unless the slope to b (below it) is under the slope to c.
+        while (top >= 2) {
+            const std::size_t c = top - 1, b = top - 2;
+            const float dc = testDistance1<kVarying>(rf, hr[c], offR, ho[c], spacing);
+            const float db = testDistance1<kVarying>(rf, hr[b], offR, ho[b], spacing);
+            if (!((hg[b] - g) * dc >= (hg[c] - g) * db)) break;
+            --top;
+        }
+        if (i >= firstOut) {
+            float slope = kNoHorizon;
+            if (top >= 1) {
+                const float k1 = rf - hr[top - 1];
+                const float d1 = kVarying ? __builtin_fmaf(k1, spacing, offR - ho[top - 1]) : k1 * spacing;
+                slope = (hg[top - 1] - g) / d1 - (kPerLine ? rf * lf.curveScale : t.curve[i]);
+            }
+            *o = slope;
+        }
+        hg[top] = g;
+        hr[top] = rf;
+        ho[top] = offR;
+        ++top;
+    }
+}
+
+/// Throws where a block has line factors over a varying spacing (the kernels keep one spacing
+/// a line); returns whether it has factors.
+bool perLine(const HullGeometry& geometry, bool varying) {
+    if (geometry.lineScale.empty()) return false;
+    if (varying) throw Error("hull kernel: line factors need a uniform spacing along the lines");
+    return true;
+}
+
+}  // namespace
+
+void hullSlopesPortable(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
+    checkBlock(geometry, block);
+    const std::size_t n = geometry.sigmaM.size();
+    if (n == 0 || block.lines == 0) return;
+    RowTables t{};
+    const bool varying = makeRowTables(geometry, scratch, t);
+    const bool lines = perLine(geometry, varying);
+    scratch.lineHull.resize(3 * n);
+    const std::ptrdiff_t hStep = heightsStep(block), oStep = outStep(block);
+    for (std::size_t b = 0; b < block.lines; ++b) {
+        const LineFloats lf = lineFloats(geometry, t, b);
+        const auto run = [&]<bool kVarying, bool kPerLine>() {
+            portableLine<kVarying, kPerLine>(t, lf, block.heightsM + b, hStep, block.out + b, oStep, block.firstOutRow,
+                                             n, scratch.lineHull.data());
+        };
+        if (lines)
+            run.template operator()<false, true>();
+        else if (varying)
+            run.template operator()<true, false>();
+        else
+            run.template operator()<false, false>();
+    }
 }
 
 #ifdef DEMLIGHT_HAS_AVX512_KERNELS
@@ -158,14 +331,6 @@ static_assert(kSlots > kRefillKept);
 /// How far ahead the heights and the output are prefetched (rows of one group).
 constexpr std::size_t kPrefetchRows = 12;
 
-/// Per-sample floats shared by every line: the drop sigma^2 / (2 R), the curvature term sigma / R,
-/// and the offset of sigma from a uniform spacing (sigma - i * spacing).
-struct RowTables {
-    const float* drop;
-    const float* curve;
-    const float* offset;
-    float spacing;
-};
 
 /// A group's scratch: each point's dropped height and the row of the hull vertex below it when it
 /// was pushed (-1: none), at [row * kLanes + lane].
@@ -185,12 +350,6 @@ DEMLIGHT_AVX512 inline __m512 testDistance(__m512 rf, __m512 row, __m512 offR, _
     return k;
 }
 
-template <bool kVarying>
-DEMLIGHT_AVX512 inline float testDistance1(float rf, float row, float offR, float offset, float spacing) {
-    const float k = rf - row;
-    if constexpr (kVarying) return __builtin_fmaf(k, spacing, offR - offset);
-    return k;
-}
 
 /// A group's registers in memory for walkLanes: the new points' g, the rows under the windows,
 /// and slots 1..4 of the windows after the vector pops (g, row, offset).
@@ -253,30 +412,43 @@ DEMLIGHT_AVX512 __attribute__((noinline)) void walkLanes(unsigned walk, unsigned
     }
 }
 
-/// Sixteen lines of a row-major block, one a column: their samples are the block's cells.
+/// Sixteen lines of a block, one a column: their samples are the block's cells, hStep / oStep
+/// floats apart in the heights / the output; samples before firstOut are not written.
 struct ColumnLines {
     const float* heights;
     float* out;
-    std::size_t stride, col0, n;
+    std::ptrdiff_t hStep, oStep;
+    std::size_t col0, n, firstOut;
     __mmask16 lanes;  // the lines that exist
 
     // Inlined by force: out of line, a function of prefetches alone counts as having no effect,
     // and its calls are dropped.
     DEMLIGHT_AVX512 DEMLIGHT_INLINE void prefetch(std::size_t r) const {
         if (r + kPrefetchRows >= n) return;
-        const std::size_t ahead = (r + kPrefetchRows) * stride + col0;
-        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(heights + ahead + kLanes - 1), _MM_HINT_T0);
-        __builtin_prefetch(out + ahead, 1);
-        __builtin_prefetch(out + ahead + kLanes - 1, 1);
+        const auto ahead = static_cast<std::ptrdiff_t>(r + kPrefetchRows);
+        const float* h = heights + ahead * hStep + static_cast<std::ptrdiff_t>(col0);
+        float* o = out + ahead * oStep + static_cast<std::ptrdiff_t>(col0);
+        _mm_prefetch(reinterpret_cast<const char*>(h), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(h + kLanes - 1), _MM_HINT_T0);
+        __builtin_prefetch(o, 1);
+        __builtin_prefetch(o + kLanes - 1, 1);
     }
     DEMLIGHT_AVX512 __m512 load(std::size_t r, __m512 nan) const {
-        return _mm512_mask_loadu_ps(nan, lanes, heights + r * stride + col0);
+        return _mm512_mask_loadu_ps(nan, lanes,
+                                    heights + static_cast<std::ptrdiff_t>(r) * hStep + static_cast<std::ptrdiff_t>(col0));
     }
     /// value: the slopes, NaN where the sample has no data.
     DEMLIGHT_AVX512 void store(std::size_t r, __m512 value) const {
-        _mm512_mask_storeu_ps(out + r * stride + col0, lanes, value);
+        if (r < firstOut) return;
+        _mm512_mask_storeu_ps(out + static_cast<std::ptrdiff_t>(r) * oStep + static_cast<std::ptrdiff_t>(col0), lanes,
+                              value);
     }
+};
+
+/// A group's lines' spacing and the factors of their drop and curvature term (LineFloats), one a
+/// lane; unused without line factors.
+struct alignas(64) LaneFloats {
+    float spacing[kLanes], dropScale[kLanes], curveScale[kLanes];
 };
 
 /// The lanes whose columns i + lane lie in [0, width).
@@ -342,11 +514,13 @@ struct ShearedLines {
 };
 
 /// Rows [r0, r1) of sixteen lines (Lines: ColumnLines or ShearedLines), each lane's hull empty at r0.
-template <bool kVarying, class Lines>
-DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoints& points, std::size_t r0,
-                                std::size_t r1) {
+/// kPerLine: each lane its own spacing, drop and curvature factors (lf), else the tables' (t).
+template <bool kVarying, bool kPerLine, class Lines>
+DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const LaneFloats& lf, const GroupPoints& points,
+                                std::size_t r0, std::size_t r1) {
+    static_assert(!(kVarying && kPerLine), "line factors need a uniform spacing");
     const __m512 nan = _mm512_set1_ps(std::numeric_limits<float>::quiet_NaN());
-    const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps(), two = _mm512_set1_ps(2.0f);
+    const __m512 none = _mm512_set1_ps(-1.0f), zero = _mm512_setzero_ps();
     // Each lane's window of hull vertices, top first: dropped height g (NaN: no vertex), row and
     // offset; U: the row of the vertex under the window's lowest one (-1: none, the window holds
     // the whole hull).
@@ -358,7 +532,9 @@ DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoi
     }
     __m512 U = none;
     const __m512 noHorizon = _mm512_set1_ps(kNoHorizon);
-    const __m512 spacing = _mm512_set1_ps(t.spacing);
+    const __m512 spacing = kPerLine ? _mm512_load_ps(lf.spacing) : _mm512_set1_ps(t.spacing);
+    const __m512 dropScale = kPerLine ? _mm512_load_ps(lf.dropScale) : zero;
+    const __m512 curveScale = kPerLine ? _mm512_load_ps(lf.curveScale) : zero;
     // Locals, so that the stores below cannot make the compiler read them again.
     const float* const drop = t.drop;
     const float* const curve = t.curve;
@@ -375,7 +551,8 @@ DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoi
         }
         const __m512 rf = _mm512_set1_ps(static_cast<float>(r));
         const __m512 offR = _mm512_set1_ps(offsets[r]);
-        const __m512 g = _mm512_sub_ps(h, _mm512_set1_ps(drop[r]));
+        const __m512 g = _mm512_sub_ps(
+            h, kPerLine ? _mm512_mul_ps(_mm512_mul_ps(rf, rf), dropScale) : _mm512_set1_ps(drop[r]));
 
         // Pop test j (vertex j of the window, 0 on top): pop it unless the slope to vertex j + 1
         // is under the slope to vertex j. NaN (no vertex, or no data) compares false: no pop.
@@ -439,13 +616,13 @@ DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoi
             }
         }
 
-        // The slope to the top vertex: a reciprocal estimate (2^-14) and one Newton step.
+        // The slope to the top vertex: one correctly rounded division, so that the portable
+        // kernel, which divides too, gets the same bits.
         const __m512 k1 = _mm512_sub_ps(rf, Q[0]);
         const __m512 d1 = kVarying ? _mm512_fmadd_ps(k1, spacing, _mm512_sub_ps(offR, Os[0]))
                                    : _mm512_mul_ps(k1, spacing);
-        __m512 inv = _mm512_rcp14_ps(d1);
-        inv = _mm512_mul_ps(inv, _mm512_fnmadd_ps(d1, inv, two));
-        __m512 slope = _mm512_fmsub_ps(_mm512_sub_ps(S[0], g), inv, _mm512_set1_ps(curve[r]));
+        const __m512 curveR = kPerLine ? _mm512_mul_ps(rf, curveScale) : _mm512_set1_ps(curve[r]);
+        __m512 slope = _mm512_sub_ps(_mm512_div_ps(_mm512_sub_ps(S[0], g), d1), curveR);
         slope = _mm512_mask_blend_ps(topLeft, noHorizon, slope);
         lines.store(r, _mm512_mask_blend_ps(valid, h, slope));
 
@@ -464,16 +641,27 @@ DEMLIGHT_AVX512 void groupLines(Lines& lines, const RowTables& t, const GroupPoi
     }
 }
 
-template <bool kVarying>
-DEMLIGHT_AVX512 void vectorBlock(const HullBlock& block, std::size_t n, const RowTables& t, HullScratch& scratch) {
+template <bool kVarying, bool kPerLine>
+DEMLIGHT_AVX512 void vectorBlock(const HullGeometry& geometry, const HullBlock& block, std::size_t n,
+                                 const RowTables& t, HullScratch& scratch) {
     const std::size_t groups = (block.lines + kLanes - 1) / kLanes;
     scratch.pointG.resize(n * kLanes);
     scratch.pointLink.resize(n * kLanes);
     const GroupPoints points{scratch.pointG.data(), scratch.pointLink.data()};
     for (std::size_t q = 0; q < groups; ++q) {
         const std::size_t col0 = q * kLanes, count = std::min<std::size_t>(kLanes, block.lines - col0);
-        ColumnLines lines{block.heightsM, block.out, block.stride, col0, n, static_cast<__mmask16>((1u << count) - 1u)};
-        groupLines<kVarying>(lines, t, points, 0, n);
+        LaneFloats lf{};
+        if constexpr (kPerLine) {
+            for (std::size_t l = 0; l < count; ++l) {
+                const LineFloats f = lineFloats(geometry, t, col0 + l);
+                lf.spacing[l] = f.spacing;
+                lf.dropScale[l] = f.dropScale;
+                lf.curveScale[l] = f.curveScale;
+            }
+        }
+        ColumnLines lines{block.heightsM, block.out, heightsStep(block), outStep(block), col0, n, block.firstOutRow,
+                          static_cast<__mmask16>((1u << count) - 1u)};
+        groupLines<kVarying, kPerLine>(lines, t, lf, points, 0, n);
     }
 }
 
@@ -483,30 +671,6 @@ bool hullVectorKernelAvailable() { return processorHasAvx512(); }
 
 namespace {
 
-/// The per-sample tables of the vector kernel in scratch.rowTables; whether the offsets are not all 0.
-bool makeRowTables(const HullGeometry& geometry, HullScratch& scratch, RowTables& t) {
-    const std::size_t n = geometry.sigmaM.size();
-    if (n >= (std::size_t{1} << 24))
-        throw Error("hull kernel: lines of " + std::to_string(n) + " samples (rows are exact floats below 2^24)");
-    // The uniform spacing the row differences are scaled by, and each sample's offset from it.
-    const double spacing = n > 1 ? geometry.sigmaM.back() / static_cast<double>(n - 1) : 1.0;
-    scratch.rowTables.resize(3 * n);
-    float* drop = scratch.rowTables.data();
-    float* curve = drop + n;
-    float* offset = curve + n;
-    bool varying = false;
-    for (std::size_t i = 0; i < n; ++i) {
-        const double s = geometry.sigmaM[i];
-        drop[i] = static_cast<float>(0.5 * s * s * geometry.invRadius);
-        curve[i] = static_cast<float>(s * geometry.invRadius);
-        const double off = s - static_cast<double>(i) * spacing;
-        // Offsets below float's rounding of a distance are none: the row differences are exact.
-        offset[i] = std::abs(off) > std::ldexp(spacing, -24) ? static_cast<float>(off) : 0.0f;
-        varying = varying || offset[i] != 0.0f;
-    }
-    t = {drop, curve, offset, static_cast<float>(spacing)};
-    return varying;
-}
 
 template <bool kVarying>
 DEMLIGHT_AVX512 void vectorShear(const HullShear& grid, const RowTables& t, HullScratch& scratch) {
@@ -523,7 +687,7 @@ DEMLIGHT_AVX512 void vectorShear(const HullShear& grid, const RowTables& t, Hull
         std::size_t r1 = r0;
         while (r1 < n && first + shearRow(grid, r1).whole <= w - 1) ++r1;
         ShearedLines lines{grid, first};
-        groupLines<kVarying>(lines, t, points, r0, r1);
+        groupLines<kVarying, false>(lines, t, LaneFloats{}, points, r0, r1);
     }
 }
 
@@ -535,10 +699,13 @@ void hullSlopesVector(const HullGeometry& geometry, const HullBlock& block, Hull
     const std::size_t n = geometry.sigmaM.size();
     if (n == 0 || block.lines == 0) return;
     RowTables t{};
-    if (makeRowTables(geometry, scratch, t))
-        vectorBlock<true>(block, n, t, scratch);
+    const bool varying = makeRowTables(geometry, scratch, t);
+    if (perLine(geometry, varying))
+        vectorBlock<false, true>(geometry, block, n, t, scratch);
+    else if (varying)
+        vectorBlock<true, false>(geometry, block, n, t, scratch);
     else
-        vectorBlock<false>(block, n, t, scratch);
+        vectorBlock<false, false>(geometry, block, n, t, scratch);
 }
 
 void hullShearVector(const HullGeometry& geometry, const HullShear& grid, HullScratch& scratch) {
@@ -568,7 +735,7 @@ void hullShearVector(const HullGeometry&, const HullShear&, HullScratch&) {
 
 void hullSlopes(const HullGeometry& geometry, const HullBlock& block, HullScratch& scratch) {
     if (simdPath() == SimdPath::Avx512) return hullSlopesVector(geometry, block, scratch);
-    hullSlopesReference(geometry, block, scratch);
+    hullSlopesPortable(geometry, block, scratch);
 }
 
 }  // namespace demlight

@@ -1,6 +1,7 @@
 // The walk of a block of scan lines (demlight/lighting/sweep/walk.h).
 #include "demlight/lighting/sweep/walk.h"
 
+#include "demlight/lighting/sweep/axis_walk.h"
 #include "demlight/lighting/sweep/hull.h"
 #include "demlight/lighting/sweep/lanes_avx512.h"
 #include "demlight/core/simd.h"
@@ -522,6 +523,9 @@ void walkLineBlock(const Terrain& t, const LineGeometry& geo, double invR, doubl
     const bool lanes = kLanesWalk && eightAtOnce && geo.delay > 0 && !geo.crossings;
     // A range limit longer than every line (the whole DEM searched) changes nothing.
     const bool limited = std::isfinite(maxDistanceM) && maxDistanceM <= geo.spanBoundM;
+    // Along a grid axis over the whole DEM, the gather-free kernel serves the block; the walk
+    // below serves every other block (sheared lines, delayed serving, range limits).
+    if (axisKernelServes(geo, limited)) return walkAxisBlock(t, geo, invR, kBegin, kEnd, planeA);
     const auto run = [&]<bool XMajor, bool Limited, bool Lanes>() {
         BlockWalk<XMajor, Limited, Lanes>(t, geo, invR, maxDistanceM, kBegin, kEnd, planeA, planeB, scratch, logs, valid,
                                           eightAtOnce)

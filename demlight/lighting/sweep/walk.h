@@ -16,6 +16,7 @@ inline constexpr std::size_t kLinesPerBlock = 16;
 
 /// Walks lines [kBegin, kEnd) of a region (at most kLinesPerBlock) and serves the cells they
 /// reach into planeA (and planeB where two lines serve a cell), the terrain's cells' grids.
+/// Blocks along a grid axis over the whole DEM go through walkAxisBlock (axis_walk.h).
 /// eightAtOnce: the AVX-512 path's lanes where they apply.
 void walkLineBlock(const Terrain& t, const LineGeometry& geo, double invR, double maxDistanceM, long kBegin,
                    long kEnd, float* planeA, float* planeB, const ValidCells& valid, bool eightAtOnce);

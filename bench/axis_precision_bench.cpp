@@ -1,0 +1,143 @@
+// The float hull kernel against the double one on the four grid-axis directions of whole DEMs
+// and surface models: the lines laid out as the sweep lays them along an axis (columns with
+// their rows' heights as distances, rows each at its own cell width, walked from each edge), the
+// slopes of hullSlopes (the dispatched float kernel) and of hullSlopesReference (double) turned
+// into angles as the sweep's combine does; |difference| in degrees over the cells where both
+// see terrain (median, p99.9, max), and the cells where one sees terrain and the other not.
+// With --sweep, also the library's sweep (true azimuths 0/90/180/270, no near field, the whole
+// DEM) against the double lines: on geographic grids the grid axes are those azimuths, so this
+// is the sweep's own change; elsewhere the sweep takes other lines and the row is left out.
+// Usage: demlight_axis_precision_bench [--sweep] DEM ...
+#include "demlight/core/angles.h"
+#include "demlight/core/fast_math.h"
+#include "demlight/geo/dem.h"
+#include "demlight/lighting/horizon.h"
+#include "demlight/lighting/hull_lanes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace demlight;
+
+/// Lines along columns (walked from row 0 or from the last row) or rows (from column 0 or the last).
+struct Direction {
+    const char* name;
+    double trueAzimuthDeg;  // on a geographic grid
+    bool alongRows, fromHighEnd;
+};
+constexpr Direction kDirections[] = {
+    {"columns from the top (N)", 0.0, false, false},
+    {"rows from the right (E)", 90.0, true, true},
+    {"columns from the bottom (S)", 180.0, false, true},
+    {"rows from the left (W)", 270.0, true, false},
+};
+
+float toAngle(float slope) {
+    if (std::isnan(slope)) return slope;
+    return slope == -std::numeric_limits<float>::infinity()
+               ? static_cast<float>(kNoHorizonDeg)
+               : static_cast<float>(fastAtan(static_cast<double>(slope)) * kRadToDeg);
+}
+
+/// Every cell's angle from its line, through the float kernel or the double reference.
+std::vector<float> lineAngles(const Terrain& t, const Direction& d, bool reference) {
+    const std::size_t w = t.width(), h = t.height();
+    const std::size_t lines = d.alongRows ? h : w, n = d.alongRows ? w : h;
+    const auto cellIndex = [&](std::size_t i, std::size_t b) {
+        const std::size_t m = d.fromHighEnd ? n - 1 - i : i;
+        return d.alongRows ? b * w + m : m * w + b;
+    };
+    HullGeometry g;
+    g.invRadius = inverseEffectiveRadius(HorizonParams{});
+    g.sigmaM.assign(n, 0.0);
+    for (std::size_t i = 1; i < n; ++i)
+        g.sigmaM[i] = d.alongRows ? static_cast<double>(i)
+                                  : g.sigmaM[i - 1] + t.cellHeightM[d.fromHighEnd ? n - i : i - 1];
+    if (d.alongRows) g.lineScale = t.cellWidthM;
+    std::vector<float> heights(n * lines), slopes(n * lines), angles(w * h);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t b = 0; b < lines; ++b) heights[i * lines + b] = t.heightsM.data()[cellIndex(i, b)];
+    HullScratch scratch;
+    const HullBlock block{heights.data(), slopes.data(), lines, lines};
+    if (reference)
+        hullSlopesReference(g, block, scratch);
+    else
+        hullSlopes(g, block, scratch);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t b = 0; b < lines; ++b) angles[cellIndex(i, b)] = toAngle(slopes[i * lines + b]);
+    return angles;
+}
+
+void report(const char* dem, const char* what, const std::vector<float>& a, const std::vector<float>& b) {
+    std::vector<double> diffs;
+    std::size_t oneSided = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const float x = a[i], y = b[i];
+        if (std::isnan(x) || std::isnan(y)) {
+            oneSided += std::isnan(x) != std::isnan(y);
+            continue;
+        }
+        const bool noneX = x == static_cast<float>(kNoHorizonDeg), noneY = y == static_cast<float>(kNoHorizonDeg);
+        if (noneX || noneY) {
+            oneSided += noneX != noneY;
+            continue;
+        }
+        diffs.push_back(std::abs(static_cast<double>(x) - y));
+    }
+    std::sort(diffs.begin(), diffs.end());
+    const auto at = [&](double q) {
+        return diffs.empty() ? 0.0 : diffs[std::min(diffs.size() - 1, static_cast<std::size_t>(q * diffs.size()))];
+    };
+    std::printf("| %s | %s | %zu | %.1e | %.1e | %.1e | %zu |\n", dem, what, diffs.size(), at(0.5), at(0.999),
+                diffs.empty() ? 0.0 : diffs.back(), oneSided);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    bool sweep = false;
+    std::vector<std::string> dems;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--sweep") == 0)
+            sweep = true;
+        else
+            dems.emplace_back(argv[i]);
+    }
+    if (dems.empty()) {
+        std::fprintf(stderr, "usage: %s [--sweep] DEM ...\n", argv[0]);
+        return 2;
+    }
+    try {
+        std::printf("| DEM | lines | cells | median deg | p99.9 deg | max deg | one side only |\n|---|---|---|---|---|---|---|\n");
+        for (const std::string& path : dems) {
+            const Dem dem = loadDem(path);
+            const Terrain& t = dem.terrain;
+            const std::string name = path.substr(path.find_last_of('/') + 1);
+            for (const Direction& d : kDirections) {
+                const std::vector<float> ref = lineAngles(t, d, true);
+                report(name.c_str(), d.name, lineAngles(t, d, false), ref);
+                if (sweep && dem.crs.geographic) {
+                    HorizonParams p;
+                    p.azimuthDeg = d.trueAzimuthDeg;
+                    p.threads = 2;
+                    const HorizonMap map = sweepHorizon(t, p);
+                    const std::vector<float> swept(map.angleDeg.data(), map.angleDeg.data() + map.angleDeg.size());
+                    report(name.c_str(), ("sweep, azimuth " + std::to_string(static_cast<int>(d.trueAzimuthDeg))).c_str(),
+                           swept, ref);
+                }
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
