@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
             steps = {0, plan.nearFieldSteps};
             crossingsOf = {0, 0};
         }
-        HorizonParams base = planHorizonParams(plan, budget.refraction, 1);
+        HorizonParams base = planHorizonParams(plan, budget.refraction);
         const std::vector<CellIndex> sample = sampleValidCells(t, cells, 20261202);
         std::printf("%s: %zu x %zu cells, search %.0f m, plan's near field %d steps\n", path.c_str(), t.width(),
                     t.height(), plan.maxDistanceM, plan.nearFieldSteps);
@@ -94,7 +94,6 @@ int main(int argc, char** argv) {
             base.azimuthDeg = az;
             const std::vector<HorizonSample> ref = referenceHorizonAt(t, [&] {
                 HorizonParams r = base;
-                r.threads = 2;
                 return r;
             }(), sample);
             std::vector<std::vector<double>> times(steps.size());

@@ -48,7 +48,7 @@ TEST_P(SunFrameStrategy, MatchesThePerCellReferenceAcrossAnAzimuthSpread) {
     const std::optional<Terrain> dem = sharedTerrain("big_tujunga_srtm30m_utm11.tif", 400, 400);
     if (!dem) GTEST_SKIP() << "shared DEM not found";
     const Terrain& t = *dem;
-    const Normals normals = computeNormals(t, 0);
+    const Normals normals = computeNormals(t);
     const SunField field = slantedField(t.width(), t.height(), 150.0, 153.2, 12.0);
 
     SunFrameParams params;
@@ -158,7 +158,7 @@ TEST(SunFrame, RowAnglesMatchTheFieldAndTheLibraryTrigonometry) {
 
 TEST(SunFrame, ProgressCountsTheFrameOnceWhateverTheSweeps) {
     const Terrain t = makeUniformTerrain(Grid<float>(200, 150, 100.0f), 30.0);
-    const Normals normals = computeNormals(t, 1);
+    const Normals normals = computeNormals(t);
     const SunField field = slantedField(t.width(), t.height(), 100.0, 104.0, 20.0);
     double lastFraction = 0;
     ProgressCounter counter([&](double f, const std::string&) { lastFraction = f; return true; }, "frame",

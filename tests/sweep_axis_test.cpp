@@ -2,6 +2,7 @@
 // cell's angle is its line's slope from the gather-free float kernel (hull_lanes.h), on lines
 // laid out as the sweep lays them, rows of different heights and widths included; windows and
 // thread counts give the same bits, and so do the portable and AVX-512 paths.
+#include "demlight/core/parallel.h"
 #include "demlight/core/angles.h"
 #include "demlight/core/fast_math.h"
 #include "demlight/core/simd.h"
@@ -45,9 +46,8 @@ Terrain roughGeographic(std::size_t w, std::size_t h) {
 HorizonMap sweepAt(const Terrain& t, double azimuthDeg, int threads, std::optional<CellWindow> window = {}) {
     HorizonParams p;
     p.azimuthDeg = azimuthDeg;
-    p.threads = threads;
     p.window = window;
-    return sweepHorizon(t, p);
+    return withThreads(threads, [&] { return sweepHorizon(t, p); });
 }
 
 /// The angles the float kernel gives each cell: lines walked from the far edge toward the

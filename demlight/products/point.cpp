@@ -35,7 +35,7 @@ Dem readAround(const DemSource& source, const PointCell& p, std::size_t haloCell
 Enu normalAt(const DemSource& source, const PointCell& p) {
     CellIndex local;
     const Dem d = readAround(source, p, 1, local);
-    return computeNormals(d.terrain, 1).at(local.col, local.row);
+    return computeNormals(d.terrain).at(local.col, local.row);
 }
 
 /// Reference horizons (degrees) of one cell in each azimuth, in parallel over the azimuths.
@@ -211,7 +211,7 @@ PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point,
         CellIndex local;
         const Dem d = readAround(source, point, s.haloCells, local);
         const Enu n = normalAt(source, point);
-        out.horizonAtSunDeg = marchAll(d.terrain, local, s.params, {sun.azimuthDeg}, 1).front().angleDeg;
+        out.horizonAtSunDeg = marchAll(d.terrain, local, s.params, {sun.azimuthDeg}).front().angleDeg;
         if (request.diffuseModel == DiffuseModel::VisibleSky) {
             out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(s.plan.skyDirections));
             out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n);
