@@ -28,6 +28,8 @@ void parallelFor(std::size_t begin, std::size_t end, const std::function<void(st
                       });
 }
 
+int runThreads() { return tbb::this_task_arena::max_concurrency(); }
+
 void withThreads(int threads, const std::function<void()>& run) {
     const int n = std::min(resolveThreadCount(threads), tbb::info::default_concurrency());
     if (n == tbb::this_task_arena::max_concurrency()) {

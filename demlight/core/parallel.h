@@ -28,6 +28,9 @@ void parallelFor(std::size_t begin, std::size_t end, const std::function<void(st
 /// job), not per loop; entered again with the same count inside, it adds nothing.
 void withThreads(int threads, const std::function<void()>& run);
 
+/// The threads of the run it is called in: those of the enclosing withThreads, else every core.
+int runThreads();
+
 /// withThreads for work that returns a value.
 template <class Work>
     requires(!std::is_void_v<std::invoke_result_t<Work&>>)
