@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
         const Dem dem = loadDem(path);
         const Terrain& t = dem.terrain;
         QualityBudget budget;
-        budget.maxDistanceM = maxDistanceM;
+        if (maxDistanceM > 0) budget.maxDistanceM = maxDistanceM;  // 0: the plan's
         const ScenePlan plan = planScene(t, Quality::Auto, budget);
         if (steps.empty()) {
             steps = {0, plan.nearFieldSteps};

@@ -67,7 +67,7 @@ TEST_P(SunFrameStrategy, MatchesThePerCellReferenceAcrossAnAzimuthSpread) {
         const auto [az, el] = field.at(static_cast<double>(cell.col) + 0.5, static_cast<double>(cell.row) + 0.5);
         HorizonParams hp;
         hp.azimuthDeg = az;
-        hp.maxDistanceM = params.maxDistanceM;
+        hp.maxDistanceM = *params.maxDistanceM;
         const HorizonSample ref = referenceHorizonAt(t, hp, std::span<const CellIndex>(&cell, 1))[0];
         const SunTerms exact = sunTerms(normals.at(cell.col, cell.row), ref.angleDeg, az, el, params.sunDiameterDeg);
         const double got = frame.light.visibility(cell.col, cell.row);

@@ -57,9 +57,9 @@ struct QualityBudget {
     double lowestElevationDeg = 2.0;
     /// Effective-radius refraction coefficient k the user asked for.
     double refraction = kDefaultRefraction;
-    /// > 0: the search distance the user gave (--max-distance), used as is; the other choices
-    /// (curvature) and the expected error's scope follow from it.
-    double maxDistanceM = 0;
+    /// The search distance the user gave, used as is (the other choices, curvature and the
+    /// expected error's scope, follow from it); none: the plan's.
+    SearchDistanceM maxDistanceM;
     /// >= 0: the near field the user gave (HorizonParams::nearFieldSteps), used as is.
     int nearFieldSteps = -1;
 };

@@ -174,7 +174,7 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
     // farthest a shadow can be cast from; with or without the range limit below.
     hp.directionToleranceDeg = params.directionToleranceDeg > 0 ? params.directionToleranceDeg
                                                                 : effectiveDirectionToleranceDeg(t, hp);
-    if (params.maxDistanceM <= 0 && !rangeLimitPays(t, hp)) {
+    if (!params.maxDistanceM && !rangeLimitPays(t, hp)) {
         // The sun's own distance finds every shadow; farther terrain cannot rise above this sun,
         // so the whole DEM gives the same visibility, and costs less unless the limit cuts the
         // line walks (regions) by more than its own overhead.
@@ -222,16 +222,19 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
 
 }  // namespace
 
+double sunFrameSearchDistanceM(const Terrain& terrain, const SunField& field, const SunFrameParams& params) {
+    if (params.maxDistanceM) return *params.maxDistanceM;
+    return sunSearchDistanceM(terrain, field.elevationRange().first, params.sunDiameterDeg);
+}
+
 SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
                          const SunFrameParams& params, ProgressCounter* progress, SweepBuffers* sharedBuffers) {
     SunFrame frame;
     const float nan = std::numeric_limits<float>::quiet_NaN();
     frame.light.visibility = Grid<float>(t.width(), t.height(), nan);
     frame.light.irradiance = frame.light.visibility;
-    const auto [lowestSun, highestSun] = field.elevationRange();
-    frame.maxDistanceM = params.maxDistanceM > 0
-                             ? params.maxDistanceM
-                             : sunSearchDistanceM(t, lowestSun, params.sunDiameterDeg);
+    const double highestSun = field.elevationRange().second;
+    frame.maxDistanceM = sunFrameSearchDistanceM(t, field, params);
 
     if (highestSun <= -params.sunDiameterDeg / 2) {
         // The whole disk is below the horizon everywhere: night (rows on every thread).

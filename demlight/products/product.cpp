@@ -45,7 +45,7 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
     budget.toleranceDeg = search.toleranceDeg;
     budget.lowestElevationDeg = kDefaultLowestElevationDeg;
     budget.refraction = search.refraction;
-    budget.maxDistanceM = search.maxDistanceM.value_or(0.0);
+    budget.maxDistanceM = search.maxDistanceM;
     if (search.nearFieldSteps) {
         if (*search.nearFieldSteps < 0 || *search.nearFieldSteps > kMaxNearFieldSteps)
             throw FieldError("nearFieldSteps", " " + std::to_string(*search.nearFieldSteps) + ": must be in [0, " +
@@ -84,9 +84,7 @@ SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg
 
 double sunFrameDistanceM(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan,
                          const Terrain& terrain, const SunField& field) {
-    const SunFrameParams p = sunFrameParams(search, sunDiameterDeg, plan);
-    return p.maxDistanceM > 0 ? p.maxDistanceM
-                              : sunSearchDistanceM(terrain, field.elevationRange().first, sunDiameterDeg);
+    return sunFrameSearchDistanceM(terrain, field, sunFrameParams(search, sunDiameterDeg, plan));
 }
 
 Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_t directions,

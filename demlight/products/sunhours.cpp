@@ -195,9 +195,9 @@ std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& p
 std::size_t sunhoursHaloCells(const DemSource& source, const SunhoursRequest& request) {
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
-    // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
-    const double sunDistance = request.search.maxDistanceM.value_or(
-        plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(whole, 0.0, request.sunDiameterDeg));
+    // Every sun of the days down to the horizon (the distance a stack of horizons serving every
+    // sun searches), or the sky's.
+    const double sunDistance = stackHorizonParams(request.search, plan, whole, request.sunDiameterDeg).maxDistanceM;
     const double skyDistance =
         integralParams(request.search, plan, whole,
                        request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
