@@ -157,7 +157,6 @@ int main(int argc, char** argv) {
                 if (sweep && dem.crs.geographic && !std::isfinite(maxDistanceM)) {
                     HorizonParams p;
                     p.azimuthDeg = d.trueAzimuthDeg;
-                    p.threads = 2;
                     const HorizonMap map = sweepHorizon(t, p);
                     const std::vector<float> swept(map.angleDeg.data(), map.angleDeg.data() + map.angleDeg.size());
                     report(name.c_str(), ("sweep, azimuth " + std::to_string(static_cast<int>(d.trueAzimuthDeg))).c_str(),

@@ -46,7 +46,7 @@ struct PlanResult {
 
 PlanResult measure(const Terrain& t, const ScenePlan& plan, const std::vector<CellIndex>& cells,
                    const std::vector<double>& reference, double clampDeg) {
-    HorizonParams p = planHorizonParams(plan, QualityBudget{}.refraction, 2);
+    HorizonParams p = planHorizonParams(plan, QualityBudget{}.refraction);
     std::vector<double> errors;
     PlanResult r;
     std::size_t k = 0;
@@ -99,7 +99,6 @@ int main(int argc, char** argv) {
             const Terrain& t = dem.terrain;
             const std::vector<CellIndex> cells = sampleValidCells(t, cellCount, kSeed);
             HorizonParams ref;  // full physics: curvature on, the whole DEM
-            ref.threads = 2;
             std::vector<double> reference;
             for (double az : kAzimuthsDeg) {
                 ref.azimuthDeg = az;

@@ -50,10 +50,8 @@ int main(int argc, char** argv) {
         std::printf("%10s %8s %16s %16s %8s\n", "azimuth", "regions", "ns/cell 1 thr", "ns/cell all thr", "ratio");
         for (double az : azimuths) {
             p.azimuthDeg = az;
-            p.threads = 1;
-            const double one = medianSeconds(t, p, runs);
-            p.threads = all;
-            const double many = medianSeconds(t, p, runs);
+            const double one = demlight::withThreads(1, [&] { return medianSeconds(t, p, runs); });
+            const double many = demlight::withThreads(all, [&] { return medianSeconds(t, p, runs); });
             std::printf("%10.1f %8zu %16.1f %16.1f %8.2f (%d threads)\n", az, demlight::sweepRegions(t, p).size(),
                         one / cells * 1e9, many / cells * 1e9, one / many, all);
         }

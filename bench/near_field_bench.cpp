@@ -77,13 +77,13 @@ int main(int argc, char** argv) {
         const Dem dem = loadDem(path);
         const Terrain& t = dem.terrain;
         QualityBudget budget;
-        budget.maxDistanceM = maxDistanceM;
+        if (maxDistanceM > 0) budget.maxDistanceM = maxDistanceM;  // 0: the plan's
         const ScenePlan plan = planScene(t, Quality::Auto, budget);
         if (steps.empty()) {
             steps = {0, plan.nearFieldSteps};
             crossingsOf = {0, 0};
         }
-        HorizonParams base = planHorizonParams(plan, budget.refraction, 1);
+        HorizonParams base = planHorizonParams(plan, budget.refraction);
         const std::vector<CellIndex> sample = sampleValidCells(t, cells, 20261202);
         std::printf("%s: %zu x %zu cells, search %.0f m, plan's near field %d steps\n", path.c_str(), t.width(),
                     t.height(), plan.maxDistanceM, plan.nearFieldSteps);
@@ -94,7 +94,6 @@ int main(int argc, char** argv) {
             base.azimuthDeg = az;
             const std::vector<HorizonSample> ref = referenceHorizonAt(t, [&] {
                 HorizonParams r = base;
-                r.threads = 2;
                 return r;
             }(), sample);
             std::vector<std::vector<double>> times(steps.size());

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
         const Terrain& t = dem.terrain;
         const QualityBudget budget;
         const ScenePlan plan = planScene(t, Quality::Auto, budget);
-        HorizonParams p = planHorizonParams(plan, budget.refraction, 1);
+        HorizonParams p = planHorizonParams(plan, budget.refraction);
         if (whole) p.maxDistanceM = std::numeric_limits<double>::infinity();
         std::printf("search %.1f m", p.maxDistanceM);
         HorizonMap map;

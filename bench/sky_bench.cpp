@@ -41,15 +41,15 @@ int main(int argc, char** argv) {
         const int threads = demlight::resolveThreadCount(argc > 2 ? std::atoi(argv[2]) : 0);
         demlight::HorizonParams p;
         p.maxDistanceM = argc > 3 && std::atof(argv[3]) > 0 ? std::atof(argv[3]) : demlight::defaultMaxDistanceM(t);
-        p.threads = threads;
-        const demlight::Normals normals = demlight::computeNormals(t, threads);
+        const demlight::Normals normals = demlight::computeNormals(t);
         const double cells = static_cast<double>(t.width() * t.height());
         std::printf("%s: %zu x %zu cells, max distance %.0f m, %d threads\n", argv[1], t.width(), t.height(),
                     p.maxDistanceM, threads);
         std::printf("%4s %9s %9s %9s %9s %14s\n", "D", "sweep s", "sky s", "aper s", "total s", "ns/cell/dir");
+        demlight::withThreads(threads, [&] {
         for (std::size_t d : {4u, 8u, 16u, 32u, 64u}) {
-            demlight::SkyAccumulator sky(normals.east, normals.north, normals.up, d, {}, threads);
-            demlight::ApertureAccumulator ap(normals.east, normals.north, normals.up, d, threads);
+            demlight::SkyAccumulator sky(normals.east, normals.north, normals.up, d, {});
+            demlight::ApertureAccumulator ap(normals.east, normals.north, normals.up, d);
             double skyS = 0, apS = 0;
             const auto t0 = std::chrono::steady_clock::now();
             demlight::sweepDirections(t, p, d, [&](std::size_t i, const demlight::HorizonMap& m) {
@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
                         total / (cells * static_cast<double>(d)) * 1e9);
             std::fflush(stdout);
         }
+        });
     } catch (const demlight::Error& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

@@ -270,7 +270,7 @@ std::vector<TimedRun> readTimes(const std::string& path) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int runCompare(int argc, char** argv) {
     if (argc < 4) {
         std::fprintf(stderr, "usage: %s CROP.tif RUN_DIR MAX_DISTANCE_M [threads] [reference-cells]\n", argv[0]);
         return 2;
@@ -284,11 +284,10 @@ int main(int argc, char** argv) {
 
         const demlight::Dem dem = demlight::loadDem(cropPath);
         const demlight::Terrain& t = dem.terrain;
-        const demlight::Normals normals = demlight::computeNormals(t, threads);
+        const demlight::Normals normals = demlight::computeNormals(t);
         demlight::HorizonParams p;
         p.maxDistanceM = maxDistanceM;
         p.curvature = false;  // SAGA has no earth curvature
-        p.threads = threads;
 
         // Dense reference.
         auto t0 = std::chrono::steady_clock::now();
@@ -348,8 +347,8 @@ int main(int argc, char** argv) {
 
             // The same computation in-process with curvature off (compute only, no I/O).
             t0 = std::chrono::steady_clock::now();
-            const demlight::Normals nn = demlight::computeNormals(t, threads);
-            demlight::SkyAccumulator acc(nn.east, nn.north, nn.up, run.directions, {}, threads);
+            const demlight::Normals nn = demlight::computeNormals(t);
+            demlight::SkyAccumulator acc(nn.east, nn.north, nn.up, run.directions, {});
             demlight::sweepDirections(t, p, run.directions, [&](std::size_t i, const demlight::HorizonMap& m) {
                 acc.addDirection(i, m.angleDeg);
             });
@@ -429,4 +428,9 @@ int main(int argc, char** argv) {
         return 1;
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    // The threads of the comparison's timed runs, entered once.
+    return demlight::withThreads(argc > 4 ? std::atoi(argv[4]) : 0, [&] { return runCompare(argc, argv); });
 }

@@ -245,7 +245,7 @@ enum class Kernel { scalar, doubleLanes, floatLanes, hullLanes, hullLanesUniform
 /// scalar one the rest.
 void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
     const auto blocks = static_cast<std::size_t>((l.width + kBlock - 1) / kBlock);
-    demlight::parallelFor(0, blocks, threads, [&](std::size_t blk) {
+    demlight::withThreads(threads, [&] { demlight::parallelFor(0, blocks, [&](std::size_t blk) {
         thread_local std::vector<double> hull;
         hull.resize(static_cast<std::size_t>(2 * kBlock * l.height));
         const long c0 = static_cast<long>(blk) * kBlock, n = std::min(kBlock, l.width - c0);
@@ -268,7 +268,7 @@ void sweepColumns(const Lines& l, float* out, int threads, Kernel kernel) {
 #endif
         (void)kernel;
         scalarBlock(l, out, c0, n, hull);
-    });
+    }); });
 }
 
 /// Cells where the kernel's angle and the library's differ by more than 1e-3 deg (either NaN
@@ -466,8 +466,7 @@ int main(int argc, char** argv) {
                         off);
         };
         row("library sweep (sweepHorizon, all passes)", [&](int threads) {
-            p.threads = threads;
-            ref = demlight::sweepHorizon(t, p);
+            demlight::withThreads(threads, [&] { ref = demlight::sweepHorizon(t, p); });
         }, false);
         const auto kernel = [&](Kernel k) {
             return [&, k](int threads) { sweepColumns(lines, slopes.data(), threads, k); };

@@ -25,6 +25,7 @@
 // capped at a sixth of the crop's shorter side, so that every cell has terrain around it (the
 // whole-crop reference is cut by the crop edge beyond that, as every method is).
 #include "bench/bench_timing.h"
+#include "demlight/core/parallel.h"
 #include "demlight/geo/dem.h"
 #include "demlight/lighting/aperture.h"
 #include "demlight/lighting/directions.h"
@@ -246,14 +247,13 @@ public:
         t_ = cropTerrainCentre(dem.terrain, o.cropCells, o.cropCells);
         const std::size_t w = t_.width(), h = t_.height();
         cells_ = static_cast<double>(w * h);
-        normals_ = computeNormals(t_, kThreads);
+        normals_ = computeNormals(t_);
         const std::size_t mid = t_.height() / 2;
         const double sideM = std::min(t_.cellWidthM[mid] * static_cast<double>(w), t_.cellHeightM[mid] * static_cast<double>(h));
         d0_ = defaultMaxDistanceM(t_);
         marginM_ = std::min(d0_, kMarginSideFraction * sideM);
         base_.azimuthDeg = kSunAzimuthDeg;
         base_.maxDistanceM = d0_;
-        base_.threads = kThreads;
         std::printf("%s: crop %zu x %zu cells (%.0f x %.0f m cells), D0 = %.0f m, sample margin %.0f m\n", name_.c_str(), w, h,
                     t_.cellWidthM[mid], t_.cellHeightM[mid], d0_, 2 * marginM_);
     }
@@ -366,10 +366,10 @@ private:
         SunLight exactLight;
         const double exactS = medianSeconds(o_.repeats, [&] {
             exact = sweepHorizon(t_, base_);
-            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg);
         });
         const double shadeS = medianSeconds(o_.repeats, [&] {
-            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+            exactLight = computeSunLight(t_, exact, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg);
         });
         const std::vector<float> exactH = sampleOf(exact.angleDeg);
         sunPair("exact sweep", "D0", exactS, exactH, sampleOf(exactLight.visibility));
@@ -382,7 +382,7 @@ private:
             const double stackS = medianSeconds(o_.repeats, [&] { stack = computeHorizonStack(t_, n, base_); });
             SunLight light;
             const double interpS = medianSeconds(o_.repeats, [&] {
-                light = sunLightFromStack(t_, normals_, stack, field, kSunDiameterDeg, kThreads);
+                light = sunLightFromStack(t_, normals_, stack, field, kSunDiameterDeg);
             });
             std::vector<float> h;
             for (const CellIndex& c : sample_) h.push_back(stackHorizonAt(stack, c.col, c.row, kSunAzimuthDeg));
@@ -399,7 +399,7 @@ private:
             SunLight l;
             const double s = medianSeconds(o_.repeats, [&] {
                 m = sweepHorizon(t_, p);
-                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg);
             });
             sunPair("exact sweep distance", fmt("%gxD0", f), s, sampleOf(m.angleDeg), sampleOf(l.visibility),
                     fmt("max distance %.0f m", p.maxDistanceM));
@@ -413,7 +413,7 @@ private:
             SunLight l;
             const double s = medianSeconds(o_.repeats, [&] {
                 m = sweepHorizon(t_, p);
-                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg);
             });
             sunPair("exact sweep flat earth", "D0 curvature off", s, sampleOf(m.angleDeg), sampleOf(l.visibility),
                     "no curvature or refraction; reference is curved");
@@ -430,7 +430,7 @@ private:
                 m = sweepHorizon(t_, base_);
                 q = fixed16RoundTrip(m.angleDeg, range);
                 m.angleDeg = q;
-                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg, kThreads);
+                l = computeSunLight(t_, m, normals_, kSunAzimuthDeg, kSunElevationDeg, kSunDiameterDeg);
             });
             const std::vector<float> h = sampleOf(q);
             std::vector<double> added;
@@ -471,7 +471,7 @@ private:
             for (const bool smooth : {false, true}) {
                 Grid<float> vis;
                 const double sec = medianSeconds(o_.repeats, [&] {
-                    ApertureAccumulator acc(normals_.east, normals_.north, normals_.up, n, kThreads);
+                    ApertureAccumulator acc(normals_.east, normals_.north, normals_.up, n);
                     sweepDirections(t_, base_, n, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
                     const ApertureMaps a = acc.finish();
                     vis = Grid<float>(a.radiusDeg.width(), a.radiusDeg.height());
@@ -502,7 +502,7 @@ private:
     void qualitySunRows(const SunField& field) {
         for (const Quality q : {Quality::Auto, Quality::Full}) {
             const SunFrameParams fp =
-                planSunFrameParams(planScene(t_, q, QualityBudget{}), kSunDiameterDeg, base_.refraction, kThreads);
+                planSunFrameParams(planScene(t_, q, QualityBudget{}), kSunDiameterDeg, base_.refraction);
             SunFrame frame;
             const double s = medianSeconds(o_.repeats, [&] { frame = computeSunFrame(t_, normals_, field, fp); });
             HorizonParams hp = base_;
@@ -526,10 +526,10 @@ private:
         for (const Quality q : {Quality::Auto, Quality::Full}) {
             const ScenePlan plan = planScene(t_, q, QualityBudget{});
             const auto n = static_cast<std::size_t>(plan.skyDirections);
-            HorizonParams hp = planIntegralParams(t_, plan, n, base_.refraction, kThreads);
+            HorizonParams hp = planIntegralParams(t_, plan, n, base_.refraction);
             SkyMaps maps;
             const double s = medianSeconds(o_.repeats, [&] {
-                SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
+                SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {});
                 sweepDirections(t_, hp, n, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
                 maps = acc.finish(0.2);
             });
@@ -551,7 +551,7 @@ private:
                 const FixedRange range = variant == 1 ? FixedRange::Seed0To90 : FixedRange::Signed;
                 SkyMaps maps;
                 const double s = medianSeconds(o_.repeats, [&] {
-                    SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {}, kThreads);
+                    SkyAccumulator acc(normals_.east, normals_.north, normals_.up, n, {});
                     sweepDirections(t_, base_, n, [&](std::size_t i, const HorizonMap& m) {
                         acc.addDirection(i, variant == 0 ? m.angleDeg : fixed16RoundTrip(m.angleDeg, range));
                     });
@@ -571,7 +571,7 @@ private:
         HemisphereParams hp;
         hp.skyRadiance = 1.0;
         hp.groundIrradiance = 0.0;
-        const double s = medianSeconds(o_.repeats, [&] { hemi = applyHemisphereLight(normals_.up, hp, nullptr, kThreads); });
+        const double s = medianSeconds(o_.repeats, [&] { hemi = applyHemisphereLight(normals_.up, hp, nullptr); });
         add("hemisphere", "sky term", s, "sky_K_mae", maeAgainst(sampleOf(hemi), refK_),
             "(1 + N_up) / 2 with a black ground: K of an unoccluded tilted plane; no shadows");
     }
@@ -658,7 +658,7 @@ std::pair<double, double> clampedMedianP99(const std::vector<double>& h, const s
 void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFullRow>& rows) {
     const std::string name = std::filesystem::path(path).stem().string();
     const Terrain t = cropTerrainCentre(loadDem(path).terrain, kAutoVsFullMaxSide, kAutoVsFullMaxSide);
-    const Normals normals = computeNormals(t, kThreads);
+    const Normals normals = computeNormals(t);
     const QualityBudget budget;
     const ScenePlan plans[2] = {planScene(t, Quality::Auto, budget), planScene(t, Quality::Full, budget)};
     std::printf("%s: %zu x %zu cells; auto distance %.0f m, full %.0f m\n", name.c_str(), t.width(), t.height(),
@@ -667,7 +667,6 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
     const std::vector<CellIndex> cells = sampleValidCells(t, kAutoVsFullCells, kSampleSeed);
     HorizonParams reference;  // full physics: curvature on, the whole DEM
     reference.maxDistanceM = std::numeric_limits<double>::infinity();
-    reference.threads = kThreads;
 
     // Horizon: one sweep per azimuth with each plan's parameters; a third run is auto with one
     // scan line per cell (HorizonParams::nearestLine), the cheaper model no plan uses.
@@ -678,7 +677,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
             reference.azimuthDeg = az;
             for (const HorizonSample& x : referenceHorizonAt(t, reference, cells)) ref.push_back(x.angleDeg);
             for (int q = 0; q < 3; ++q) {
-                HorizonParams p = planHorizonParams(plans[q == 1 ? 1 : 0], budget.refraction, kThreads);
+                HorizonParams p = planHorizonParams(plans[q == 1 ? 1 : 0], budget.refraction);
                 p.azimuthDeg = az;
                 p.nearestLine = q == 2;
                 HorizonMap m;
@@ -709,7 +708,7 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         const std::vector<HorizonSample> ref = referenceHorizonAt(t, reference, cells);
         double s[3], mae[3], distance[3];
         for (int q = 0; q < 3; ++q) {
-            SunFrameParams fp = planSunFrameParams(plans[q == 1 ? 1 : 0], kSunDiameterDeg, budget.refraction, kThreads);
+            SunFrameParams fp = planSunFrameParams(plans[q == 1 ? 1 : 0], kSunDiameterDeg, budget.refraction);
             fp.nearestLine = q == 2;
             SunFrame frame;
             s[q] = medianSeconds(o.repeats, [&] { frame = computeSunFrame(t, normals, field, fp); });
@@ -747,10 +746,10 @@ void autoVsFull(const Options& o, const std::string& path, std::vector<AutoVsFul
         double s[2], mae[2], work[2];
         for (int q = 0; q < 2; ++q) {
             const auto n = static_cast<std::size_t>(plans[q].skyDirections);
-            const HorizonParams hp = planIntegralParams(t, plans[q], n, budget.refraction, kThreads);
+            const HorizonParams hp = planIntegralParams(t, plans[q], n, budget.refraction);
             SkyMaps maps;
             s[q] = medianSeconds(o.repeats, [&] {
-                SkyAccumulator acc(normals.east, normals.north, normals.up, n, {}, kThreads);
+                SkyAccumulator acc(normals.east, normals.north, normals.up, n, {});
                 sweepDirections(t, hp, n, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); });
                 maps = acc.finish(0.2);
             });
@@ -812,7 +811,9 @@ int main(int argc, char** argv) {
                 o.dems = {"samples/mount_st_helens_1980_usgs.dem", "samples/rocky_mountain_np_dem.tif",
                           "samples/luxembourg_elev_terra.tif"};
             std::vector<AutoVsFullRow> rows;
-            for (const std::string& path : o.dems) autoVsFull(o, path, rows);
+            withThreads(kThreads, [&] {
+                for (const std::string& path : o.dems) autoVsFull(o, path, rows);
+            });
             std::filesystem::create_directories(o.outDir);
             const std::string csv = o.outDir + "/auto_vs_full.csv";
             writeAutoVsFull(rows, csv);
@@ -821,7 +822,9 @@ int main(int argc, char** argv) {
         }
         if (o.dems.empty()) o.dems = {"samples/mount_st_helens_1980_usgs.dem"};
         std::vector<Row> rows;
-        for (const std::string& path : o.dems) DemBench(o, path, rows).run();
+        withThreads(kThreads, [&] {
+            for (const std::string& path : o.dems) DemBench(o, path, rows).run();
+        });
         markPareto(rows);
         std::filesystem::create_directories(o.outDir);
         const std::string csv = o.outDir + "/tradeoff.csv";

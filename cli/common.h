@@ -17,6 +17,7 @@
 #include "demlight/run/options.h"
 #include "demlight/run/runner.h"
 #include "demlight/core/error.h"
+#include "demlight/core/process.h"
 
 #include <array>
 #include <chrono>
@@ -137,7 +138,9 @@ RasterOutcome<Result> runRasterCommand(const ProductWork<Result>& work, const st
     if (search) notePlan(*search, verbose, dem.geometry().terrain, ctx);
     const auto start = std::chrono::steady_clock::now();
     Result result = runWork(work, dem, targets, ctx, demPath);
-    return {std::move(result), dem.width() * dem.height(), readSeconds, secondsSince(start)};
+    const double seconds = secondsSince(start);
+    if (verbose) note(ctx, "peak memory: " + formatNumber(std::round(peakResidentBytes() / 1e5) / 10) + " MB");
+    return {std::move(result), dem.width() * dem.height(), readSeconds, seconds};
 }
 
 }  // namespace demlight::cli

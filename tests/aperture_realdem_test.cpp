@@ -41,7 +41,6 @@
 namespace demlight {
 namespace {
 
-constexpr int kThreads = 2;
 constexpr double kLitThreshold = 0.5;
 /// Asymmetry (degrees) beyond which a cell counts as a N-S or E-W trough.
 constexpr double kTroughAsymmetryDeg = 10.0;
@@ -73,11 +72,10 @@ void PrintTo(const Day& d, std::ostream* os) { *os << d.file << " " << d.date; }
 /// aperture is the whole hemisphere), half covered on it, and the direct term is sin(elevation).
 TEST(ApertureSun, FlatGroundMatchesHorizonModel) {
     const Terrain t = makeUniformTerrain(Grid<float>(16, 16, 100.0f), 30.0);
-    const Normals normals = computeNormals(t, 1);
-    ApertureAccumulator acc(normals.east, normals.north, normals.up, kDefaultSkyDirections, 1);
+    const Normals normals = computeNormals(t);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, kDefaultSkyDirections);
     HorizonParams hp;
     hp.maxDistanceM = 1000.0;
-    hp.threads = 1;
     sweepDirections(t, hp, kDefaultSkyDirections, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
     const ApertureMaps ap = acc.finish();
     for (const bool smooth : {false, true}) {
@@ -85,7 +83,7 @@ TEST(ApertureSun, FlatGroundMatchesHorizonModel) {
         lp.smoothIntersection = smooth;
         for (const double el : {0.0, 5.0, 30.0, 89.0}) {
             const ApertureSunMaps m = applyApertureSun(ap, normals.east, normals.north, normals.up,
-                                                       SunField::uniform(123.0, el), lp, 1);
+                                                       SunField::uniform(123.0, el), lp);
             const double vis = el == 0.0 ? 0.5 : 1.0;
             EXPECT_NEAR(m.visibility(8, 8), vis, 1e-6) << "elevation " << el << " smooth " << smooth;
             EXPECT_NEAR(m.irradiance(8, 8), vis * std::sin(el * std::numbers::pi / 180.0), 2e-3)
@@ -104,14 +102,13 @@ TEST_P(ApertureVsHorizon, SunVisibilityOverOneDay) {
         GTEST_SKIP() << "long run; set DEMLIGHT_LONG_TESTS=1 to run it";
     const Dem dem = loadDem(path);
     const Terrain& t = dem.terrain;
-    const Normals normals = computeNormals(t, kThreads);
+    const Normals normals = computeNormals(t);
 
     // Aperture once, as `demlight sun --model aperture` does; keep every direction's horizons.
     HorizonParams hp;
     hp.maxDistanceM = defaultMaxDistanceM(t);
-    hp.threads = kThreads;
     const std::size_t d = kDefaultSkyDirections;
-    ApertureAccumulator acc(normals.east, normals.north, normals.up, d, kThreads);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, d);
     std::vector<Grid<float>> horizons;  // direction i at azimuth i * 360 / d
     sweepDirections(t, hp, d, [&](std::size_t i, const HorizonMap& m) {
         acc.addDirection(i, m.angleDeg);
@@ -140,7 +137,6 @@ TEST_P(ApertureVsHorizon, SunVisibilityOverOneDay) {
     ApertureLightParams exact, smooth;
     smooth.smoothIntersection = true;
     SunFrameParams sp;
-    sp.threads = kThreads;
     int instants = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (int step = 0; step < 48; ++step) {
@@ -149,8 +145,8 @@ TEST_P(ApertureVsHorizon, SunVisibilityOverOneDay) {
         if (field.centreElevationDeg <= 0.0) continue;
         ++instants;
         const SunFrame h = computeSunFrame(t, normals, field, sp);
-        const ApertureSunMaps a = applyApertureSun(ap, normals.east, normals.north, normals.up, field, exact, kThreads);
-        const ApertureSunMaps s = applyApertureSun(ap, normals.east, normals.north, normals.up, field, smooth, kThreads);
+        const ApertureSunMaps a = applyApertureSun(ap, normals.east, normals.north, normals.up, field, exact);
+        const ApertureSunMaps s = applyApertureSun(ap, normals.east, normals.north, normals.up, field, smooth);
         for (std::size_t row = 0; row < t.height(); ++row)
             for (std::size_t col = 0; col < t.width(); ++col) {
                 const float vh = h.light.visibility(col, row), va = a.visibility(col, row);

@@ -1,6 +1,7 @@
 // Ambient aperture: analytic apertures (flat, tilted plane, V valley, wall), the cap-cap
 // intersection against Monte Carlo, the smoothstep approximation's error, the centroid
 // Lambert term, the aperture / hemisphere lighting models, and the streaming grid driver.
+#include "demlight/core/parallel.h"
 #include "demlight/lighting/aperture.h"
 #include "demlight/lighting/lighting_models.h"
 #include "demlight/lighting/sky.h"
@@ -386,7 +387,7 @@ TEST(ApertureGrid, ClosedFormSectorsMatchTheDenseReference) {
             }
         std::vector<const Grid<float>*> ptrs;
         for (const auto& g : hz) ptrs.push_back(&g);
-        const ApertureMaps maps = computeAperture(ptrs, e, n, u, 2);
+        const ApertureMaps maps = computeAperture(ptrs, e, n, u);
         const int samples = 2 * d * (4000 / d + 1);  // sample cells end on sector edges
         for (std::size_t r = 0; r < h; ++r)
             for (std::size_t c = 0; c < w; ++c) {
@@ -433,11 +434,11 @@ TEST(ApertureGrid, EightCellsAtOnceAreOneAtATime) {
         const std::vector<const Grid<float>*> ptrs = g.horizonPointers();
         const ApertureMaps eight = [&] {
             const detail::ScopedSimdPath path(SimdPath::Avx512);
-            return computeAperture(ptrs, g.east, g.north, g.up, 2);
+            return computeAperture(ptrs, g.east, g.north, g.up);
         }();
         const ApertureMaps one = [&] {
             const detail::ScopedSimdPath path(SimdPath::Portable);
-            return computeAperture(ptrs, g.east, g.north, g.up, 2);
+            return computeAperture(ptrs, g.east, g.north, g.up);
         }();
         const std::pair<const Grid<float>*, const Grid<float>*> maps[] = {
             {&eight.bentEast, &one.bentEast}, {&eight.bentNorth, &one.bentNorth}, {&eight.bentUp, &one.bentUp},
@@ -477,8 +478,8 @@ TEST(ApertureGrid, MatchesKernelThreadDeterministicNodata) {
     hz[3](2, 2) = std::numeric_limits<float>::quiet_NaN();
     std::vector<const Grid<float>*> ptrs;
     for (const auto& g : hz) ptrs.push_back(&g);
-    const ApertureMaps one = computeAperture(ptrs, e, n, u, 1);
-    const ApertureMaps many = computeAperture(ptrs, e, n, u, 4);
+    const ApertureMaps one = withThreads(1, [&] { return computeAperture(ptrs, e, n, u); });
+    const ApertureMaps many = withThreads(4, [&] { return computeAperture(ptrs, e, n, u); });
     EXPECT_EQ(std::memcmp(one.bentEast.data(), many.bentEast.data(), w * h * sizeof(float)), 0);
     EXPECT_EQ(std::memcmp(one.radiusDeg.data(), many.radiusDeg.data(), w * h * sizeof(float)), 0);
     EXPECT_TRUE(std::isnan(one.solidAngleSr(2, 2)));
@@ -491,7 +492,7 @@ TEST(ApertureGrid, MatchesKernelThreadDeterministicNodata) {
     EXPECT_NEAR(one.bentNorth(5, 4), a.bentNormal.north, 1e-6);
 
     const ApertureLightMaps lit = applyApertureLight(one, e, n, u, directionEnu(180, 40),
-                                                     ApertureLightParams{}, 2);
+                                                     ApertureLightParams{});
     EXPECT_TRUE(std::isnan(lit.sun(2, 2)));
     EXPECT_GE(lit.ambient(5, 4), 0.0f);
 

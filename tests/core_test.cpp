@@ -120,7 +120,7 @@ TEST(Grid, NonNanSpanIsBetweenTheEndRunsOfNan) {
 
 TEST(ParallelFor, VisitsEveryIndexOnce) {
     std::vector<std::atomic<int>> hits(1000);
-    parallelFor(0, hits.size(), 2, [&](std::size_t i) { hits[i]++; });
+    parallelFor(0, hits.size(), [&](std::size_t i) { hits[i]++; });
     for (const auto& h : hits) EXPECT_EQ(h.load(), 1);
 }
 
@@ -128,17 +128,19 @@ TEST(ParallelFor, VisitsEveryIndexOnce) {
 // not on a pool of their own per loop.
 TEST(ParallelFor, RunsOnTheThreadsOfTheRunItIsCalledIn) {
     if (resolveThreadCount(0) < 2) GTEST_SKIP() << "needs two cores";
-    for (const int asked : {0, 2}) {
-        std::atomic<int> onOtherThreads{0};
-        withThreads(1, [&] {
-            const std::thread::id caller = std::this_thread::get_id();
-            parallelFor(0, 64, asked, [&](std::size_t) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(1));
-                if (std::this_thread::get_id() != caller) ++onOtherThreads;
-            });
+    std::atomic<int> onOtherThreads{0};
+    withThreads(1, [&] {
+        EXPECT_EQ(runThreads(), 1);
+        const std::thread::id caller = std::this_thread::get_id();
+        parallelFor(0, 64, [&](std::size_t) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            if (std::this_thread::get_id() != caller) ++onOtherThreads;
         });
-        EXPECT_EQ(onOtherThreads.load(), 0) << asked;
-    }
+    });
+    EXPECT_EQ(onOtherThreads.load(), 0);
+    EXPECT_GE(runThreads(), 2);  // outside a run: every core
+    // The same count again inside adds no pool: the loop still runs on the run's two threads.
+    withThreads(2, [&] { withThreads(2, [&] { EXPECT_EQ(runThreads(), 2); }); });
 }
 
 TEST(ProgressCounter, CancelStopsWork) {

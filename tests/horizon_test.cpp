@@ -1,4 +1,5 @@
 // Horizon sweep and reference on analytic terrains (demlight/lighting/horizon.h).
+#include "demlight/core/parallel.h"
 #include "demlight/lighting/horizon.h"
 
 #include "demlight/core/angles.h"
@@ -305,10 +306,8 @@ TEST(Horizon, NearestLineModeMatchesReferenceOnHillsAndIsExactOnAxes) {
         // p99 <= 3.1 against 0.08 and 2.5 for two lines).
         EXPECT_LT(e.median, 0.3) << az;
         EXPECT_LT(e.p99, 4.0) << az;
-        p.threads = 1;
-        const HorizonMap one = sweepHorizon(t, p);
-        p.threads = 2;
-        EXPECT_TRUE(bitIdentical(one, sweepHorizon(t, p))) << az;
+        const HorizonMap one = withThreads(1, [&] { return sweepHorizon(t, p); });
+        EXPECT_TRUE(bitIdentical(one, withThreads(2, [&] { return sweepHorizon(t, p); }))) << az;
     }
 }
 
@@ -377,10 +376,8 @@ TEST(Horizon, OneAndTwoThreadsGiveIdenticalBits) {
         HorizonParams p;
         p.azimuthDeg = az;
         p.maxDistanceM = 2000.0;
-        p.threads = 1;
-        const HorizonMap one = sweepHorizon(t, p);
-        p.threads = 2;
-        EXPECT_TRUE(bitIdentical(one, sweepHorizon(t, p))) << az;
+        const HorizonMap one = withThreads(1, [&] { return sweepHorizon(t, p); });
+        EXPECT_TRUE(bitIdentical(one, withThreads(2, [&] { return sweepHorizon(t, p); }))) << az;
     }
 }
 

@@ -62,7 +62,7 @@ TEST(InsolationAccumulator, ShortcutsGiveThePerBinSum) {
             heights(c, r) = static_cast<float>(900 + 40 * std::sin(0.7 * c) * std::cos(0.5 * r) + 25.0 * c);
     heights(3, 4) = std::numeric_limits<float>::quiet_NaN();
     const Terrain terrain = makeUniformTerrain(heights, 30.0);
-    const Normals normals = computeNormals(terrain, 1);
+    const Normals normals = computeNormals(terrain);
     std::vector<WeightedSun> suns;
     for (int i = 0; i < 400; ++i)
         suns.push_back({0.1, std::fmod(37.0 * i, 360.0), 0.3 + std::fmod(7.3 * i, 70.0), 1361.0 + i % 7, 3.0});
@@ -72,7 +72,6 @@ TEST(InsolationAccumulator, ShortcutsGiveThePerBinSum) {
             IrradianceParams params;
             params.model = model;
             params.albedo = 0.2;
-            params.threads = 1;
             InsolationAccumulator acc(terrain.heightsM, normals, bins, kDirections, params, diameter);
             std::vector<double> beam(heights.size(), 0.0), diffuse = beam, reflected = beam, hours = beam;
             for (std::size_t d = 0; d < kDirections; ++d) {

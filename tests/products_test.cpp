@@ -1,5 +1,6 @@
 // The products layer called directly, without the CLI: bands, georeference, metadata, progress
 // and cancellation, windows, the light combination, and library messages in library terms.
+#include "demlight/core/parallel.h"
 #include "demlight/geo/dem_source.h"
 #include "demlight/geo/raster.h"
 #include "demlight/geo/time.h"
@@ -81,6 +82,48 @@ TEST(Products, EveryRasterProductKeepsTheDemGeoreferenceAndNamesItsBands) {
     }
     EXPECT_EQ(su.metadata.at("DEMLIGHT_PRODUCT"), "sun");
     EXPECT_EQ(su.metadata.at("DEMLIGHT_REFRACTION"), "0.13");
+}
+
+TEST(Products, EveryProductRunsOnTheThreadsItsRequestAsksFor) {
+    // A product call enters its request's thread count once (no kernel takes one): its work, and
+    // so its progress reports, run on that many threads; 0 = every core.
+    if (resolveThreadCount(0) < 2) GTEST_SKIP() << "needs two cores";
+    const DemSource& dem = rocky();
+    const CellWindow w = dem.whole();
+    for (const int threads : {1, 0}) {
+        std::vector<int> seen;
+        const ProgressFn progress = [&](double, const std::string&) {
+            seen.push_back(runThreads());
+            return true;
+        };
+        SearchRequest search;
+        search.threads = threads;
+        search.maxDistanceM = 3000;
+        HorizonRequest h;
+        h.azimuthsDeg = {10, 200};
+        h.search = search;
+        horizonProduct(dem, w, h, progress);
+        SunRequest sun;
+        sun.time = morning();
+        sun.search = search;
+        sunProduct(dem, w, sun, progress);
+        SkyRequest sky;
+        sky.directions = 8;
+        sky.search = search;
+        skyProduct(dem, w, sky, progress);
+        ApertureRequest aperture;
+        aperture.directions = 8;
+        aperture.search = search;
+        apertureProduct(dem, w, aperture, progress);
+        SunhoursRequest hours;
+        hours.firstDay = hours.lastDay = parseDate("2024-06-21");
+        hours.step = std::chrono::minutes(120);
+        hours.search = search;
+        sunhoursProduct(dem, w, hours, progress);
+        ASSERT_FALSE(seen.empty());
+        const int expected = threads == 1 ? 1 : runThreads();
+        for (int n : seen) EXPECT_EQ(n, expected) << "threads " << threads;
+    }
 }
 
 TEST(Products, ProgressIsSizedByTheProductAndReachesOne) {

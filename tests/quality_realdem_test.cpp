@@ -230,9 +230,8 @@ TEST(Quality, IntegralToleranceKeepsTheSkyOnARealTile) {
     if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath("N48W125_srtm1.tif");
     const Terrain& t = *dem;
     constexpr std::size_t kDirections = 32;
-    constexpr int kThreads = 2;
     const ScenePlan plan = planScene(t, Quality::Auto, QualityBudget{});
-    const HorizonParams relaxed = planIntegralParams(t, plan, kDirections, 0.13, kThreads);
+    const HorizonParams relaxed = planIntegralParams(t, plan, kDirections, 0.13);
     HorizonParams strict = relaxed;
     strict.directionToleranceDeg = 0;  // the sweep's automatic one-cell rule
     EXPECT_GT(relaxed.directionToleranceDeg, effectiveDirectionToleranceDeg(t, strict));
@@ -246,9 +245,9 @@ TEST(Quality, IntegralToleranceKeepsTheSkyOnARealTile) {
     }
     EXPECT_LT(regionsRelaxed, regionsStrict);
 
-    const Normals normals = computeNormals(t, kThreads);
+    const Normals normals = computeNormals(t);
     const auto sky = [&](const HorizonParams& p) {
-        SkyAccumulator acc(normals.east, normals.north, normals.up, kDirections, {}, kThreads);
+        SkyAccumulator acc(normals.east, normals.north, normals.up, kDirections, {});
         sweepDirections(t, p, kDirections, [&](std::size_t i, const HorizonMap& m) { acc.addDirection(i, m.angleDeg); });
         return acc.finish(0.2);
     };

@@ -216,13 +216,13 @@ TEST(Quality, DemsTooLargeForOneTileKeepTheRangeLimit) {
     const Terrain small = tileOfUniformGrid(4000);
     const ScenePlan smallPlan = planScene(small, Quality::Auto, budget);
     ASSERT_TRUE(std::isfinite(smallPlan.maxDistanceM));
-    EXPECT_FALSE(std::isfinite(planIntegralParams(small, smallPlan, 32, 0.13, 1).maxDistanceM));
-    EXPECT_FALSE(rangeLimitPays(small, planHorizonParams(smallPlan, 0.13, 1)));
+    EXPECT_FALSE(std::isfinite(planIntegralParams(small, smallPlan, 32, 0.13).maxDistanceM));
+    EXPECT_FALSE(rangeLimitPays(small, planHorizonParams(smallPlan, 0.13)));
     // 9000^2 (77 Mi cells): computed in tiles, so the plan's range limit stays.
     const Terrain large = tileOfUniformGrid(9000);
     const ScenePlan largePlan = planScene(large, Quality::Auto, budget);
-    EXPECT_EQ(planIntegralParams(large, largePlan, 32, 0.13, 1).maxDistanceM, largePlan.maxDistanceM);
-    EXPECT_TRUE(rangeLimitPays(large, planHorizonParams(largePlan, 0.13, 1)));
+    EXPECT_EQ(planIntegralParams(large, largePlan, 32, 0.13).maxDistanceM, largePlan.maxDistanceM);
+    EXPECT_TRUE(rangeLimitPays(large, planHorizonParams(largePlan, 0.13)));
 }
 
 }  // namespace

@@ -231,7 +231,7 @@ TEST(PreviewRig, RenderedPixelsAreThePerPixelRig) {
                 p.exposure = exposure;
                 p.gamma = gamma;
                 const std::vector<demlight::Grid<float>> a = raster ? albedo : std::vector<demlight::Grid<float>>{};
-                const demlight::Image8 img = demlight::renderPreview(n, vis, sky, a, azimuth, elevation, p, 1);
+                const demlight::Image8 img = demlight::renderPreview(n, vis, sky, a, azimuth, elevation, p);
                 std::vector<double> thresholds(255);
                 for (int k = 0; k < 255; ++k)
                     thresholds[static_cast<std::size_t>(k)] = std::pow((k + 0.5) / 255.0, gamma) / exposure;

@@ -46,7 +46,6 @@ constexpr std::size_t kMaxDirections = 64;
 /// The albedo C of the sky_factor budget.
 constexpr double kBudgetAlbedo = 0.2;
 /// Threads (the shared build machine has two cores).
-constexpr int kThreads = 2;
 
 
 struct Case {
@@ -135,13 +134,12 @@ TEST_P(SkyRealDem, DirectionsVsDenseReference) {
     const std::optional<Terrain> dem = sharedTerrain(tc.file, tc.cropW, tc.cropH);
     if (!dem) GTEST_SKIP() << "shared DEM not found: " << sharedDemPath(tc.file);
     const Terrain& t = *dem;
-    const Normals normals = computeNormals(t, kThreads);
+    const Normals normals = computeNormals(t);
     const std::size_t mid = t.height() / 2;
     const double sideM = std::min(t.cellWidthM[mid] * static_cast<double>(t.width()),
                                   t.cellHeightM[mid] * static_cast<double>(t.height()));
     HorizonParams p;
     p.maxDistanceM = std::min(defaultMaxDistanceM(t), 0.25 * sideM);
-    p.threads = kThreads;
     // As `demlight sky` sweeps under --quality auto (ScenePlan::integralNearestLine, and the
     // plan's near field: the surface models' on the DSMs).
     p.nearestLine = true;

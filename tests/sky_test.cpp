@@ -1,5 +1,6 @@
 // Sky factors: analytic cases (flat, tilted plane, V valley, paraboloid pit, wall), patches,
 // f_sky limits, monotonicity, the dense reference, and the streaming grid driver.
+#include "demlight/core/parallel.h"
 #include "demlight/lighting/sky.h"
 #include "demlight/lighting/sky_wedge.h"
 #include "demlight/lighting/sky_wedge_lanes.h"
@@ -124,11 +125,11 @@ TEST(Sky, EightCellsAtOnceAreOneAtATime) {
         const std::vector<const Grid<float>*> ptrs = g.horizonPointers();
         const SkyMaps eight = [&] {
             const detail::ScopedSimdPath path(SimdPath::Avx512);
-            return computeSky(ptrs, g.east, g.north, g.up, 0.2, {}, 2);
+            return computeSky(ptrs, g.east, g.north, g.up, 0.2, {});
         }();
         const SkyMaps one = [&] {
             const detail::ScopedSimdPath path(SimdPath::Portable);
-            return computeSky(ptrs, g.east, g.north, g.up, 0.2, {}, 2);
+            return computeSky(ptrs, g.east, g.north, g.up, 0.2, {});
         }();
         for (const auto& [a, b] : {std::pair{&eight.skyK, &one.skyK}, std::pair{&eight.skyFactor, &one.skyFactor}})
             for (std::size_t k = 0; k < a->size(); ++k) {
@@ -526,8 +527,8 @@ TEST(SkyGrid, MatchesPerCellKernelsAndIsThreadDeterministic) {
     s.horizons[5](4, 6) = std::numeric_limits<float>::quiet_NaN();  // nodata cell
     s.up(7, 2) = std::numeric_limits<float>::quiet_NaN();            // nodata normal
     const SkyPatches patches = parseSkyPatches("sectors:4,bands:0,45,90");
-    const SkyMaps one = computeSky(pointers(s.horizons), s.east, s.north, s.up, 0.3, patches, 1);
-    const SkyMaps many = computeSky(pointers(s.horizons), s.east, s.north, s.up, 0.3, patches, 4);
+    const SkyMaps one = withThreads(1, [&] { return computeSky(pointers(s.horizons), s.east, s.north, s.up, 0.3, patches); });
+    const SkyMaps many = withThreads(4, [&] { return computeSky(pointers(s.horizons), s.east, s.north, s.up, 0.3, patches); });
     // Bitwise comparison (NaN != NaN).
     for (std::size_t i = 0; i < one.skyK.size(); ++i) {
         EXPECT_EQ(std::memcmp(&one.skyK.data()[i], &many.skyK.data()[i], sizeof(float)), 0);
@@ -581,8 +582,8 @@ TEST(SkyGrid, NodataRunsAtRowEndsAreNaNAndLeaveTheOtherCells) {
     blank(5, 0, 2, 2);  // a run that a later direction widens
     blank(5, 0, 6, 9);
     const SkyPatches patches = parseSkyPatches("sectors:4");
-    const SkyMaps a = computeSky(pointers(coast.horizons), coast.east, coast.north, coast.up, 0.3, patches, 2);
-    const SkyMaps b = computeSky(pointers(clean.horizons), clean.east, clean.north, clean.up, 0.3, patches, 2);
+    const SkyMaps a = computeSky(pointers(coast.horizons), coast.east, coast.north, coast.up, 0.3, patches);
+    const SkyMaps b = computeSky(pointers(clean.horizons), clean.east, clean.north, clean.up, 0.3, patches);
     std::size_t nanCells = 0;
     for (std::size_t r = 0; r < h; ++r)
         for (std::size_t c = 0; c < w; ++c) {

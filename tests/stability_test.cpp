@@ -136,7 +136,7 @@ double sunVisibilityMean(const Terrain& t, const Normals& n, double azDeg, doubl
 
 TEST(Stability, SunThroughTheHorizonIsMonotoneAndContinuous) {
     const Terrain t = hills(96, 30);
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     double prev = -1, worstDrop = 0, worstJump = 0, belowMax = 0, grazingBounds = 0;
     for (double el = -2.0; el <= 3.0 + 1e-9; el += 0.05) {
         const SunFrame f = computeSunFrame(t, n, SunField::uniform(135, el), SunFrameParams{});
@@ -178,7 +178,6 @@ TEST(Stability, StrongRefractionRaisesHorizonsMonotonically) {
     const Terrain t = hills(128, 200);  // 25 km across: curvature matters
     HorizonParams p;
     p.azimuthDeg = 60;
-    p.threads = 1;
     Grid<float> prev;
     double worstDrop = 0, bounds = 0;
     for (double k : {0.0, 0.13, 0.5, 0.9, 0.99}) {
@@ -201,7 +200,6 @@ constexpr double kSeamExcessDeg = 0.01;
 TEST(Stability, AzimuthWrapsThrough360Continuously) {
     const Terrain t = hills(96, 30, 1.0 / 3);
     HorizonParams p;
-    p.threads = 1;
     const auto meanAbsDiff = [&](double a, double b) {
         p.azimuthDeg = a;
         const HorizonMap x = sweepHorizon(t, p);
@@ -245,7 +243,7 @@ TEST(Stability, AzimuthWrapsThrough360Continuously) {
           excess(359.9, 0.1) - besideSeam);
     check("azimuth 0 vs 360", "sweep", "mean abs(dh) (deg)", 0, meanAbsDiff(0, 360));
     // Polar day: a sun circling at 10 deg gives a continuous visibility through north.
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     const double a = sunVisibilityMean(t, n, 359.95, 10), b = sunVisibilityMean(t, n, 0.05, 10);
     check("polar day sun through north", "horizon", "mean visibility change over 0.1 deg of azimuth", 0.01, std::abs(a - b));
 }
@@ -253,10 +251,9 @@ TEST(Stability, AzimuthWrapsThrough360Continuously) {
 TEST(Stability, FlatGroundIsOpenSky) {
     const Terrain t = makeUniformTerrain(Grid<float>(64, 64, 100.0f), 30);
     HorizonParams p;
-    p.threads = 1;
-    const Normals n = computeNormals(t, 1);
-    SkyAccumulator sky(n.east, n.north, n.up, 8, {}, 1);
-    ApertureAccumulator ap(n.east, n.north, n.up, 8, 1);
+    const Normals n = computeNormals(t);
+    SkyAccumulator sky(n.east, n.north, n.up, 8, {});
+    ApertureAccumulator ap(n.east, n.north, n.up, 8);
     double maxHorizon = -90;
     sweepDirections(t, p, 8, [&](std::size_t i, const HorizonMap& m) {
         for (float v : m.angleDeg.values()) maxHorizon = std::max<double>(maxHorizon, v);
@@ -276,7 +273,6 @@ TEST(Stability, VerticalCliffStaysFiniteAndMatchesReference) {
     const Terrain t = makeUniformTerrain(surface(64, 64, [](double c, double) { return c < 32 ? 0.0f : 500.0f; }), 10);
     HorizonParams p;
     p.azimuthDeg = 90;  // looking at the cliff from the low side
-    p.threads = 1;
     const HorizonMap sweep = sweepHorizon(t, p);
     const HorizonMap ref = referenceHorizon(t, p);
     double worst = 0;
@@ -285,7 +281,7 @@ TEST(Stability, VerticalCliffStaysFiniteAndMatchesReference) {
             worst = std::max(worst, static_cast<double>(std::abs(sweep.angleDeg(c, r) - ref.angleDeg(c, r))));
     check("vertical cliff", "sweep", "horizon outside [-90, 90]", 0, outOfBounds(sweep.angleDeg, t, -90, 90));
     check("vertical cliff, low side", "sweep vs reference", "max abs(dh) (deg)", 0.5, worst);
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     check("vertical cliff", "normals", "normal.up outside (0, 1]", 0, outOfBounds(n.up, t, 1e-6, 1));
 }
 
@@ -297,7 +293,6 @@ TEST(Stability, NodataHolesAndEdges) {
     for (std::size_t c = 0; c < 80; ++c) t.heightsM(c, 0) = std::numeric_limits<float>::quiet_NaN();  // a nodata edge
     HorizonParams p;
     p.azimuthDeg = 33;
-    p.threads = 2;
     const HorizonMap m = sweepHorizon(t, p);
     std::size_t nanMismatch = 0;
     for (std::size_t i = 0; i < m.angleDeg.size(); ++i)
@@ -305,7 +300,7 @@ TEST(Stability, NodataHolesAndEdges) {
     check("random nodata holes + nodata edge row", "sweep", "cells whose NaN-ness differs from the DEM", 0,
           static_cast<double>(nanMismatch));
     check("random nodata holes", "sweep", "horizon outside [-90, 90]", 0, outOfBounds(m.angleDeg, t, -90, 90));
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     const SunFrame f = computeSunFrame(t, n, SunField::uniform(200, 20), SunFrameParams{});
     check("random nodata holes", "sun", "visibility outside [0, 1]", 0, outOfBounds(f.light.visibility, t, 0, 1));
 }
@@ -323,7 +318,6 @@ TEST(Stability, LatLonCellsAt78North) {
     constexpr int kAzimuths = 12;
     HorizonParams p;
     p.maxDistanceM = 600;  // so that inner cells are not truncated by the DEM edge
-    p.threads = 1;
     std::vector<double> err;
     for (int i = 0; i < kAzimuths; ++i) {
         p.azimuthDeg = 15.0 + 360.0 / kAzimuths * i;
@@ -351,9 +345,8 @@ TEST(Stability, NarrowNorthSouthCanyonDefeatsTheAperture) {
     // and south that no single cap represents.
     const Terrain t = makeUniformTerrain(
         surface(64, 64, [](double c, double) { return std::abs(c - 32) <= 1 ? 0.0f : 300.0f; }), 10);
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     HorizonParams p;
-    p.threads = 1;
     constexpr std::size_t kDirs = 64;
     std::vector<HorizonMap> maps;
     sweepDirections(t, p, kDirs, [&](std::size_t, const HorizonMap& m) { maps.push_back(m); });
@@ -381,11 +374,10 @@ TEST(Stability, ThinRidgeWithFewDirections) {
     // A 1-cell-wide ridge 200 m high running diagonally: 4 directions can miss it entirely.
     const Terrain t = makeUniformTerrain(
         surface(64, 64, [](double c, double r) { return std::abs(c - r - 5) < 0.5 ? 200.0f : 0.0f; }), 10);
-    const Normals n = computeNormals(t, 1);
+    const Normals n = computeNormals(t);
     HorizonParams p;
-    p.threads = 1;
     const auto kAt = [&](std::size_t dirs) {
-        SkyAccumulator sky(n.east, n.north, n.up, dirs, {}, 1);
+        SkyAccumulator sky(n.east, n.north, n.up, dirs, {});
         sweepDirections(t, p, dirs, [&](std::size_t i, const HorizonMap& m) { sky.addDirection(i, m.angleDeg); });
         return static_cast<double>(sky.finish(0.2).skyK(20, 25));
     };
@@ -401,9 +393,8 @@ TEST(Stability, ExtremeCellSizesAndTinyDems) {
         const Terrain t = hills(32, cell);
         HorizonParams p;
         p.azimuthDeg = 77;
-        p.threads = 1;
         const HorizonMap m = sweepHorizon(t, p);
-        const Normals n = computeNormals(t, 1);
+        const Normals n = computeNormals(t);
         check("cell size " + std::to_string(cell) + " m", "sweep", "horizon outside [-90, 90]", 0,
               outOfBounds(m.angleDeg, t, -90, 90));
         check("cell size " + std::to_string(cell) + " m", "normals", "normal.up outside (0, 1]", 0,
@@ -412,9 +403,8 @@ TEST(Stability, ExtremeCellSizesAndTinyDems) {
     for (std::size_t size : {1u, 2u}) {
         const Terrain t = makeUniformTerrain(surface(size, size, [](double c, double r) { return static_cast<float>(c + r); }), 30);
         HorizonParams p;
-        p.threads = 1;
-        const Normals n = computeNormals(t, 1);
-        SkyAccumulator sky(n.east, n.north, n.up, 8, {}, 1);
+        const Normals n = computeNormals(t);
+        SkyAccumulator sky(n.east, n.north, n.up, 8, {});
         double bounds = 0;
         sweepDirections(t, p, 8, [&](std::size_t i, const HorizonMap& m) {
             bounds = std::max(bounds, outOfBounds(m.angleDeg, t, -90, 90));

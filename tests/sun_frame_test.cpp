@@ -48,7 +48,7 @@ TEST_P(SunFrameStrategy, MatchesThePerCellReferenceAcrossAnAzimuthSpread) {
     const std::optional<Terrain> dem = sharedTerrain("big_tujunga_srtm30m_utm11.tif", 400, 400);
     if (!dem) GTEST_SKIP() << "shared DEM not found";
     const Terrain& t = *dem;
-    const Normals normals = computeNormals(t, 0);
+    const Normals normals = computeNormals(t);
     const SunField field = slantedField(t.width(), t.height(), 150.0, 153.2, 12.0);
 
     SunFrameParams params;
@@ -67,7 +67,7 @@ TEST_P(SunFrameStrategy, MatchesThePerCellReferenceAcrossAnAzimuthSpread) {
         const auto [az, el] = field.at(static_cast<double>(cell.col) + 0.5, static_cast<double>(cell.row) + 0.5);
         HorizonParams hp;
         hp.azimuthDeg = az;
-        hp.maxDistanceM = params.maxDistanceM;
+        hp.maxDistanceM = *params.maxDistanceM;
         const HorizonSample ref = referenceHorizonAt(t, hp, std::span<const CellIndex>(&cell, 1))[0];
         const SunTerms exact = sunTerms(normals.at(cell.col, cell.row), ref.angleDeg, az, el, params.sunDiameterDeg);
         const double got = frame.light.visibility(cell.col, cell.row);
@@ -158,7 +158,7 @@ TEST(SunFrame, RowAnglesMatchTheFieldAndTheLibraryTrigonometry) {
 
 TEST(SunFrame, ProgressCountsTheFrameOnceWhateverTheSweeps) {
     const Terrain t = makeUniformTerrain(Grid<float>(200, 150, 100.0f), 30.0);
-    const Normals normals = computeNormals(t, 1);
+    const Normals normals = computeNormals(t);
     const SunField field = slantedField(t.width(), t.height(), 100.0, 104.0, 20.0);
     double lastFraction = 0;
     ProgressCounter counter([&](double f, const std::string&) { lastFraction = f; return true; }, "frame",

@@ -34,9 +34,8 @@ Day utcDay(sys_days date, int stepMin) {
 }
 
 SunHoursMaps integrate(const Terrain& t, const SolarSite& site, const Day& day) {
-    const Normals normals = computeNormals(t, 1);
+    const Normals normals = computeNormals(t);
     SunHoursParams params;
-    params.frame.threads = 1;
     return integrateSunHours(t, normals, day.instants, [&](std::size_t i) {
         const SolarPosition p = solarPosition(site, day.utc[i]);
         return SunField::uniform(p.azimuthDeg, p.elevationDeg);
@@ -96,17 +95,15 @@ TEST(HorizonStack, MatchesExactSweepOnAStackDirection) {
         for (std::size_t c = 0; c < 48; ++c)
             heights(c, r) = static_cast<float>(200.0 * std::sin(0.3 * c) * std::cos(0.2 * r) + 5.0 * c);
     const Terrain t = makeUniformTerrain(heights, kCellM);
-    const Normals normals = computeNormals(t, 1);
+    const Normals normals = computeNormals(t);
     HorizonParams hp;
     hp.maxDistanceM = 2000;
-    hp.threads = 1;
     const HorizonStack stack = computeHorizonStack(t, 8, hp);
     const SunField field = SunField::uniform(270.0, 8.0);  // direction 6 of 8
     SunFrameParams fp;
     fp.maxDistanceM = 2000;
-    fp.threads = 1;
     const SunFrame exact = computeSunFrame(t, normals, field, fp);
-    const SunLight interp = sunLightFromStack(t, normals, stack, field, fp.sunDiameterDeg, 1);
+    const SunLight interp = sunLightFromStack(t, normals, stack, field, fp.sunDiameterDeg);
     double shadowed = 0;
     for (std::size_t k = 0; k < heights.size(); ++k) {
         EXPECT_NEAR(interp.visibility.data()[k], exact.light.visibility.data()[k], 1e-6) << k;
@@ -132,7 +129,7 @@ Grid<float> daylight(const Terrain& t, SolarSite site, const Day& day) {
     return integrateDaylight(t, day.instants, [&](std::size_t i) {
         const SolarPosition p = solarPosition(site, day.utc[i]);
         return SunField::uniform(p.azimuthDeg, p.elevationDeg);
-    }, 1);
+    });
 }
 
 // Sky irradiation on flat open ground = 1 (the sky normalisation, docs/design.md §3) integrated
@@ -141,11 +138,10 @@ Grid<float> daylight(const Terrain& t, SolarSite site, const Day& day) {
 // angles), a separate code path from the per-instant positions the integral uses.
 TEST(SunHours, SkyIrradiationOnFlatOpenGroundIsTheDayLength) {
     const Terrain t = makeUniformTerrain(Grid<float>(16, 16, 100.0f), kCellM);
-    const Normals normals = computeNormals(t, 1);
+    const Normals normals = computeNormals(t);
     HorizonParams hp;
     hp.maxDistanceM = 1000;
-    hp.threads = 1;
-    SkyAccumulator acc(normals.east, normals.north, normals.up, 8, {}, 1);
+    SkyAccumulator acc(normals.east, normals.north, normals.up, 8, {});
     sweepDirections(t, hp, 8, [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); });
     const Grid<float> skyFactor = acc.finish(0.2).skyFactor;
     const struct {
@@ -208,7 +204,7 @@ TEST(SunHours, SkyIrradiationKeepsNodataAndChecksShapes) {
 TEST(SunHours, RejectsTooFewInstants) {
     const Terrain t = makeUniformTerrain(Grid<float>(4, 4, 0.0f), kCellM);
     const std::vector<SunInstant> one{{0, 0}};
-    EXPECT_THROW(integrateSunHours(t, computeNormals(t, 1), one,
+    EXPECT_THROW(integrateSunHours(t, computeNormals(t), one,
                                    [](std::size_t) { return SunField::uniform(180, 45); }, {}),
                  Error);
 }

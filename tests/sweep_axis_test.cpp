@@ -4,6 +4,7 @@
 // slope within the cell's chunk raised by the steepest sample of the previous chunk within range
 // (found by brute force here); windows and thread counts give the same bits, and so do the
 // portable and AVX-512 paths.
+#include "demlight/core/parallel.h"
 #include "demlight/core/angles.h"
 #include "demlight/core/fast_math.h"
 #include "demlight/core/simd.h"
@@ -52,9 +53,8 @@ HorizonMap sweepAt(const Terrain& t, double azimuthDeg, int threads, std::option
     HorizonParams p;
     p.azimuthDeg = azimuthDeg;
     p.maxDistanceM = maxDistanceM;
-    p.threads = threads;
     p.window = window;
-    return sweepHorizon(t, p);
+    return withThreads(threads, [&] { return sweepHorizon(t, p); });
 }
 
 /// The angles the float kernel gives each cell: lines walked from the far edge toward the

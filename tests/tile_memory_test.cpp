@@ -138,14 +138,17 @@ TEST(TilePlan, NoTileFittingIsReportedWithWhatTheSmallestNeeds) {
 const char* const kUtm10Wkt =
     R"(PROJCS["WGS 84 / UTM zone 10N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",-123],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1],AUTHORITY["EPSG","32610"]])";
 
-/// Runs the demlight binary with `args` (no shell, so the child is the process measured) and
-/// returns its peak resident set (bytes), or -1 when it did not exit 0 (its exit status in
-/// `exitCode` when given); its stderr goes to `errPath`.
+/// Runs the demlight binary with `args` and -v (no shell, so the child is the process measured)
+/// and returns its peak resident set (bytes), as the command's own "peak memory" note gives it, or
+/// -1 when it did not exit 0 (its exit status in `exitCode` when given); its stderr goes to
+/// `errPath`. (Not the child's ru_maxrss: Linux counts in it what the child held before its exec,
+/// a forked copy of this test process, itself larger than the command's runs here.)
 double peakRssOfRun(const std::vector<std::string>& args, const std::string& errPath, int* exitCode = nullptr) {
     std::vector<char*> argv;
     std::string program = DEMLIGHT_CLI_PATH;
     argv.push_back(program.data());
     std::vector<std::string> copies = args;
+    copies.push_back("-v");
     for (std::string& a : copies) argv.push_back(a.data());
     argv.push_back(nullptr);
     const pid_t pid = ::fork();
@@ -161,7 +164,12 @@ double peakRssOfRun(const std::vector<std::string>& args, const std::string& err
     if (::wait4(pid, &status, 0, &usage) != pid) return -1;
     if (exitCode) *exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1;
-    return static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux reports kilobytes
+    std::ifstream err(errPath);
+    const std::string note = "peak memory: ";
+    for (std::string line; std::getline(err, line);)
+        if (line.rfind(note, 0) == 0) return std::atof(line.c_str() + note.size()) * 1e6;
+    ADD_FAILURE() << "no peak memory note in " << errPath;
+    return -1;
 }
 
 std::string readText(const std::string& path) {

@@ -110,7 +110,6 @@ TEST_P(TiledSweep, TilesWithHalosAreTheWholeDemsBits) {
             HorizonParams p;
             p.azimuthDeg = azimuth;
             p.maxDistanceM = distance;
-            p.threads = 2;
             // Tiles smaller than the halo, an odd size, and one larger than the DEM's side.
             for (const std::size_t tile : c.sweepTiles) {
                 EXPECT_EQ(tiledMismatches(*t, p, tile), 0u)
@@ -129,7 +128,6 @@ TEST_P(TiledSweep, NearestLineSweepsTooAsSkyIntegralsRunThem) {
         p.azimuthDeg = azimuth;
         p.maxDistanceM = 2500;
         p.nearestLine = true;
-        p.threads = 2;
         EXPECT_EQ(tiledMismatches(*t, p, c.sweepTiles[1]), 0u) << c.dem << " azimuth " << azimuth;
     }
 }
@@ -147,7 +145,6 @@ TEST_P(TiledSweep, NearFieldTilesToo) {
                 p.azimuthDeg = azimuth;
                 p.maxDistanceM = distance;
                 p.nearFieldSteps = steps;
-                p.threads = 2;
                 EXPECT_EQ(tiledMismatches(*t, p, c.sweepTiles[0]), 0u)
                     << c.dem << " near field " << steps << " azimuth " << azimuth << " distance " << distance;
             }

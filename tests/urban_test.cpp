@@ -39,7 +39,6 @@ HorizonParams flat(double azimuthDeg, int nearFieldSteps) {
     p.azimuthDeg = azimuthDeg;
     p.curvature = false;
     p.nearFieldSteps = nearFieldSteps;
-    p.threads = 2;
     return p;
 }
 
@@ -263,7 +262,6 @@ TEST(NearField, OnTheGridAxesTheUndelayedSweepGivesTheDelayedOnesModel) {
                 HorizonParams p;
                 p.maxDistanceM = distance;
                 p.nearFieldSteps = steps;
-                p.threads = 2;
                 p.azimuthDeg = az + 1e-7;
                 const HorizonMap offAxis = sweepHorizon(t, p);
                 p.azimuthDeg = az;
@@ -481,7 +479,7 @@ TEST_P(SurfaceModel, HorizonsMeetTheTargetsAgainstTheReference) {
     ASSERT_EQ(plan.nearFieldSteps, kSurfaceNearFieldSteps) << "a surface model by its steep steps";
     ASSERT_TRUE(plan.farFieldCrossings) << "wall top edges beyond the near field";
     EXPECT_EQ(plan.skyDirections, kFullSkyDirections) << "sky integrals of a surface model need more sectors";
-    const HorizonParams p = planHorizonParams(plan, kDefaultRefraction, 2);
+    const HorizonParams p = planHorizonParams(plan, kDefaultRefraction);
     const DsmStats st = compareWithReference(*dem, p, 1500, plan.expectedError.aboveElevationDeg);
     std::cout << GetParam() << ": " << st.count << " horizons, median " << st.median << " deg, p99 " << st.p99
               << " deg, lit/shaded at a 20 deg sun differ on " << 100 * st.misclassified << " %\n";

@@ -47,7 +47,7 @@ TEST(MaxMipmap, MeetsTheSurfaceWhereAWalkThroughEveryPatchDoes) {
     Grid<float> holes = h;
     for (int k = 0; k < 40; ++k) holes(static_cast<std::size_t>(unit(rng) * 53), static_cast<std::size_t>(unit(rng) * 41)) = NAN;
     for (const Grid<float>* field : {&h, &holes}) {
-        const MaxMipmap mm(*field, 1);
+        const MaxMipmap mm(*field);
         int hits = 0;
         for (int i = 0; i < 4000; ++i) {
             // From above every height (<= 50), most over the field, some from beyond its sides.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <fcntl.h>
@@ -86,6 +87,13 @@ ProgramExit runProgram(const ProgramCall& call) {
         result.why = call.argv[0] + (result.status == 127 ? " could not be run (exit status 127)"
                                                           : " failed (exit status " + std::to_string(result.status) + ")");
     return result;
+}
+
+double peakResidentBytes() {
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) * 1024.0;  // "VmHWM:  123 kB"
+    return 0;
 }
 
 }  // namespace demlight

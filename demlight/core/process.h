@@ -30,6 +30,11 @@ struct ProgramExit {
 /// Runs `call` with posix_spawnp (no shell) and waits for it. Its standard input is /dev/null.
 ProgramExit runProgram(const ProgramCall& call);
 
+/// This process's peak resident set since its program started (bytes; Linux's VmHWM), or 0
+/// where the system does not say. Unlike getrusage's, it leaves out what the process held
+/// before its exec (a forked copy of its parent).
+double peakResidentBytes();
+
 /// The full path of `program` on PATH (an executable regular file), if any.
 std::optional<std::string> findProgram(const std::string& program);
 

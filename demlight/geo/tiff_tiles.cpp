@@ -227,7 +227,7 @@ void TileWriter::writeRows(std::size_t band, std::size_t row0, std::size_t rows,
     const bool floats = st.encoding.samples == TileSamples::Float32;
     const std::size_t sampleBytes = floats ? 4 : 2;
     // Tiles are independent: each thread predicts and compresses whole tiles into its own buffer.
-    parallelFor(0, tiles, st.encoding.threads, [&](std::size_t t) {
+    parallelFor(0, tiles, [&](std::size_t t) {
         thread_local std::unique_ptr<ZSTD_CCtx, ZstdContextFree> cctx;
         thread_local std::vector<std::uint8_t> raw;
         if (!cctx) cctx.reset(ZSTD_createCCtx());

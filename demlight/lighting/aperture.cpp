@@ -322,13 +322,11 @@ EnuVector capIntersectionCentroidFast(const EnuVector& light, double lightRadius
 
 ApertureAccumulator::ApertureAccumulator(const Grid<float>& normalEast,
                                          const Grid<float>& normalNorth,
-                                         const Grid<float>& normalUp, std::size_t directions,
-                                         int threads)
+                                         const Grid<float>& normalUp, std::size_t directions)
     : east_(normalEast),
       north_(normalNorth),
       up_(normalUp),
       directions_(directions),
-      threads_(threads),
       added_(directions, false),
       omega_(normalEast.width(), normalEast.height(), 0.0),
       ve_(normalEast.width(), normalEast.height(), 0.0),
@@ -359,7 +357,7 @@ void ApertureAccumulator::addDirection(std::size_t index, const Grid<float>& hor
     const FastApertureSector fast = makeFastApertureSector(sector);
     [[maybe_unused]] const bool eightAtOnce =
         fast.narrow && simdPath() == SimdPath::Avx512;
-    parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+    parallelFor(0, east_.height(), [&](std::size_t row) {
         thread_local std::vector<double> keptBuffer;
         keptBuffer.resize(width);
         double* kept = keptBuffer.data();
@@ -446,7 +444,7 @@ ApertureMaps ApertureAccumulator::finish() const {
     ApertureMaps out{Grid<float>(w, ht, kNaNf), Grid<float>(w, ht, kNaNf),
                      Grid<float>(w, ht, kNaNf), Grid<float>(w, ht, kNaNf),
                      Grid<float>(w, ht, kNaNf)};
-    parallelFor(0, ht, threads_, [&](std::size_t row) {
+    parallelFor(0, ht, [&](std::size_t row) {
         for (std::size_t col = 0; col < w; ++col) {
             if (std::isnan(omega_(col, row))) continue;
             const EnuVector normal{east_(col, row), north_(col, row), up_(col, row)};
@@ -464,8 +462,8 @@ ApertureMaps ApertureAccumulator::finish() const {
 
 ApertureMaps computeAperture(const std::vector<const Grid<float>*>& horizonsDeg,
                              const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                             const Grid<float>& normalUp, int threads) {
-    ApertureAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size(), threads);
+                             const Grid<float>& normalUp) {
+    ApertureAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size());
     for (std::size_t i = 0; i < horizonsDeg.size(); ++i) {
         if (!horizonsDeg[i])
             throw Error("aperture: horizon grid " + std::to_string(i) + " is null");

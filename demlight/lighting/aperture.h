@@ -99,7 +99,7 @@ struct ApertureMaps {
 class ApertureAccumulator {
 public:
     ApertureAccumulator(const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                        const Grid<float>& normalUp, std::size_t directions, int threads = 0);
+                        const Grid<float>& normalUp, std::size_t directions);
     void addDirection(std::size_t index, const Grid<float>& horizonDeg);
     /// The same with the accumulator's cells at `cells` of a larger horizon grid (a tile's
     /// window inside the grid swept with its halo); `cells` must match the normals' size.
@@ -113,7 +113,6 @@ private:
     const Grid<float>& north_;
     const Grid<float>& up_;
     std::size_t directions_;
-    int threads_;
     std::vector<bool> added_;
     Grid<double> omega_, ve_, vn_, vu_;
 };
@@ -121,6 +120,6 @@ private:
 /// All D grids at once (horizonsDeg[i] is azimuth i * 360 / D).
 ApertureMaps computeAperture(const std::vector<const Grid<float>*>& horizonsDeg,
                              const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                             const Grid<float>& normalUp, int threads = 0);
+                             const Grid<float>& normalUp);
 
 }  // namespace demlight

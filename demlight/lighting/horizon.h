@@ -42,6 +42,12 @@ inline constexpr double kReferenceStepOfCell = 0.25;
 /// flattens out well before: docs/accuracy.md).
 inline constexpr int kMaxNearFieldSteps = 32;
 
+/// A horizon search distance as every layer holds it, from a product's request to a sweep:
+/// metres along the ground, infinity = the whole DEM. Where one may be left to the scene plan
+/// (SearchRequest, QualityBudget) or to each sun (SunFrameParams), it is optional and none means
+/// so; a sweep (HorizonParams::maxDistanceM) always has one.
+using SearchDistanceM = std::optional<double>;
+
 struct HorizonParams {
     /// True azimuth of the search (degrees clockwise from true north); any finite value, reduced
     /// to [0, 360) by wrapAzimuthDeg so 0 and 360 give identical bits.
@@ -52,8 +58,6 @@ struct HorizonParams {
     double refraction = kDefaultRefraction;
     /// false = flat earth (no curvature drop, refraction unused).
     bool curvature = true;
-    /// Worker threads (0 = all cores). Output bits do not depend on it.
-    int threads = 0;
     /// Compute only these output cells (others are left NaN / 0); occluders come from anywhere.
     /// In the terrain's own coordinates.
     std::optional<CellWindow> window;

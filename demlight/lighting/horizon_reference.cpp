@@ -108,7 +108,7 @@ HorizonMap referenceHorizon(const Terrain& terrain, const HorizonParams& params,
     out.angleDeg = Grid<float>(terrain.width(), terrain.height(), std::numeric_limits<float>::quiet_NaN());
     out.truncated = Grid<std::uint8_t>(terrain.width(), terrain.height(), 0);
     const RayMarcher marcher(terrain, params);
-    parallelFor(w.row0, w.row1, params.threads, [&](std::size_t row) {
+    parallelFor(w.row0, w.row1, [&](std::size_t row) {
         if (progress && progress->cancelled()) return;
         for (std::size_t col = w.col0; col < w.col1; ++col) {
             const HorizonSample s = marcher.march(col, row);
@@ -133,7 +133,7 @@ std::vector<HorizonSample> referenceHorizonAt(const Terrain& terrain, const Hori
     }
     std::vector<HorizonSample> out(cells.size());
     const RayMarcher marcher(terrain, p);
-    parallelFor(0, cells.size(), p.threads, [&](std::size_t i) {
+    parallelFor(0, cells.size(), [&](std::size_t i) {
         if (progress && progress->cancelled()) return;
         out[i] = marcher.march(cells[i].col, cells[i].row);
         if (progress) progress->advance();

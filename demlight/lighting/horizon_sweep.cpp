@@ -103,14 +103,13 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
     const FullGridRef full = fullGrid(terrain);
     const CellWindow cells = cellsOnFullGrid(terrain);
     const double invR = inverseEffectiveRadius(params);
-    const int threads = resolveThreadCount(params.threads);
     // Eight lines at once on the AVX-512 path (the portable one serves one line at a time).
     const bool eightAtOnce = simdPath() == SimdPath::Avx512;
 
     // Reused grids are refilled in place, by rows in parallel (no fresh pages to fault in).
     const auto reset = [&](auto& grid, auto fill) {
         if (grid.width() == terrain.width() && grid.height() == terrain.height()) {
-            parallelFor(0, grid.height(), threads, [&](std::size_t row) {
+            parallelFor(0, grid.height(), [&](std::size_t row) {
                 std::fill_n(grid.rowPtr(row), grid.width(), fill);
             }, 64);
         } else {
@@ -135,9 +134,9 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
         const std::size_t nBlocks = static_cast<std::size_t>((nLines + static_cast<long>(kLinesPerBlock) - 1) /
                                                              static_cast<long>(kLinesPerBlock));
         const CellWindow& w = region.window;
-        const ValidCells valid(terrain, geo.xMajor, threads, buffers.validBits[geo.xMajor ? 0 : 1]);
+        const ValidCells valid(terrain, geo.xMajor, buffers.validBits[geo.xMajor ? 0 : 1]);
         // Every served cell of plane A is written; plane B only where frac > 0, read only there.
-        parallelFor(0, nBlocks, threads, [&](std::size_t blockIndex) {
+        parallelFor(0, nBlocks, [&](std::size_t blockIndex) {
             if (progress && progress->cancelled()) return;
             const long kBegin = geo.kFirst + static_cast<long>(blockIndex * kLinesPerBlock);
             const long kEnd = std::min(kBegin + static_cast<long>(kLinesPerBlock), geo.kLast + 1);
@@ -145,7 +144,7 @@ std::size_t sweepHorizonInto(const Terrain& terrain, const HorizonParams& params
                           valid, eightAtOnce);
         });
         if (progress) progress->throwIfCancelled();
-        parallelFor(w.row0, w.row1, threads, [&](std::size_t row) {
+        parallelFor(w.row0, w.row1, [&](std::size_t row) {
             combineRow(geo, terrain, full, params.maxDistanceM, invR, row, w, cells, out.angleDeg.data(), planeB.data(),
                        params.truncationFlags ? out.truncated.data() : nullptr);
         }, 16);

@@ -114,7 +114,7 @@ void InsolationAccumulator::addVisibleSky(const Grid<float>& horizonDeg, const s
         diffuseHorizontal.push_back(skies[k].diffuseHorizontal);
         sinElevation.push_back(skies[k].sinElevation);
     }
-    parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
+    parallelFor(0, heights_.height(), [&](std::size_t row) {
         for (std::size_t col = 0; col < heights_.width(); ++col) {
             const float z = heights_(col, row);
             if (std::isnan(z)) continue;
@@ -166,7 +166,7 @@ void InsolationAccumulator::addDirection(std::size_t index, const Grid<float>& h
         addVisibleSky(horizonDeg, angles, skies, beams, edges, bins);
         return;
     }
-    parallelFor(0, heights_.height(), params_.threads, [&](std::size_t row) {
+    parallelFor(0, heights_.height(), [&](std::size_t row) {
         for (std::size_t col = 0; col < heights_.width(); ++col) {
             const float z = heights_(col, row);
             if (std::isnan(z)) continue;

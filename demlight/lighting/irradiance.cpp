@@ -85,7 +85,7 @@ IrradianceMaps computeIrradiance(const IrradianceInputs& in, const IrradiancePar
                        Grid<float>(width, height, nan), Grid<float>(width, height, nan)};
     const Normals& n = *in.normals;
     const bool anyGrid = in.grids.changesSky() || in.grids.albedo;
-    parallelFor(0, height, p.threads, [&](std::size_t row) {
+    parallelFor(0, height, [&](std::size_t row) {
         forEachSunInRow(*in.sun, row, width, [&](std::size_t col, const SunAngles& sun) {
             const float z = heights(col, row);
             if (std::isnan(z)) return;

@@ -39,7 +39,6 @@ struct IrradianceParams {
     double albedo = 0;                 ///< ground albedo (0-1)
     double coeffBh = 1, coeffDh = 1;   ///< real-sky beam and diffuse indices (0-1)
     double extraterrestrialWm2 = kSolarConstantWm2;  ///< G0 (E1)
-    int threads = 0;
 };
 
 /// What one cell sees: the sun terms of the sun frame and the visible sky.

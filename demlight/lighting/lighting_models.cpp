@@ -114,14 +114,14 @@ namespace {
 /// for every cell that has both, in parallel over rows.
 template <class Fn>
 void forEachApertureCell(const ApertureMaps& aperture, const Grid<float>& normalEast,
-                         const Grid<float>& normalNorth, const Grid<float>& normalUp, int threads,
+                         const Grid<float>& normalNorth, const Grid<float>& normalUp,
                          Fn&& light) {
     const Grid<float>& ref = aperture.radiusDeg;
     for (const Grid<float>* g : {&aperture.bentEast, &aperture.bentNorth, &aperture.bentUp,
                                  &aperture.solidAngleSr, &normalEast, &normalNorth, &normalUp})
         if (!g->sameShape(ref))
             throw Error("aperture lighting: aperture and normal grids differ in size");
-    parallelFor(0, ref.height(), threads, [&](std::size_t row) {
+    parallelFor(0, ref.height(), [&](std::size_t row) {
         for (std::size_t col = 0; col < ref.width(); ++col) {
             Aperture ap;
             EnuVector n;
@@ -136,11 +136,11 @@ void forEachApertureCell(const ApertureMaps& aperture, const Grid<float>& normal
 ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
                                      const Grid<float>& normalNorth, const Grid<float>& normalUp,
                                      const EnuVector& sunDirection,
-                                     const ApertureLightParams& params, int threads) {
+                                     const ApertureLightParams& params) {
     const Grid<float>& ref = aperture.radiusDeg;
     ApertureLightMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
                           Grid<float>(ref.width(), ref.height(), kNaNf)};
-    forEachApertureCell(aperture, normalEast, normalNorth, normalUp, threads,
+    forEachApertureCell(aperture, normalEast, normalNorth, normalUp,
                         [&](std::size_t col, std::size_t row, const Aperture& ap, const EnuVector& n) {
                             const ApertureLight l = apertureLight(n, ap, sunDirection, params);
                             out.sun(col, row) = static_cast<float>(l.sun);
@@ -151,12 +151,11 @@ ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<fl
 
 ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>& normalEast,
                                  const Grid<float>& normalNorth, const Grid<float>& normalUp,
-                                 const SunField& field, const ApertureLightParams& params,
-                                 int threads) {
+                                 const SunField& field, const ApertureLightParams& params) {
     const Grid<float>& ref = aperture.radiusDeg;
     ApertureSunMaps out{Grid<float>(ref.width(), ref.height(), kNaNf),
                         Grid<float>(ref.width(), ref.height(), kNaNf)};
-    forEachApertureCell(aperture, normalEast, normalNorth, normalUp, threads,
+    forEachApertureCell(aperture, normalEast, normalNorth, normalUp,
                         [&](std::size_t col, std::size_t row, const Aperture& ap, const EnuVector& n) {
                             // Per-cell sun, as computeSunFrame uses for the horizon model.
                             const auto [az, el] = field.at(static_cast<double>(col) + 0.5,
@@ -175,11 +174,11 @@ double hemisphereLight(double normalUp, double skyRadiance, double groundRadianc
 }
 
 Grid<float> applyHemisphereLight(const Grid<float>& normalUp, const HemisphereParams& params,
-                                 const Grid<float>* albedo, int threads) {
+                                 const Grid<float>* albedo) {
     if (albedo && !albedo->sameShape(normalUp))
         throw Error("hemisphere lighting: albedo grid size differs from the DEM");
     Grid<float> out(normalUp.width(), normalUp.height(), kNaNf);
-    parallelFor(0, normalUp.height(), threads, [&](std::size_t row) {
+    parallelFor(0, normalUp.height(), [&](std::size_t row) {
         for (std::size_t col = 0; col < normalUp.width(); ++col) {
             const double c = albedo ? (*albedo)(col, row) : params.albedo;
             const double u = normalUp(col, row);

@@ -77,7 +77,7 @@ struct ApertureLightMaps {
 ApertureLightMaps applyApertureLight(const ApertureMaps& aperture, const Grid<float>& normalEast,
                                      const Grid<float>& normalNorth, const Grid<float>& normalUp,
                                      const EnuVector& sunDirection,
-                                     const ApertureLightParams& params, int threads = 0);
+                                     const ApertureLightParams& params);
 
 /// Sun through the aperture for a whole DEM at one instant (`demlight sun --model aperture`,
 /// `aperture-smooth`): every cell with its own sun position from `field` (bilinear at the cell
@@ -93,8 +93,7 @@ struct ApertureSunMaps {
 };
 ApertureSunMaps applyApertureSun(const ApertureMaps& aperture, const Grid<float>& normalEast,
                                  const Grid<float>& normalNorth, const Grid<float>& normalUp,
-                                 const SunField& field, const ApertureLightParams& params,
-                                 int threads = 0);
+                                 const SunField& field, const ApertureLightParams& params);
 
 // ---- Hemisphere lighting (Hargreaves 2003) ---------------------------------------------------
 
@@ -110,6 +109,6 @@ struct HemisphereParams {
 /// Per-cell hemisphere lighting; ground radiance = albedo * groundIrradiance with the albedo
 /// from `albedo` (same size as normalUp) or params.albedo. NaN normal or albedo gives NaN.
 Grid<float> applyHemisphereLight(const Grid<float>& normalUp, const HemisphereParams& params,
-                                 const Grid<float>* albedo = nullptr, int threads = 0);
+                                 const Grid<float>* albedo = nullptr);
 
 }  // namespace demlight

@@ -46,13 +46,13 @@ GridHit hitAt(const GridRay& r, double t) { return {t, r.x + r.dx * t, r.y + r.d
 
 }  // namespace
 
-MaxMipmap::MaxMipmap(const Grid<float>& heights, int threads) : heights_(&heights) {
+MaxMipmap::MaxMipmap(const Grid<float>& heights) : heights_(&heights) {
     if (heights.width() < 2 || heights.height() < 2)
         throw Error("a height field to ray-cast needs at least 2 x 2 cells (it has " + std::to_string(heights.width()) +
                     " x " + std::to_string(heights.height()) + ")");
     const std::size_t pw = heights.width() - 1, ph = heights.height() - 1;
     Grid<float> base(pw, ph);
-    parallelFor(0, ph, threads, [&](std::size_t j) {
+    parallelFor(0, ph, [&](std::size_t j) {
         for (std::size_t i = 0; i < pw; ++i) {
             const float a = heights(i, j), b = heights(i + 1, j), c = heights(i, j + 1), d = heights(i + 1, j + 1);
             base(i, j) = std::isnan(a) || std::isnan(b) || std::isnan(c) || std::isnan(d) ? kHole
@@ -63,7 +63,7 @@ MaxMipmap::MaxMipmap(const Grid<float>& heights, int threads) : heights_(&height
     while (levels_.back().width() > 1 || levels_.back().height() > 1) {
         const Grid<float>& below = levels_.back();
         Grid<float> up((below.width() + 1) / 2, (below.height() + 1) / 2);
-        parallelFor(0, up.height(), threads, [&](std::size_t j) {
+        parallelFor(0, up.height(), [&](std::size_t j) {
             for (std::size_t i = 0; i < up.width(); ++i) {
                 float m = kHole;
                 for (std::size_t y = 2 * j; y < std::min(2 * j + 2, below.height()); ++y)

@@ -33,8 +33,8 @@ struct GridHit {
 /// corner is not there and its maximum is -inf).
 class MaxMipmap {
 public:
-    /// Builds the levels (parallel over rows, 0 threads = all cores). Needs at least 2 x 2 cells.
-    explicit MaxMipmap(const Grid<float>& heights, int threads = 0);
+    /// Builds the levels (parallel over rows). Needs at least 2 x 2 cells.
+    explicit MaxMipmap(const Grid<float>& heights);
 
     /// First intersection of `ray` with the surface at t in [0, tMax], or none.
     std::optional<GridHit> cast(const GridRay& ray, double tMax) const;

@@ -114,8 +114,7 @@ Rgb toDisplay(const Rgb& x, const PreviewParams& p) {
 
 Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
                      const Grid<float>& skyLight, const std::vector<Grid<float>>& albedoRgb,
-                     double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params,
-                     int threads) {
+                     double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params) {
     const std::size_t w = normals.up.width(), h = normals.up.height();
     if (!sunVisibility.sameShape(normals.up) || !skyLight.sameShape(normals.up))
         throw Error("renderPreview: grids differ in size");
@@ -128,7 +127,7 @@ Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
     img.rgba.assign(w * h * 4, 0);
     const SunRig rig = sunRig(sunAzimuthDeg, sunElevationDeg);
     const DisplayBytes toDisplayByte(params);
-    parallelFor(0, h, threads, [&](std::size_t row) {
+    parallelFor(0, h, [&](std::size_t row) {
         for (std::size_t col = 0; col < w; ++col) {
             std::uint8_t* px = img.rgba.data() + (row * w + col) * 4;
             const Enu n = normals.at(col, row);
@@ -243,7 +242,7 @@ Image8 toGroundPixels(const Image8& image, const Terrain& terrain) {
     const double* const total = ct.total.data();
     const std::uint8_t* const src = image.rgba.data();
     std::uint8_t* const dst = out.rgba.data();
-    parallelFor(0, rows, 0, [&, taps, first, total, src, dst](std::size_t row) {
+    parallelFor(0, rows, [&, taps, first, total, src, dst](std::size_t row) {
         const std::uint8_t* in = src + row * cols * 4;
         std::uint8_t* q = dst + row * outWidth * 4;
         for (std::size_t j = 0; j < outWidth; ++j, q += 4) {

@@ -105,8 +105,7 @@ inline std::uint8_t DisplayBytes::operator()(double linear) const {
 /// params.albedo. Parallel over rows; deterministic.
 Image8 renderPreview(const Normals& normals, const Grid<float>& sunVisibility,
                      const Grid<float>& skyLight, const std::vector<Grid<float>>& albedoRgb,
-                     double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params,
-                     int threads = 0);
+                     double sunAzimuthDeg, double sunElevationDeg, const PreviewParams& params);
 
 /// Pixel geometry of a picture of a DEM.
 enum class PixelGeometry {

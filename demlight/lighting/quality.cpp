@@ -133,8 +133,6 @@ std::string_view qualityName(Quality q) { return q == Quality::Auto ? "auto" : "
 
 namespace {
 
-/// budget.maxDistanceM > 0: the user's distance replaces the plan's, and the expected error
-/// covers only the horizons that distance resolves.
 /// estimateSweepSteps summed over `directions` evenly spaced azimuths (params.azimuthDeg ignored).
 double stepsOverDirections(const Terrain& terrain, HorizonParams params, std::size_t directions) {
     double steps = 0;
@@ -145,15 +143,17 @@ double stepsOverDirections(const Terrain& terrain, HorizonParams params, std::si
     return steps;
 }
 
+/// A distance in the budget replaces the plan's, and the expected error covers only the horizons
+/// that distance resolves.
 void applyUserDistance(const Terrain& terrain, const QualityBudget& budget, ScenePlan& plan) {
-    if (!(budget.maxDistanceM > 0)) return;
-    plan.maxDistanceM = budget.maxDistanceM;
+    if (!budget.maxDistanceM) return;
+    plan.maxDistanceM = *budget.maxDistanceM;
     plan.userDistance = true;
     std::ostringstream why;
-    why << "max_distance_m=" << budget.maxDistanceM << " (given)";
+    why << "max_distance_m=" << *budget.maxDistanceM << " (given)";
     plan.reasons[0] = why.str();
     plan.expectedError.aboveElevationDeg =
-        std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, budget.maxDistanceM));
+        std::max(plan.expectedError.aboveElevationDeg, resolvedElevationDeg(terrain, *budget.maxDistanceM));
 }
 
 }  // namespace
@@ -215,7 +215,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     const ReliefSearch search = reliefSearch(terrain, budget.lowestElevationDeg);
     const double relief = search.reliefM, byRelief = search.byReliefM;
     const bool wholeDem = search.wholeDem;
-    plan.maxDistanceM = budget.maxDistanceM > 0 ? budget.maxDistanceM : search.distanceM;
+    plan.maxDistanceM = budget.maxDistanceM.value_or(search.distanceM);
     const double curvatureDeg = plan.maxDistanceM / (2 * rEff) * kRadToDeg;
     plan.curvature = curvatureDeg >= kCurvatureShareOfTolerance * budget.toleranceDeg;
     plan.directionToleranceDeg = 0;  // the sweep's automatic rule ...
@@ -264,7 +264,7 @@ ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget
     return plan;
 }
 
-HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads) {
+HorizonParams planHorizonParams(const ScenePlan& plan, double refraction) {
     HorizonParams p;
     p.maxDistanceM = plan.maxDistanceM;
     p.curvature = plan.curvature;
@@ -273,29 +273,26 @@ HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int th
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
     p.nearFieldSteps = plan.nearFieldSteps;
     p.farFieldCrossings = plan.farFieldCrossings;
-    p.threads = threads;
     return p;
 }
 
-SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction,
-                                  int threads) {
+SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction) {
     SunFrameParams p;
     p.sunDiameterDeg = sunDiameterDeg;
     p.refraction = refraction;
-    p.threads = threads;
     p.curvature = plan.curvature;
     p.directionToleranceDeg = plan.directionToleranceDeg;
     p.directionToleranceFloorDeg = plan.directionToleranceFloorDeg;
-    p.maxDistanceM = plan.quality == Quality::Full ? plan.maxDistanceM : 0.0;
+    if (plan.quality == Quality::Full) p.maxDistanceM = plan.maxDistanceM;  // else each sun's own
     p.nearFieldSteps = plan.nearFieldSteps;
     p.farFieldCrossings = plan.farFieldCrossings;
     return p;
 }
 
 HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
-                                 double refraction, int threads) {
+                                 double refraction) {
     if (directions == 0) throw Error("the number of directions must be at least 1");
-    HorizonParams p = planHorizonParams(plan, refraction, threads);
+    HorizonParams p = planHorizonParams(plan, refraction);
     p.nearestLine = plan.integralNearestLine;
     p.truncationFlags = false;  // integrals never read them
     if (plan.quality == Quality::Full) return p;

@@ -57,9 +57,9 @@ struct QualityBudget {
     double lowestElevationDeg = 2.0;
     /// Effective-radius refraction coefficient k the user asked for.
     double refraction = kDefaultRefraction;
-    /// > 0: the search distance the user gave (--max-distance), used as is; the other choices
-    /// (curvature) and the expected error's scope follow from it.
-    double maxDistanceM = 0;
+    /// The search distance the user gave, used as is (the other choices, curvature and the
+    /// expected error's scope, follow from it); none: the plan's.
+    SearchDistanceM maxDistanceM;
     /// >= 0: the near field the user gave (HorizonParams::nearFieldSteps), used as is.
     int nearFieldSteps = -1;
 };
@@ -140,14 +140,13 @@ struct ScenePlan {
 ScenePlan planScene(const Terrain& terrain, Quality quality, const QualityBudget& budget);
 
 /// HorizonParams of the plan's sweeps: its search distance, curvature and direction tolerance,
-/// with the given refraction coefficient and threads (azimuthDeg left at 0), two scan lines per
+/// with the given refraction coefficient (azimuthDeg left at 0), two scan lines per
 /// cell.
-HorizonParams planHorizonParams(const ScenePlan& plan, double refraction, int threads = 0);
+HorizonParams planHorizonParams(const ScenePlan& plan, double refraction);
 
 /// SunFrameParams of the plan: its curvature and direction tolerance; the search distance is
 /// the plan's (full) or left to the sun (auto: sunSearchDistanceM for the frame's lowest sun).
-SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction,
-                                  int threads = 0);
+SunFrameParams planSunFrameParams(const ScenePlan& plan, double sunDiameterDeg, double refraction);
 
 /// Under auto, the scan direction of a sky or aperture integral may deviate from its sector's
 /// centre azimuth by this share of the sector width (360 / directions degrees): 0.70 deg at 32
@@ -165,7 +164,7 @@ inline constexpr double kIntegralToleranceShareOfSector = 1.0 / 16.0;
 /// directions' sweeps (estimateSweepSteps, kRangeLimitStepCost): with few regions the lines
 /// walk the whole DEM anyway, and the whole DEM is the exact answer. Full: the plan's settings.
 HorizonParams planIntegralParams(const Terrain& terrain, const ScenePlan& plan, std::size_t directions,
-                                 double refraction, int threads = 0);
+                                 double refraction);
 
 /// Deterministic estimate of the work of one sweepHorizon(terrain, params) call, in line steps
 /// (one step = one interpolated line sample fed to a hull), plus one per output cell for the

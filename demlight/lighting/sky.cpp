@@ -423,13 +423,12 @@ SkyReference referenceSky(const std::function<double(double azimuthDeg)>& horizo
 
 SkyAccumulator::SkyAccumulator(const Grid<float>& normalEast, const Grid<float>& normalNorth,
                                const Grid<float>& normalUp, std::size_t directions,
-                               SkyPatches patches, int threads)
+                               SkyPatches patches)
     : east_(normalEast),
       north_(normalNorth),
       up_(normalUp),
       directions_(directions),
       patches_(std::move(patches)),
-      threads_(threads),
       added_(directions, false),
       nanOutside_(normalEast.height(), RowSpan{0, normalEast.width()}),
       sumK_(normalEast.width(), normalEast.height(), 0.0f),
@@ -463,7 +462,7 @@ void SkyAccumulator::addDirection(std::size_t index, const Grid<float>& horizonD
     const FastSector fast = makeFastSector(sector);
     [[maybe_unused]] const bool eightAtOnce =
         fast.narrow && simdPath() == SimdPath::Avx512;
-    parallelFor(0, east_.height(), threads_, [&](std::size_t row) {
+    parallelFor(0, east_.height(), [&](std::size_t row) {
         thread_local std::vector<std::uint8_t> risesBuffer;
         risesBuffer.resize(width);
         std::uint8_t* rises = risesBuffer.data();
@@ -611,7 +610,7 @@ void SkyAccumulator::finishInPlace(SkyMaps& maps, const Grid<float>* albedo, dou
     if (!maps.skyK.sameShape(east_)) throw Error("sky: the accumulator was already finished");
     maps.skyFactor = Grid<float>(w, ht, kNaNf);
     const double d = static_cast<double>(directions_);
-    parallelFor(0, ht, threads_, [&](std::size_t row) {
+    parallelFor(0, ht, [&](std::size_t row) {
         float* svf = maps.svfHorizontal.rowPtr(row);  // holds sum sin^2 h
         float* fraction = maps.skyFraction.rowPtr(row);  // holds sum sin h
         float* skyK = maps.skyK.rowPtr(row);  // holds sum K (tilted cells)
@@ -636,9 +635,8 @@ void SkyAccumulator::finishInPlace(SkyMaps& maps, const Grid<float>* albedo, dou
 
 SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
                    const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                   const Grid<float>& normalUp, double albedo, const SkyPatches& patches,
-                   int threads) {
-    SkyAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size(), patches, threads);
+                   const Grid<float>& normalUp, double albedo, const SkyPatches& patches) {
+    SkyAccumulator acc(normalEast, normalNorth, normalUp, horizonsDeg.size(), patches);
     for (std::size_t i = 0; i < horizonsDeg.size(); ++i) {
         if (!horizonsDeg[i]) throw Error("sky: horizon grid " + std::to_string(i) + " is null");
         acc.addDirection(i, *horizonsDeg[i]);

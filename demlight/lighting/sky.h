@@ -153,8 +153,7 @@ struct SkyMaps {
 class SkyAccumulator {
 public:
     SkyAccumulator(const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                   const Grid<float>& normalUp, std::size_t directions, SkyPatches patches = {},
-                   int threads = 0);
+                   const Grid<float>& normalUp, std::size_t directions, SkyPatches patches = {});
 
     /// Adds direction `index` (azimuth index * 360 / D, degrees) whose horizon angles
     /// (degrees, NaN = nodata) are `horizonDeg`. Throws Error on a wrong shape, an index out of
@@ -190,7 +189,6 @@ private:
     const Grid<float>& up_;
     std::size_t directions_;
     SkyPatches patches_;
-    int threads_;
     std::vector<bool> added_;
     /// Per row, the span whose outside addDirection last set to NaN in every sum (all of the
     /// row: nothing set yet). NaN plus anything stays NaN, so a direction whose row has the same
@@ -208,7 +206,6 @@ private:
 /// Convenience driver over all D grids at once (horizonsDeg[i] is azimuth i * 360 / D).
 SkyMaps computeSky(const std::vector<const Grid<float>*>& horizonsDeg,
                    const Grid<float>& normalEast, const Grid<float>& normalNorth,
-                   const Grid<float>& normalUp, double albedo, const SkyPatches& patches = {},
-                   int threads = 0);
+                   const Grid<float>& normalUp, double albedo, const SkyPatches& patches = {});
 
 }  // namespace demlight

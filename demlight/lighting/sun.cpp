@@ -78,7 +78,7 @@ double sunIrradiance(const Enu& normal, double horizonDeg, double sunAzimuthDeg,
 }
 
 SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizon, const Normals& normals,
-                         double sunAzimuthDeg, double sunElevationDeg, double sunDiameterDeg, int threads) {
+                         double sunAzimuthDeg, double sunElevationDeg, double sunDiameterDeg) {
     if (!horizon.angleDeg.sameShape(terrain.heightsM) || !normals.east.sameShape(terrain.heightsM) ||
         !normals.north.sameShape(terrain.heightsM) || !normals.up.sameShape(terrain.heightsM))
         throw Error("sun: horizon map and normals must have the terrain's size");
@@ -93,7 +93,7 @@ SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizon, cons
     const float nan = std::numeric_limits<float>::quiet_NaN();
     SunLight out{Grid<float>(W, H, nan), Grid<float>(W, H, nan)};
     const double azimuth = wrapAzimuthDeg(sunAzimuthDeg);
-    parallelFor(0, H, threads, [&](std::size_t row) {
+    parallelFor(0, H, [&](std::size_t row) {
         for (std::size_t col = 0; col < W; ++col) {
             if (!terrain.valid(col, row)) continue;
             const Enu n = normals.at(col, row);

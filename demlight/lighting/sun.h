@@ -68,6 +68,6 @@ struct SunLight {
 /// (elevation in [-90, 90], diameter in [0, 90)). Parallel over rows (0 = all cores).
 SunLight computeSunLight(const Terrain& terrain, const HorizonMap& horizonAtSunAzimuth,
                          const Normals& normals, double sunAzimuthDeg, double sunElevationDeg,
-                         double sunDiameterDeg = kSunDiameterDeg, int threads = 0);
+                         double sunDiameterDeg = kSunDiameterDeg);
 
 }  // namespace demlight

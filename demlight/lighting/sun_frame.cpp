@@ -162,7 +162,6 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
     HorizonParams& hp = plan.following;
     hp.refraction = params.refraction;
     hp.curvature = params.curvature;
-    hp.threads = params.threads;
     hp.truncationFlags = false;
     hp.nearestLine = params.nearestLine;
     hp.nearFieldSteps = params.nearFieldSteps;
@@ -175,7 +174,7 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
     // farthest a shadow can be cast from; with or without the range limit below.
     hp.directionToleranceDeg = params.directionToleranceDeg > 0 ? params.directionToleranceDeg
                                                                 : effectiveDirectionToleranceDeg(t, hp);
-    if (params.maxDistanceM <= 0 && !rangeLimitPays(t, hp)) {
+    if (!params.maxDistanceM && !rangeLimitPays(t, hp)) {
         // The sun's own distance finds every shadow; farther terrain cannot rise above this sun,
         // so the whole DEM gives the same visibility, and costs less unless the limit cuts the
         // line walks (regions) by more than its own overhead.
@@ -223,21 +222,24 @@ SunSweepPlan planSunSweeps(const Terrain& t, const SunField& field, const SunFra
 
 }  // namespace
 
+double sunFrameSearchDistanceM(const Terrain& terrain, const SunField& field, const SunFrameParams& params) {
+    if (params.maxDistanceM) return *params.maxDistanceM;
+    return sunSearchDistanceM(terrain, field.elevationRange().first, params.sunDiameterDeg);
+}
+
 SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunField& field,
                          const SunFrameParams& params, ProgressCounter* progress, SweepBuffers* sharedBuffers) {
     SunFrame frame;
     const float nan = std::numeric_limits<float>::quiet_NaN();
     frame.light.visibility = Grid<float>(t.width(), t.height(), nan);
     frame.light.irradiance = frame.light.visibility;
-    const auto [lowestSun, highestSun] = field.elevationRange();
-    frame.maxDistanceM = params.maxDistanceM > 0
-                             ? params.maxDistanceM
-                             : sunSearchDistanceM(t, lowestSun, params.sunDiameterDeg);
+    const double highestSun = field.elevationRange().second;
+    frame.maxDistanceM = sunFrameSearchDistanceM(t, field, params);
 
     if (highestSun <= -params.sunDiameterDeg / 2) {
         // The whole disk is below the horizon everywhere: night (rows on every thread).
         const std::size_t w = t.width();
-        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+        parallelFor(0, t.height(), [&](std::size_t row) {
             const float* h = t.heightsM.rowPtr(row);
             float* vis = frame.light.visibility.rowPtr(row);
             float* irr = frame.light.irradiance.rowPtr(row);
@@ -289,7 +291,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
     if (horizons.size() == 1) {
         // One sweep: the sun's angles of a row into buffers, then the vectorised shading pass.
         const std::size_t width = t.width();
-        parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+        parallelFor(0, t.height(), [&](std::size_t row) {
             thread_local std::vector<double> buffer;
             buffer.resize(5 * width);
             detail::SunRowAngles angles{buffer.data(), buffer.data() + width, buffer.data() + 2 * width,
@@ -309,7 +311,7 @@ SunFrame computeSunFrame(const Terrain& t, const Normals& normals, const SunFiel
         });
         return frame;
     }
-    parallelFor(0, t.height(), params.threads, [&](std::size_t row) {
+    parallelFor(0, t.height(), [&](std::size_t row) {
         forEachSunInRow(field, row, t.width(), [&](std::size_t col, const SunAngles& sun) {
             if (std::isnan(t.heightsM(col, row))) return;
             const SunTerms terms = sunTerms(normals.at(col, row), horizonAt(col, row, sun.azimuthDeg), sun,

@@ -26,8 +26,8 @@ const char* sunSweepStrategyName(SunSweepStrategy s);
 
 struct SunFrameParams {
     double sunDiameterDeg = kSunDiameterDeg;
-    /// Search distance (metres); <= 0 means sunSearchDistanceM() for the field's lowest sun.
-    double maxDistanceM = 0;
+    /// Search distance; none: each sun's own (sunFrameSearchDistanceM).
+    SearchDistanceM maxDistanceM;
     double refraction = kDefaultRefraction;
     /// As HorizonParams::curvature and HorizonParams::directionToleranceDeg (the scene plan's).
     bool curvature = true;
@@ -42,7 +42,6 @@ struct SunFrameParams {
     int nearFieldSteps = 0;
     /// As HorizonParams::farFieldCrossings (the scene plan's).
     bool farFieldCrossings = true;
-    int threads = 0;
     /// Cheapest (estimated line steps) unless a test forces one.
     SunSweepStrategy strategy = SunSweepStrategy::Cheapest;
 };
@@ -118,6 +117,10 @@ void forEachSunInRow(const SunField& field, std::size_t row, std::size_t width, 
 /// kWholeDemShareOfDiagonal of it or more.
 double sunSearchDistanceM(const Terrain& terrain, double lowestSunElevationDeg,
                           double sunDiameterDeg);
+
+/// The search distance of a sun frame: params.maxDistanceM when given, else sunSearchDistanceM
+/// for the field's lowest sun (the halo a window's sun terms read).
+double sunFrameSearchDistanceM(const Terrain& terrain, const SunField& field, const SunFrameParams& params);
 
 /// Visibility and irradiance of the sun for every cell, each cell's horizon taken along its own
 /// sun azimuth (within the direction tolerance): either one sweep whose regions follow the sun's

@@ -46,7 +46,7 @@ HorizonStack computeHorizonStack(const Terrain& t, std::size_t directions,
 }
 
 SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const HorizonStack& stack,
-                           const SunField& field, double sunDiameterDeg, int threads) {
+                           const SunField& field, double sunDiameterDeg) {
     const std::size_t w = t.width(), h = t.height(), n = stack.angleDeg.size();
     if (n < 2) throw Error("horizon stack: need at least 2 directions");
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -61,7 +61,7 @@ SunLight sunLightFromStack(const Terrain& t, const Normals& normals, const Horiz
     // Per row: the sun's angles and each cell's horizon interpolated at its own sun azimuth into
     // buffers, then the vectorised shading pass of exact sun frames (NaN horizons at nodata give
     // NaN light).
-    parallelFor(0, h, threads, [&](std::size_t row) {
+    parallelFor(0, h, [&](std::size_t row) {
         thread_local std::vector<double> buffer;
         thread_local std::vector<float> horizonRow;
         thread_local std::vector<const float*> stackRow;
@@ -119,8 +119,7 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
         SunFrame frame;
         if (!dark) {
             if (params.stack)
-                frame.light = sunLightFromStack(t, normals, *params.stack, field, params.frame.sunDiameterDeg,
-                                                params.frame.threads);
+                frame.light = sunLightFromStack(t, normals, *params.stack, field, params.frame.sunDiameterDeg);
             else
                 frame = computeSunFrame(t, normals, field, params.frame, nullptr, &buffers);
             if (params.canopyGround)
@@ -133,7 +132,7 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
         const double clock = instants[i].clockHours;
         const double prevClock = i > 0 ? instants[i - 1].clockHours : clock;
         const bool last = i + 1 == instants.size();
-        parallelFor(0, h, params.frame.threads, [&](std::size_t row) {
+        parallelFor(0, h, [&](std::size_t row) {
             for (std::size_t col = 0; col < w; ++col) {
                 if (!t.valid(col, row)) continue;
                 const float v = dark ? 0.0f : frame.light.visibility(col, row);
@@ -175,7 +174,7 @@ SunHoursMaps integrateSunHours(const Terrain& t, const Normals& normals,
 }
 
 Grid<float> integrateDaylight(const Terrain& t, std::span<const SunInstant> instants,
-                              const SunFieldAt& geometricFieldAt, int threads) {
+                              const SunFieldAt& geometricFieldAt) {
     checkInstants(instants, "daylight");
     const std::size_t w = t.width(), h = t.height();
     Grid<double> sum(w, h, 0.0);
@@ -190,7 +189,7 @@ Grid<float> integrateDaylight(const Terrain& t, std::span<const SunInstant> inst
         const auto [lo1, hi1] = cur.elevationRange();
         const bool allUp = std::min(lo0, lo1) > kSunriseGeometricElevationDeg;
         const bool allDown = std::max(hi0, hi1) <= kSunriseGeometricElevationDeg;
-        parallelFor(0, h, threads, [&](std::size_t row) {
+        parallelFor(0, h, [&](std::size_t row) {
             const double y = static_cast<double>(row) + 0.5;
             for (std::size_t col = 0; col < w; ++col) {
                 if (!t.valid(col, row) || allDown) continue;

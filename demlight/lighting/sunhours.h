@@ -56,7 +56,7 @@ struct SunInstant {
 struct HorizonStack;
 
 struct SunHoursParams {
-    SunFrameParams frame;  ///< sun disk, search distance, refraction, threads
+    SunFrameParams frame;  ///< sun disk, search distance, refraction
     /// Set: each instant's sun horizons are interpolated from this stack (sunLightFromStack, the
     /// `interpolated:N` horizon mode) instead of an exact sweep along its azimuth.
     const HorizonStack* stack = nullptr;
@@ -96,7 +96,7 @@ HorizonStack computeHorizonStack(const Terrain& terrain, std::size_t directions,
 /// zero (NaN at nodata) when the sun's upper limb is below the horizon everywhere.
 SunLight sunLightFromStack(const Terrain& terrain, const Normals& normals,
                            const HorizonStack& stack, const SunField& field,
-                           double sunDiameterDeg, int threads = 0);
+                           double sunDiameterDeg);
 
 /// Returns the sun across the DEM at instant i of the sequence.
 using SunFieldAt = std::function<SunField(std::size_t instantIndex)>;
@@ -106,7 +106,7 @@ using SunFieldAt = std::function<SunField(std::size_t instantIndex)>;
 /// above kSunriseGeometricElevationDeg. `geometricFieldAt(i)` must give the sun at instant i
 /// WITHOUT refraction (elevationDeg geometric). Deterministic for any thread count.
 Grid<float> integrateDaylight(const Terrain& terrain, std::span<const SunInstant> instants,
-                              const SunFieldAt& geometricFieldAt, int threads = 0);
+                              const SunFieldAt& geometricFieldAt);
 
 /// Sky irradiation: skyTerm × daylightHours per cell, in the units of
 /// SunHoursMaps::sunIrradiation (1 h of a unit sky on open flat ground = 1). `skyTerm` is the

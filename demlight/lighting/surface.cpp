@@ -22,17 +22,17 @@ double axisDerivative(double hMinus, double hCentre, double hPlus, double distMi
 
 }  // namespace
 
-Normals computeNormals(const Terrain& t, int threads) {
-    return computeNormals(t, CellWindow{0, 0, t.width(), t.height()}, threads);
+Normals computeNormals(const Terrain& t) {
+    return computeNormals(t, CellWindow{0, 0, t.width(), t.height()});
 }
 
-Normals computeNormals(const Terrain& t, const CellWindow& cells, int threads) {
+Normals computeNormals(const Terrain& t, const CellWindow& cells) {
     const std::size_t W = t.width(), H = t.height();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const std::size_t outW = cells.col1 - cells.col0, outH = cells.row1 - cells.row0;
     Normals n{Grid<float>(outW, outH, nan), Grid<float>(outW, outH, nan), Grid<float>(outW, outH, nan)};
     const Grid<float>& h = t.heightsM;
-    parallelFor(cells.row0, cells.row1, threads, [&](std::size_t row) {
+    parallelFor(cells.row0, cells.row1, [&](std::size_t row) {
         // Distances between row centres (metres): half of each cell's north-south extent.
         const double toNorthM = row > 0 ? 0.5 * (t.cellHeightM[row - 1] + t.cellHeightM[row]) : 1.0;
         const double toSouthM = row + 1 < H ? 0.5 * (t.cellHeightM[row + 1] + t.cellHeightM[row]) : 1.0;

@@ -28,10 +28,10 @@ struct Normals {
 /// (per-row cell sizes), one-sided at the DEM edge and next to nodata (zero slope along an axis
 /// with no valid neighbour). The gradient is taken along the grid axes and rotated by the
 /// meridian convergence gamma into true east/north. Parallel over rows (0 = all cores).
-Normals computeNormals(const Terrain& terrain, int threads = 0);
+Normals computeNormals(const Terrain& terrain);
 /// The normals of `cells` of the terrain only (grids of the window's size), with the same bits
 /// as computeNormals gives those cells: a tile's window inside the terrain read with its halo.
 /// `cells` must lie inside the terrain.
-Normals computeNormals(const Terrain& terrain, const CellWindow& cells, int threads = 0);
+Normals computeNormals(const Terrain& terrain, const CellWindow& cells);
 
 }  // namespace demlight

@@ -127,10 +127,10 @@ std::array<double, 2> projectPoint(const ViewCamera& camera, const Enu3& point) 
 }
 
 Grid<float> viewHeights(const Grid<float>& h, double cellWidthM, double cellHeightM, double exaggeration,
-                        const Enu3& eye, double effectiveRadiusM, int threads) {
+                        const Enu3& eye, double effectiveRadiusM) {
     Grid<float> out(h.width(), h.height());
     const double curvature = effectiveRadiusM > 0 ? 0.5 / effectiveRadiusM : 0.0;
-    parallelFor(0, h.height(), threads, [&](std::size_t r) {
+    parallelFor(0, h.height(), [&](std::size_t r) {
         const double dn = -static_cast<double>(r) * cellHeightM - eye.n;
         for (std::size_t c = 0; c < h.width(); ++c) {
             const double de = static_cast<double>(c) * cellWidthM - eye.e;
@@ -177,7 +177,7 @@ Rgb skyRadiance(const ViewLight& l, const Enu3& d) {
 }
 
 ViewImage renderView(const ViewScene& scene, const MaxMipmap& surface, const ViewCamera& camera, const ViewLight& light,
-                     const ViewAtmosphere& atmosphere, const PreviewParams& display, int threads) {
+                     const ViewAtmosphere& atmosphere, const PreviewParams& display) {
     const std::size_t W = camera.width, H = camera.height;
     ViewImage out;
     out.image.width = W;
@@ -190,7 +190,7 @@ ViewImage renderView(const ViewScene& scene, const MaxMipmap& surface, const Vie
     const double cw = scene.cellWidthM, ch = scene.cellHeightM;
     const double curvature = scene.effectiveRadiusM > 0 ? 0.5 / scene.effectiveRadiusM : 0.0;
     const double eyeAltitude = camera.eye.u / scene.exaggeration;
-    parallelFor(0, H, threads, [&](std::size_t py) {
+    parallelFor(0, H, [&](std::size_t py) {
         for (std::size_t px = 0; px < W; ++px) {
             const Enu3 d = directionOf(basis, camera, static_cast<double>(px) + 0.5, static_cast<double>(py) + 0.5);
             const GridRay ray{camera.eye.e / cw, -camera.eye.n / ch, camera.eye.u, d.e / cw, -d.n / ch, d.u};

@@ -81,7 +81,7 @@ struct ViewScene {
 /// Heights as the view casts rays against them: exaggeration * h - d^2 / (2 R_eff), d the ground
 /// distance from the eye (effectiveRadiusM 0: no curvature). NaN stays NaN.
 Grid<float> viewHeights(const Grid<float>& heightsM, double cellWidthM, double cellHeightM, double exaggeration,
-                        const Enu3& eye, double effectiveRadiusM, int threads = 0);
+                        const Enu3& eye, double effectiveRadiusM);
 
 /// The haze between a point and the eye: transmittance per channel (R, G, B) along a segment of
 /// `lengthM` from altitude z0 to z1 (metres), through extinction 3.912 / V scaled per channel
@@ -104,6 +104,6 @@ struct ViewImage {
 /// Renders the scene (parallel over rows; the same bits on any number of threads). Pixels whose
 /// ray meets no terrain show the sky (or are transparent black without it).
 ViewImage renderView(const ViewScene& scene, const MaxMipmap& surface, const ViewCamera& camera, const ViewLight& light,
-                     const ViewAtmosphere& atmosphere, const PreviewParams& display, int threads = 0);
+                     const ViewAtmosphere& atmosphere, const PreviewParams& display);
 
 }  // namespace demlight

@@ -29,7 +29,7 @@ CanopyTerrain canopyTerrain(const Terrain& surface, const Grid<float>& wholeCano
 Grid<float> canopySkyK(const Terrain& surface, const CanopyTerrain& canopy, const Normals& normals,
                        std::size_t directions, const HorizonParams& params, double transmissivity,
                        ProgressCounter* progress) {
-    SkyAccumulator full(normals.east, normals.north, normals.up, directions, SkyPatches{}, params.threads);
+    SkyAccumulator full(normals.east, normals.north, normals.up, directions, SkyPatches{});
     Grid<float> hidden;
     sweepDirections(surface, params, directions, [&](std::size_t i, const HorizonMap& h) {
         hidden = h.angleDeg;

@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/horizon.h"
 
 #include "demlight/core/angles.h"
@@ -78,13 +79,15 @@ HorizonResult computeHorizons(const Dem& dem, const ScenePlan& plan, const Horiz
 
 HorizonResult horizonProduct(const DemSource& source, const CellWindow& window, const HorizonRequest& request,
                              const ProgressFn& progress) {
-    if (request.azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
-    for (double az : request.azimuthsDeg)
-        if (!std::isfinite(az)) throw FieldError("azimuthsDeg", ": " + formatNumber(az) + " is not a finite number");
-    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
-    const std::size_t halo = horizonHaloCells(source, request);
-    return onWindow<HorizonResult>(source, window, halo,
-                                   [&](const Dem& dem) { return computeHorizons(dem, plan, request, progress); });
+    return withThreads(request.search.threads, [&] {
+        if (request.azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
+        for (double az : request.azimuthsDeg)
+            if (!std::isfinite(az)) throw FieldError("azimuthsDeg", ": " + formatNumber(az) + " is not a finite number");
+        const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+        const std::size_t halo = horizonHaloCells(source, request);
+        return onWindow<HorizonResult>(source, window, halo,
+                                       [&](const Dem& dem) { return computeHorizons(dem, plan, request, progress); });
+    });
 }
 
 void cropResult(HorizonResult& result, const CellWindow& read, const CellWindow& window) {

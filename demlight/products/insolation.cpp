@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/insolation.h"
 
 #include "demlight/geo/solar_position.h"
@@ -56,11 +57,10 @@ InsolationMaps insolationTotals(const Terrain& horizonsOf, const Grid<float>& li
     params.albedo = r.albedo;
     params.coeffBh = r.coeffBh;
     params.coeffDh = r.coeffDh;
-    params.threads = r.search.threads;
     InsolationAccumulator totals(litHeightsM, normals, bins, directions, params, r.sunDiameterDeg);
     totals.setGrids(grids);
     std::optional<SkyAccumulator> sky;
-    if (visibleSky) sky.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, r.search.threads);
+    if (visibleSky) sky.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{});
     Grid<float> own, raised;
     sweepDirections(horizonsOf, hp, directions, [&](std::size_t i, const HorizonMap& h) {
         const Grid<float>* horizons = &h.angleDeg;
@@ -87,7 +87,7 @@ InsolationResult insolationOn(const Dem& dem, const ScenePlan& plan, const Insol
     if (r.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
     // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
     const Terrain& lit = canopy ? canopy->ground : t;
-    const Normals normals = computeNormals(lit, r.search.threads);
+    const Normals normals = computeNormals(lit);
     const HorizonParams hp = horizonParams(r.search, plan);
     ProgressCounter counter(progress, "insolation", t.heightsM.size() * directions * (canopy ? 2 : 1));
     ClearSkyRasterGrids cut;
@@ -180,20 +180,22 @@ std::size_t insolationHaloCells(const DemSource& source, const InsolationRequest
 
 InsolationResult insolationProduct(const DemSource& source, const CellWindow& window, const InsolationRequest& request,
                                    const ProgressFn& progress) {
-    validateInsolation(request);
-    const Dem& whole = source.geometry();
-    const ScenePlan plan = planFor(request.search, whole.terrain);
-    const std::size_t directions = request.directions.value_or(kDefaultInsolationDirections);
-    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
-    const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    // The whole DEM's bins for every window: the same bits on its cells.
-    std::size_t instants = 0;
-    const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, rasters.monthlyLinke(), instants),
-                                             directions, request.elevationBandDeg);
-    const std::size_t halo = insolationHaloCells(source, request);
-    return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
-        return insolationOn(dem, plan, request, bins, directions, instants, rasters, canopy, progress);
+    return withThreads(request.search.threads, [&] {
+        validateInsolation(request);
+        const Dem& whole = source.geometry();
+        const ScenePlan plan = planFor(request.search, whole.terrain);
+        const std::size_t directions = request.directions.value_or(kDefaultInsolationDirections);
+        // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+        const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        // The whole DEM's bins for every window: the same bits on its cells.
+        std::size_t instants = 0;
+        const std::vector<SunBin> bins = binSuns(sunsOfPeriod(source, request, rasters.monthlyLinke(), instants),
+                                                 directions, request.elevationBandDeg);
+        const std::size_t halo = insolationHaloCells(source, request);
+        return onWindow<InsolationResult>(source, window, halo, [&](const Dem& dem) {
+            return insolationOn(dem, plan, request, bins, directions, instants, rasters, canopy, progress);
+        });
     });
 }
 

@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/irradiance.h"
 
 #include "demlight/geo/solar_position.h"
@@ -35,9 +36,9 @@ namespace {
 /// K0: the sky K of the horizons raised to the horizontal (demlight/lighting/irradiance.h); the cells of
 /// `hidden` (under a crown, on the full surface of a canopy) see none of it.
 Grid<float> skyAboveHorizontal(const Terrain& t, const Normals& normals, std::size_t directions,
-                               const HorizonParams& params, int threads, ProgressCounter& counter,
+                               const HorizonParams& params, ProgressCounter& counter,
                                const Grid<std::uint8_t>* hidden = nullptr) {
-    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, SkyPatches{}, threads);
+    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, SkyPatches{});
     Grid<float> raised;
     sweepDirections(t, params, directions, [&](std::size_t i, const HorizonMap& h) {
         raiseToHorizontal(h.angleDeg, raised);
@@ -56,7 +57,7 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     if (r.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
     // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
     const Terrain& lit = canopy ? canopy->ground : t;
-    const Normals normals = computeNormals(lit, r.search.threads);
+    const Normals normals = computeNormals(lit);
     const std::size_t directions = r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const HorizonParams hp = integralParams(r.search, plan, t, directions);
     ProgressCounter counter(progress, "irradiance",
@@ -64,10 +65,10 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
 
     Grid<float> k0;
     if (visibleSky) {
-        k0 = skyAboveHorizontal(t, normals, directions, hp, r.search.threads, counter,
+        k0 = skyAboveHorizontal(t, normals, directions, hp, counter,
                                 canopy ? &canopy->underCrown : nullptr);
         if (canopy)
-            blendCanopy(k0, skyAboveHorizontal(lit, normals, directions, hp, r.search.threads, counter),
+            blendCanopy(k0, skyAboveHorizontal(lit, normals, directions, hp, counter),
                         r.canopy.transmissivity);
     }
     const SunFrameParams sp = sunFrameParams(r.search, r.sunDiameterDeg, plan);
@@ -83,7 +84,6 @@ IrradianceResult irradianceOn(const Dem& dem, const ScenePlan& plan, const Irrad
     params.coeffBh = r.coeffBh;
     params.coeffDh = r.coeffDh;
     params.extraterrestrialWm2 = g0;
-    params.threads = r.search.threads;
     IrradianceInputs inputs;
     inputs.heightsM = &lit.heightsM;
     inputs.normals = &normals;
@@ -337,24 +337,26 @@ std::size_t irradianceHaloCells(const DemSource& source, const IrradianceRequest
 
 IrradianceResult irradianceProduct(const DemSource& source, const CellWindow& window, const IrradianceRequest& request,
                                    const ProgressFn& progress) {
-    validateIrradiance(request);
-    const double linke = linkeFor(request);
-    // R is heliocentric: any site gives it.
-    SpaTrace trace{};
-    solarPosition(SolarSite{}, request.time.utc, SpaOptions{}, &trace);
-    const double g0 = extraterrestrialIrradiance(trace.earthSunDistanceAu, request.solarConstantWm2);
-    const Dem& whole = source.geometry();
-    const ScenePlan plan = planFor(request.search, whole.terrain);
-    // The whole DEM's sun, read by each window: the same bits on its cells.
-    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
-    const std::size_t halo = source.isWhole(window) ? 0 : irradianceHalo(whole.terrain, request, plan, field);
-    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
-    const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    return onWindow<IrradianceResult>(source, window, halo, [&](const Dem& dem) {
-        if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, rasters, canopy, progress);
-        return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, rasters, canopy,
-                            progress);
+    return withThreads(request.search.threads, [&] {
+        validateIrradiance(request);
+        const double linke = linkeFor(request);
+        // R is heliocentric: any site gives it.
+        SpaTrace trace{};
+        solarPosition(SolarSite{}, request.time.utc, SpaOptions{}, &trace);
+        const double g0 = extraterrestrialIrradiance(trace.earthSunDistanceAu, request.solarConstantWm2);
+        const Dem& whole = source.geometry();
+        const ScenePlan plan = planFor(request.search, whole.terrain);
+        // The whole DEM's sun, read by each window: the same bits on its cells.
+        const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+        const std::size_t halo = source.isWhole(window) ? 0 : irradianceHalo(whole.terrain, request, plan, field);
+        // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+        const ClearSkyRasterGrids rasters = loadClearSkyRasters(request.rasters, source);
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        return onWindow<IrradianceResult>(source, window, halo, [&](const Dem& dem) {
+            if (!dem.terrain.frame) return irradianceOn(dem, plan, request, field, g0, linke, rasters, canopy, progress);
+            return irradianceOn(dem, plan, request, sunFieldOnTile(field, dem, source), g0, linke, rasters, canopy,
+                                progress);
+        });
     });
 }
 

@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/light.h"
 
 #include "demlight/lighting/aperture.h"
@@ -54,7 +55,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
     if (o.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
     // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
     const Terrain& lit = canopy ? canopy->ground : t;
-    const Normals normals = computeNormals(lit, o.search.threads);
+    const Normals normals = computeNormals(lit);
     const bool skySweeps = o.skyModel == SkyModel::StewartLanger;
     const std::size_t directions = o.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const std::size_t sweeps = skySweeps || aperture ? directions : 0;
@@ -70,8 +71,8 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
         canopyK = canopySkyK(t, *canopy, normals, directions, hp, o.canopy.transmissivity, &counter);
     } else {
         if (skySweeps)
-            skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{}, o.search.threads);
-        if (aperture) apertureAcc.emplace(normals.east, normals.north, normals.up, directions, o.search.threads);
+            skyAcc.emplace(normals.east, normals.north, normals.up, directions, SkyPatches{});
+        if (aperture) apertureAcc.emplace(normals.east, normals.north, normals.up, directions);
         if (sweeps > 0)
             sweepDirections(t, hp, sweeps, [&](std::size_t i, const HorizonMap& h) {
                 if (skyAcc) skyAcc->addDirection(i, h.angleDeg);
@@ -87,8 +88,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
         ApertureLightParams lp;
         lp.sunRadiusDeg = 0.5 * o.sunDiameterDeg;
         lp.smoothIntersection = o.model == SunModel::ApertureSmooth;
-        sunIrradiance = applyApertureSun(apertureAcc->finish(), normals.east, normals.north, normals.up, field, lp,
-                                         o.search.threads)
+        sunIrradiance = applyApertureSun(apertureAcc->finish(), normals.east, normals.north, normals.up, field, lp)
                             .irradiance;
         sunDistanceM = hp.maxDistanceM;  // the aperture is the sky's: the sky's distance
     } else {
@@ -114,7 +114,7 @@ LightResult computeLight(const Dem& dem, const ScenePlan& plan, const LightReque
         } else if (o.skyModel == SkyModel::Hemisphere) {
             HemisphereParams hemi;
             hemi.albedo = albedo;
-            sky.push_back(applyHemisphereLight(normals.up, hemi, albedoC, o.search.threads));
+            sky.push_back(applyHemisphereLight(normals.up, hemi, albedoC));
         }
     }
 
@@ -233,19 +233,21 @@ std::size_t lightHaloCells(const DemSource& source, const LightRequest& request)
 
 LightResult lightProduct(const DemSource& source, const CellWindow& window, const LightRequest& request,
                          const ProgressFn& progress) {
-    validateLight(request);
-    const Dem& whole = source.geometry();
-    const ScenePlan plan = planFor(request.search, whole.terrain);
-    // The sun and the rasters of the whole DEM, read by each window: the same bits on its cells
-    // (resampling onto a window's own georeference would round its coordinates differently).
-    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
-    const LightRasters rasters = loadRasters(source, request);
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    const std::size_t halo = source.isWhole(window) ? 0 : lightHalo(whole.terrain, request, plan, field);
-    return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
-        if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, canopy, progress);  // whole DEM
-        return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),
-                            canopy, progress);
+    return withThreads(request.search.threads, [&] {
+        validateLight(request);
+        const Dem& whole = source.geometry();
+        const ScenePlan plan = planFor(request.search, whole.terrain);
+        // The sun and the rasters of the whole DEM, read by each window: the same bits on its cells
+        // (resampling onto a window's own georeference would round its coordinates differently).
+        const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+        const LightRasters rasters = loadRasters(source, request);
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        const std::size_t halo = source.isWhole(window) ? 0 : lightHalo(whole.terrain, request, plan, field);
+        return onWindow<LightResult>(source, window, halo, [&](const Dem& dem) {
+            if (!dem.terrain.frame) return computeLight(dem, plan, request, field, rasters, canopy, progress);  // whole DEM
+            return computeLight(dem, plan, request, sunFieldOnTile(field, dem, source), rastersOnTile(rasters, dem),
+                                canopy, progress);
+        });
     });
 }
 

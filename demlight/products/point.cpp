@@ -35,18 +35,17 @@ Dem readAround(const DemSource& source, const PointCell& p, std::size_t haloCell
 Enu normalAt(const DemSource& source, const PointCell& p) {
     CellIndex local;
     const Dem d = readAround(source, p, 1, local);
-    return computeNormals(d.terrain, 1).at(local.col, local.row);
+    return computeNormals(d.terrain).at(local.col, local.row);
 }
 
 /// Reference horizons (degrees) of one cell in each azimuth, in parallel over the azimuths.
 std::vector<HorizonSample> marchAll(const Terrain& t, CellIndex cell, const HorizonParams& params,
-                                    const std::vector<double>& azimuthsDeg, int threads) {
+                                    const std::vector<double>& azimuthsDeg) {
     std::vector<HorizonSample> out(azimuthsDeg.size());
     const std::vector<CellIndex> one{cell};
-    parallelFor(0, azimuthsDeg.size(), threads, [&](std::size_t i) {
+    parallelFor(0, azimuthsDeg.size(), [&](std::size_t i) {
         HorizonParams p = params;
         p.azimuthDeg = azimuthsDeg[i];
-        p.threads = 1;
         out[i] = referenceHorizonAt(t, p, one).front();
     }, 8);
     return out;
@@ -55,10 +54,10 @@ std::vector<HorizonSample> marchAll(const Terrain& t, CellIndex cell, const Hori
 /// K0 of the visible-sky model at a cell: sky K of the horizons in D directions raised to the
 /// horizontal (demlight/lighting/irradiance.h), the horizons from the ray march.
 double skyK0At(const Terrain& t, CellIndex cell, const HorizonParams& params, std::size_t directions,
-               const Enu& normal, int threads) {
+               const Enu& normal) {
     std::vector<double> azimuths(directions);
     for (std::size_t i = 0; i < directions; ++i) azimuths[i] = directionAzimuthDeg(i, directions);
-    const std::vector<HorizonSample> h = marchAll(t, cell, params, azimuths, threads);
+    const std::vector<HorizonSample> h = marchAll(t, cell, params, azimuths);
     std::vector<float> raised(directions);
     for (std::size_t i = 0; i < directions; ++i) raised[i] = std::max(h[i].angleDeg, 0.0f);
     return skyK(raised, normal);
@@ -180,113 +179,118 @@ PointSearch pointSearch(const DemSource& source, const SearchRequest& search) {
 
 PointHorizon pointHorizon(const DemSource& source, const PointCell& point, const std::vector<double>& azimuthsDeg,
                           const SearchRequest& search) {
-    if (azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
-    const PointSearch s = pointSearch(source, search);
-    CellIndex local;
-    const Dem d = readAround(source, point, s.haloCells, local);
-    PointHorizon out;
-    out.point = point;
-    out.azimuthsDeg = azimuthsDeg;
-    out.samples = marchAll(d.terrain, local, s.params, azimuthsDeg, search.threads);
-    out.maxDistanceM = s.params.maxDistanceM;
-    return out;
+    return withThreads(search.threads, [&] {
+        if (azimuthsDeg.empty()) throw FieldError("azimuthsDeg", ": give at least one azimuth");
+        const PointSearch s = pointSearch(source, search);
+        CellIndex local;
+        const Dem d = readAround(source, point, s.haloCells, local);
+        PointHorizon out;
+        out.point = point;
+        out.azimuthsDeg = azimuthsDeg;
+        out.samples = marchAll(d.terrain, local, s.params, azimuthsDeg);
+        out.maxDistanceM = s.params.maxDistanceM;
+        return out;
+    });
 }
 
 PointIrradiance pointIrradiance(const DemSource& source, const PointCell& point, const IrradianceRequest& request) {
-    validateIrradiance(request);
-    refuseCanopy(request.canopy);
-    PointIrradiance out;
-    out.point = point;
-    out.linke = linkeFor(request);
-    double distanceAu = 1;
-    const SolarPosition sun = sunAt(point, request.time.utc, request.atmosphere, &distanceAu);
-    out.sunAzimuthDeg = sun.azimuthDeg;
-    out.sunElevationDeg = sun.elevationDeg;
-    out.extraterrestrialWm2 = extraterrestrialIrradiance(distanceAu, request.solarConstantWm2);
+    return withThreads(request.search.threads, [&] {
+        validateIrradiance(request);
+        refuseCanopy(request.canopy);
+        PointIrradiance out;
+        out.point = point;
+        out.linke = linkeFor(request);
+        double distanceAu = 1;
+        const SolarPosition sun = sunAt(point, request.time.utc, request.atmosphere, &distanceAu);
+        out.sunAzimuthDeg = sun.azimuthDeg;
+        out.sunElevationDeg = sun.elevationDeg;
+        out.extraterrestrialWm2 = extraterrestrialIrradiance(distanceAu, request.solarConstantWm2);
 
-    const PointSearch s = pointSearch(source, request.search);
-    out.maxDistanceM = s.params.maxDistanceM;
-    CellIndex local;
-    const Dem d = readAround(source, point, s.haloCells, local);
-    const Enu n = normalAt(source, point);
-    out.horizonAtSunDeg = marchAll(d.terrain, local, s.params, {sun.azimuthDeg}, 1).front().angleDeg;
-    if (request.diffuseModel == DiffuseModel::VisibleSky) {
-        out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(s.plan.skyDirections));
-        out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n, request.search.threads);
-    }
-    IrradianceParams constants = constantInputs(request);
-    constants.linke = out.linke;
-    std::vector<double> linkeByMonth;
-    const IrradianceParams params = inputsAt(source, point, request.rasters, constants, &linkeByMonth);
-    out.linke = linkeByMonth.empty() ? params.linke : linkeByMonth[monthAt(request.time.utc, request.time.zone)];
-    const CellView view =
-        viewOf(n, out.horizonAtSunDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
-    out.sunVisibility = view.sunVisibility;
-    const ClearSky sky = clearSky(out.extraterrestrialWm2, out.linke, sun.elevationDeg, point.heightM, params.coeffBh,
-                                  params.coeffDh);
-    out.irradiance = cellIrradiance(sky, view, params);
-    return out;
+        const PointSearch s = pointSearch(source, request.search);
+        out.maxDistanceM = s.params.maxDistanceM;
+        CellIndex local;
+        const Dem d = readAround(source, point, s.haloCells, local);
+        const Enu n = normalAt(source, point);
+        out.horizonAtSunDeg = marchAll(d.terrain, local, s.params, {sun.azimuthDeg}).front().angleDeg;
+        if (request.diffuseModel == DiffuseModel::VisibleSky) {
+            out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(s.plan.skyDirections));
+            out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n);
+        }
+        IrradianceParams constants = constantInputs(request);
+        constants.linke = out.linke;
+        std::vector<double> linkeByMonth;
+        const IrradianceParams params = inputsAt(source, point, request.rasters, constants, &linkeByMonth);
+        out.linke = linkeByMonth.empty() ? params.linke : linkeByMonth[monthAt(request.time.utc, request.time.zone)];
+        const CellView view =
+            viewOf(n, out.horizonAtSunDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
+        out.sunVisibility = view.sunVisibility;
+        const ClearSky sky = clearSky(out.extraterrestrialWm2, out.linke, sun.elevationDeg, point.heightM, params.coeffBh,
+                                      params.coeffDh);
+        out.irradiance = cellIrradiance(sky, view, params);
+        return out;
+    });
 }
 
 PointInsolation pointInsolation(const DemSource& source, const PointCell& point, const InsolationRequest& request) {
-    validateInsolation(request);
-    refuseCanopy(request.canopy);
-    PointInsolation out;
-    out.point = point;
-    std::tie(out.start, out.end) = insolationPeriod(request);
-    const std::vector<UtcInstant> times = periodInstants(request);
-    out.instants = times.size();
+    return withThreads(request.search.threads, [&] {
+        validateInsolation(request);
+        refuseCanopy(request.canopy);
+        PointInsolation out;
+        out.point = point;
+        std::tie(out.start, out.end) = insolationPeriod(request);
+        const std::vector<UtcInstant> times = periodInstants(request);
+        out.instants = times.size();
 
-    const PointSearch s = pointSearch(source, request.search);
-    out.maxDistanceM = s.params.maxDistanceM;
-    CellIndex local;
-    const Dem d = readAround(source, point, s.haloCells, local);
-    const Enu n = normalAt(source, point);
-    if (request.diffuseModel == DiffuseModel::VisibleSky) {
-        out.skyDirections = request.directions.value_or(kDefaultInsolationDirections);
-        out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n, request.search.threads);
-    }
-    std::vector<double> linkeByMonth;
-    const IrradianceParams params = inputsAt(source, point, request.rasters, constantInputs(request), &linkeByMonth);
+        const PointSearch s = pointSearch(source, request.search);
+        out.maxDistanceM = s.params.maxDistanceM;
+        CellIndex local;
+        const Dem d = readAround(source, point, s.haloCells, local);
+        const Enu n = normalAt(source, point);
+        if (request.diffuseModel == DiffuseModel::VisibleSky) {
+            out.skyDirections = request.directions.value_or(kDefaultInsolationDirections);
+            out.skyK0 = skyK0At(d.terrain, local, s.params, out.skyDirections, n);
+        }
+        std::vector<double> linkeByMonth;
+        const IrradianceParams params = inputsAt(source, point, request.rasters, constantInputs(request), &linkeByMonth);
 
-    // Every instant's own sun and horizon, in parallel; summed below in time order.
-    struct Instant {
-        bool up = false;
-        double hours = 0, sunHours = 0;
-        CellIrradiance wm2;
-    };
-    std::vector<Instant> each(times.size());
-    const std::vector<CellIndex> one{local};
-    parallelFor(0, times.size(), request.search.threads, [&](std::size_t i) {
-        double distanceAu = 1;
-        const SolarPosition sun = sunAt(point, times[i], request.atmosphere, &distanceAu);
-        if (!(sun.elevationDeg > 0)) return;  // as the binned method: suns whose centre is up
-        const double before = i > 0 ? instantHoursBetween(times[i - 1], times[i]) : 0.0;
-        const double after = i + 1 < times.size() ? instantHoursBetween(times[i], times[i + 1]) : 0.0;
-        HorizonParams hp = s.params;
-        hp.azimuthDeg = sun.azimuthDeg;
-        hp.threads = 1;
-        const double horizonDeg = referenceHorizonAt(d.terrain, hp, one).front().angleDeg;
-        const CellView view = viewOf(n, horizonDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
-        const ClearSky sky = clearSky(extraterrestrialIrradiance(distanceAu, request.solarConstantWm2),
-                                      request.rasters.linke.empty() ? linkeAt(request.linke, times[i], request.zone)
-                                      : linkeByMonth.empty()        ? params.linke
-                                                                    : linkeByMonth[monthAt(times[i], request.zone)],
-                                      sun.elevationDeg, point.heightM, params.coeffBh, params.coeffDh);
-        each[i].up = true;
-        each[i].hours = 0.5 * (before + after);
-        each[i].sunHours = view.sunVisibility;
-        each[i].wm2 = cellIrradiance(sky, view, params);
-    }, 16);
-    for (const Instant& e : each) {
-        if (!e.up) continue;
-        ++out.sunUpInstants;
-        out.irradiation.beam += e.hours * e.wm2.beam / kWhPerKWh;
-        out.irradiation.diffuse += e.hours * e.wm2.diffuse / kWhPerKWh;
-        out.irradiation.reflected += e.hours * e.wm2.reflected / kWhPerKWh;
-        out.sunHours += e.hours * e.sunHours;
-    }
-    return out;
+        // Every instant's own sun and horizon, in parallel; summed below in time order.
+        struct Instant {
+            bool up = false;
+            double hours = 0, sunHours = 0;
+            CellIrradiance wm2;
+        };
+        std::vector<Instant> each(times.size());
+        const std::vector<CellIndex> one{local};
+        parallelFor(0, times.size(), [&](std::size_t i) {
+            double distanceAu = 1;
+            const SolarPosition sun = sunAt(point, times[i], request.atmosphere, &distanceAu);
+            if (!(sun.elevationDeg > 0)) return;  // as the binned method: suns whose centre is up
+            const double before = i > 0 ? instantHoursBetween(times[i - 1], times[i]) : 0.0;
+            const double after = i + 1 < times.size() ? instantHoursBetween(times[i], times[i + 1]) : 0.0;
+            HorizonParams hp = s.params;
+            hp.azimuthDeg = sun.azimuthDeg;
+            const double horizonDeg = referenceHorizonAt(d.terrain, hp, one).front().angleDeg;
+            const CellView view = viewOf(n, horizonDeg, sun.azimuthDeg, sun.elevationDeg, request.sunDiameterDeg, out.skyK0);
+            const ClearSky sky = clearSky(extraterrestrialIrradiance(distanceAu, request.solarConstantWm2),
+                                          request.rasters.linke.empty() ? linkeAt(request.linke, times[i], request.zone)
+                                          : linkeByMonth.empty()        ? params.linke
+                                                                        : linkeByMonth[monthAt(times[i], request.zone)],
+                                          sun.elevationDeg, point.heightM, params.coeffBh, params.coeffDh);
+            each[i].up = true;
+            each[i].hours = 0.5 * (before + after);
+            each[i].sunHours = view.sunVisibility;
+            each[i].wm2 = cellIrradiance(sky, view, params);
+        }, 16);
+        for (const Instant& e : each) {
+            if (!e.up) continue;
+            ++out.sunUpInstants;
+            out.irradiation.beam += e.hours * e.wm2.beam / kWhPerKWh;
+            out.irradiation.diffuse += e.hours * e.wm2.diffuse / kWhPerKWh;
+            out.irradiation.reflected += e.hours * e.wm2.reflected / kWhPerKWh;
+            out.sunHours += e.hours * e.sunHours;
+        }
+        return out;
+    });
 }
 
 }  // namespace demlight

@@ -45,7 +45,7 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
     budget.toleranceDeg = search.toleranceDeg;
     budget.lowestElevationDeg = kDefaultLowestElevationDeg;
     budget.refraction = search.refraction;
-    budget.maxDistanceM = search.maxDistanceM.value_or(0.0);
+    budget.maxDistanceM = search.maxDistanceM;
     if (search.nearFieldSteps) {
         if (*search.nearFieldSteps < 0 || *search.nearFieldSteps > kMaxNearFieldSteps)
             throw FieldError("nearFieldSteps", " " + std::to_string(*search.nearFieldSteps) + ": must be in [0, " +
@@ -56,7 +56,7 @@ ScenePlan planFor(const SearchRequest& search, const Terrain& terrain) {
 }
 
 HorizonParams horizonParams(const SearchRequest& search, const ScenePlan& plan) {
-    return planHorizonParams(plan, search.refraction, search.threads);
+    return planHorizonParams(plan, search.refraction);
 }
 
 HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
@@ -73,25 +73,23 @@ HorizonParams stackHorizonParams(const SearchRequest& search, const ScenePlan& p
 
 HorizonParams integralParams(const SearchRequest& search, const ScenePlan& plan, const Terrain& terrain,
                              std::size_t directions) {
-    return planIntegralParams(terrain, plan, directions, search.refraction, search.threads);
+    return planIntegralParams(terrain, plan, directions, search.refraction);
 }
 
 SunFrameParams sunFrameParams(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan) {
-    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, search.refraction, search.threads);
+    SunFrameParams p = planSunFrameParams(plan, sunDiameterDeg, search.refraction);
     if (search.maxDistanceM) p.maxDistanceM = *search.maxDistanceM;
     return p;
 }
 
 double sunFrameDistanceM(const SearchRequest& search, double sunDiameterDeg, const ScenePlan& plan,
                          const Terrain& terrain, const SunField& field) {
-    const SunFrameParams p = sunFrameParams(search, sunDiameterDeg, plan);
-    return p.maxDistanceM > 0 ? p.maxDistanceM
-                              : sunSearchDistanceM(terrain, field.elevationRange().first, sunDiameterDeg);
+    return sunFrameSearchDistanceM(terrain, field, sunFrameParams(search, sunDiameterDeg, plan));
 }
 
 Grid<float> skyLightK(const Terrain& terrain, const Normals& normals, std::size_t directions,
                       const HorizonParams& params, ProgressCounter* progress) {
-    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {}, params.threads);
+    SkyAccumulator acc(normals.east, normals.north, normals.up, directions, {});
     sweepDirections(terrain, params, directions,
                     [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, progress);
     return std::move(acc).finish(0.0).skyK;

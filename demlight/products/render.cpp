@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/render.h"
 
 #include "demlight/lighting/sun_frame.h"
@@ -23,35 +24,37 @@ std::vector<Grid<float>> loadPictureAlbedo(const DemSource& source, const Pictur
 }
 
 RenderResult renderProduct(const DemSource& source, const RenderRequest& request, const ProgressFn& progress) {
-    validatePicture(request.picture);
-    validateSun(request.sunDiameterDeg, Atmosphere{});
-    const std::shared_ptr<const Dem> whole = source.readWhole();
-    const Dem& dem = *whole;
-    const Terrain& t = dem.terrain;
-    const std::vector<Grid<float>> albedo = loadPictureAlbedo(source, request.picture);
-    const ScenePlan plan = planFor(request.search, t);
-    const std::size_t skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
-    const HorizonParams skyParams = integralParams(request.search, plan, t, skyDirections);
-    const SunField field = sunFieldFor(source, request.time.utc, Atmosphere{}, plan);
-    const Normals normals = computeNormals(t, request.search.threads);
-    ProgressCounter counter(progress, "render", t.heightsM.size() * (skyDirections + 1));
-    const SunFrame frame =
-        computeSunFrame(t, normals, field, sunFrameParams(request.search, request.sunDiameterDeg, plan), &counter);
-    const Grid<float> sky = skyLightK(t, normals, skyDirections, skyParams, &counter);
-    PreviewParams pp;
-    pp.albedo = request.picture.albedo;
-    pp.exposure = request.picture.exposure;
-    RenderResult out;
-    out.image = renderPreview(normals, frame.light.visibility, sky, albedo, field.centreAzimuthDeg,
-                              field.centreElevationDeg, pp, request.search.threads);
-    if (request.picture.pixels == PixelGeometry::Ground) out.image = toGroundPixels(out.image, t);
-    out.centreAzimuthDeg = field.centreAzimuthDeg;
-    out.centreElevationDeg = field.centreElevationDeg;
-    out.sunMaxDistanceM = frame.maxDistanceM;
-    out.skyDirections = skyDirections;
-    out.skyMaxDistanceM = skyParams.maxDistanceM;
-    out.quality = plan.quality;
-    return out;
+    return withThreads(request.search.threads, [&] {
+        validatePicture(request.picture);
+        validateSun(request.sunDiameterDeg, Atmosphere{});
+        const std::shared_ptr<const Dem> whole = source.readWhole();
+        const Dem& dem = *whole;
+        const Terrain& t = dem.terrain;
+        const std::vector<Grid<float>> albedo = loadPictureAlbedo(source, request.picture);
+        const ScenePlan plan = planFor(request.search, t);
+        const std::size_t skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+        const HorizonParams skyParams = integralParams(request.search, plan, t, skyDirections);
+        const SunField field = sunFieldFor(source, request.time.utc, Atmosphere{}, plan);
+        const Normals normals = computeNormals(t);
+        ProgressCounter counter(progress, "render", t.heightsM.size() * (skyDirections + 1));
+        const SunFrame frame =
+            computeSunFrame(t, normals, field, sunFrameParams(request.search, request.sunDiameterDeg, plan), &counter);
+        const Grid<float> sky = skyLightK(t, normals, skyDirections, skyParams, &counter);
+        PreviewParams pp;
+        pp.albedo = request.picture.albedo;
+        pp.exposure = request.picture.exposure;
+        RenderResult out;
+        out.image = renderPreview(normals, frame.light.visibility, sky, albedo, field.centreAzimuthDeg,
+                                  field.centreElevationDeg, pp);
+        if (request.picture.pixels == PixelGeometry::Ground) out.image = toGroundPixels(out.image, t);
+        out.centreAzimuthDeg = field.centreAzimuthDeg;
+        out.centreElevationDeg = field.centreElevationDeg;
+        out.sunMaxDistanceM = frame.maxDistanceM;
+        out.skyDirections = skyDirections;
+        out.skyMaxDistanceM = skyParams.maxDistanceM;
+        out.quality = plan.quality;
+        return out;
+    });
 }
 
 }  // namespace demlight

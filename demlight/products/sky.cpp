@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/sky.h"
 
 #include "demlight/lighting/directions.h"
@@ -13,7 +14,7 @@ std::string albedoName(const SkyRequest& r) {
 
 /// sky x (1 + N_up)/2 + albedo x (1 - N_up)/2 for a unit sky (Hargreaves).
 SkyResult hemisphere(const Dem& dem, const CellWindow& cells, const SkyRequest& request, const Grid<float>* albedo) {
-    const Normals normals = computeNormals(dem.terrain, cells, request.search.threads);
+    const Normals normals = computeNormals(dem.terrain, cells);
     HemisphereParams hp;
     hp.albedo = request.albedo;
     SkyResult out;
@@ -22,7 +23,7 @@ SkyResult hemisphere(const Dem& dem, const CellWindow& cells, const SkyRequest& 
     out.bands.push_back({"sky_hemisphere",
                          "normalised irradiance from a unit sky and ground of albedo C, "
                          "(1 + N_up)/2 + C (1 - N_up)/2 (Hargreaves; no terrain occlusion)",
-                         applyHemisphereLight(normals.up, hp, albedo, request.search.threads),
+                         applyHemisphereLight(normals.up, hp, albedo),
                          {}});
     return out;
 }
@@ -35,8 +36,8 @@ SkyResult stewartLanger(const Dem& dem, const CellWindow& cells, const ScenePlan
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
     HorizonParams params = integralParams(request.search, plan, t, directions);
     params.window = sweepWindowOf(t, cells);
-    const Normals normals = computeNormals(t, cells, request.search.threads);
-    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, request.patches, request.search.threads);
+    const Normals normals = computeNormals(t, cells);
+    SkyAccumulator sky(normals.east, normals.north, normals.up, directions, request.patches);
     ProgressCounter counter(progress, "sky", normals.up.size() * directions);
     sweepDirections(t, params, directions,
                     [&](std::size_t i, const HorizonMap& h) { sky.addDirection(i, h.angleDeg, cells); }, &counter);
@@ -78,29 +79,31 @@ std::size_t skyHaloCells(const DemSource& source, const SkyRequest& request) {
 
 SkyResult skyProduct(const DemSource& source, const CellWindow& window, const SkyRequest& request,
                      const ProgressFn& progress) {
-    if (request.model == SkyModel::None) throw Error("sky model 'none' makes no sky product");
-    if (request.model == SkyModel::Hemisphere && !request.patches.empty())
-        throw Error("patches need the stewart-langer sky model (the hemisphere model has no sky patches)");
-    if (!(request.albedo >= 0 && request.albedo <= 1))
-        throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
-    if (request.directions && (*request.directions < 1))
-        throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
-    const Terrain& whole = source.geometry().terrain;
-    const bool hemi = request.model == SkyModel::Hemisphere;
-    const ScenePlan plan = planFor(request.search, whole);
-    const std::size_t halo = skyHaloCells(source, request);
-    // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
-    Grid<float> albedo;
-    if (!request.albedoRaster.empty())
-        albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source,
-                                               {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
-    return onWindowCells<SkyResult>(source, window, halo, [&](const Dem& dem, const CellWindow& cells) {
-        const Terrain& t = dem.terrain;
-        const CellWindow onFull{t.frameCol0 + cells.col0, t.frameRow0 + cells.row0, t.frameCol0 + cells.col1,
-                                t.frameRow0 + cells.row1};
-        const Grid<float> cut = t.frame ? cropGrid(albedo, onFull) : Grid<float>();
-        const Grid<float>* a = albedo.empty() ? nullptr : t.frame ? &cut : &albedo;
-        return hemi ? hemisphere(dem, cells, request, a) : stewartLanger(dem, cells, plan, request, a, progress);
+    return withThreads(request.search.threads, [&] {
+        if (request.model == SkyModel::None) throw Error("sky model 'none' makes no sky product");
+        if (request.model == SkyModel::Hemisphere && !request.patches.empty())
+            throw Error("patches need the stewart-langer sky model (the hemisphere model has no sky patches)");
+        if (!(request.albedo >= 0 && request.albedo <= 1))
+            throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
+        if (request.directions && (*request.directions < 1))
+            throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
+        const Terrain& whole = source.geometry().terrain;
+        const bool hemi = request.model == SkyModel::Hemisphere;
+        const ScenePlan plan = planFor(request.search, whole);
+        const std::size_t halo = skyHaloCells(source, request);
+        // Resampled onto the whole DEM once and cut per window: the same bits on every cell.
+        Grid<float> albedo;
+        if (!request.albedoRaster.empty())
+            albedo = std::move(loadAuxiliaryRaster(request.albedoRaster, source,
+                                                   {"albedoRaster", 1, false, 0, 1, false, {}})[0]);
+        return onWindowCells<SkyResult>(source, window, halo, [&](const Dem& dem, const CellWindow& cells) {
+            const Terrain& t = dem.terrain;
+            const CellWindow onFull{t.frameCol0 + cells.col0, t.frameRow0 + cells.row0, t.frameCol0 + cells.col1,
+                                    t.frameRow0 + cells.row1};
+            const Grid<float> cut = t.frame ? cropGrid(albedo, onFull) : Grid<float>();
+            const Grid<float>* a = albedo.empty() ? nullptr : t.frame ? &cut : &albedo;
+            return hemi ? hemisphere(dem, cells, request, a) : stewartLanger(dem, cells, plan, request, a, progress);
+        });
     });
 }
 

@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/sun.h"
 
 #include "demlight/lighting/aperture.h"
@@ -38,14 +39,14 @@ SunResult apertureSun(const Dem& dem, const Normals& normals, const SunField& fi
                       const ScenePlan& plan, std::size_t directions, ProgressCounter& counter) {
     // The aperture does not depend on the sun: search distance and directions are the sky's.
     const HorizonParams hp = integralParams(request.search, plan, dem.terrain, directions);
-    ApertureAccumulator acc(normals.east, normals.north, normals.up, directions, request.search.threads);
+    ApertureAccumulator acc(normals.east, normals.north, normals.up, directions);
     sweepDirections(dem.terrain, hp, directions,
                     [&](std::size_t i, const HorizonMap& h) { acc.addDirection(i, h.angleDeg); }, &counter);
     ApertureLightParams lp;
     lp.sunRadiusDeg = 0.5 * request.sunDiameterDeg;
     lp.smoothIntersection = request.model == SunModel::ApertureSmooth;
     ApertureSunMaps m =
-        applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp, request.search.threads);
+        applyApertureSun(acc.finish(), normals.east, normals.north, normals.up, field, lp);
     SunResult out;
     out.bands = movedBands(ProductBand{"sun_visibility", "fraction of the sun cap inside the aperture cap (0-1)", std::move(m.visibility), {}},
                  ProductBand{"sun_irradiance",
@@ -66,7 +67,7 @@ SunResult computeSun(const Dem& dem, const ScenePlan& plan, const SunRequest& re
     std::optional<CanopyTerrain> canopy;
     if (request.canopy.any()) canopy = canopyTerrain(t, wholeCanopy);
     // With a canopy the lit surface is the ground and buildings under it.
-    const Normals normals = computeNormals(canopy ? canopy->ground : t, request.search.threads);
+    const Normals normals = computeNormals(canopy ? canopy->ground : t);
     const std::size_t directions = request.directions.value_or(static_cast<std::size_t>(plan.skyDirections));
     ProgressCounter counter(progress, "sun", t.heightsM.size() * (horizon ? (canopy ? 2 : 1) : directions));
     SunResult out = horizon ? horizonSun(dem, normals, field, request, plan, canopy ? &*canopy : nullptr, counter)
@@ -140,20 +141,22 @@ std::size_t sunHaloCells(const DemSource& source, const SunRequest& request) {
 
 SunResult sunProduct(const DemSource& source, const CellWindow& window, const SunRequest& request,
                      const ProgressFn& progress) {
-    validateSun(request.sunDiameterDeg, request.atmosphere);
-    if (request.directions && *request.directions < 1)
-        throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
-    validateCanopy(request.canopy);
-    if (request.canopy.any() && request.model != SunModel::Horizon)
-        throw FieldError("canopy", ": applies to the horizon sun model only");
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    const Dem& whole = source.geometry();
-    const ScenePlan plan = planFor(request.search, whole.terrain);
-    // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
-    const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
-    const std::size_t halo = source.isWhole(window) ? 0 : sunHalo(whole.terrain, request, plan, field);
-    return onWindow<SunResult>(source, window, halo, [&](const Dem& dem) {
-        return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), canopy, progress);
+    return withThreads(request.search.threads, [&] {
+        validateSun(request.sunDiameterDeg, request.atmosphere);
+        if (request.directions && *request.directions < 1)
+            throw FieldError("directions", " " + std::to_string(*request.directions) + ": must be >= 1");
+        validateCanopy(request.canopy);
+        if (request.canopy.any() && request.model != SunModel::Horizon)
+            throw FieldError("canopy", ": applies to the horizon sun model only");
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        const Dem& whole = source.geometry();
+        const ScenePlan plan = planFor(request.search, whole.terrain);
+        // The whole DEM's sun, read by each window (SunField::onTile): the same bits on every cell.
+        const SunField field = sunFieldFor(source, request.time.utc, request.atmosphere, plan);
+        const std::size_t halo = source.isWhole(window) ? 0 : sunHalo(whole.terrain, request, plan, field);
+        return onWindow<SunResult>(source, window, halo, [&](const Dem& dem) {
+            return computeSun(dem, plan, request, sunFieldOnTile(field, dem, source), canopy, progress);
+        });
     });
 }
 

@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/sunhours.h"
 
 #include "demlight/geo/solar_position.h"
@@ -67,7 +68,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     params.frame = sunFrameParams(r.search, r.sunDiameterDeg, plan);
     const SolarSite site;  // default pressure and temperature; position from each lattice node
     // With a canopy the lit surface is the ground and buildings under it (demlight/lighting/canopy.h).
-    const Normals normals = computeNormals(canopy ? canopy->ground : t, r.search.threads);
+    const Normals normals = computeNormals(canopy ? canopy->ground : t);
     if (canopy) {
         params.canopyGround = &canopy->ground;
         params.underCrown = &canopy->underCrown;
@@ -80,7 +81,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
         stackDirections > 0 ? stackDirections : r.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
     const HorizonParams hp = stackDirections > 0 ? stackHorizonParams(r.search, plan, t, r.sunDiameterDeg)
                                                  : integralParams(r.search, plan, t, skyDirections);
-    SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{}, r.search.threads);
+    SkyAccumulator skyAcc(normals.east, normals.north, normals.up, skyDirections, SkyPatches{});
     ProgressCounter skyCounter(progress, stackDirections > 0 ? "horizons" : "sky", t.heightsM.size() * skyDirections);
     HorizonStack stack;
     if (stackDirections > 0) {
@@ -111,8 +112,7 @@ SunhoursResult computeSunhours(const DemSource& source, const Dem& dem, const Sc
     geometric.pressureHpa = 0;
     const Grid<float> daylight = integrateDaylight(
         t, seq.instants,
-        [&](std::size_t i) { return fieldAt(seq.utc[i], geometric); },
-        r.search.threads);
+        [&](std::size_t i) { return fieldAt(seq.utc[i], geometric); });
     Grid<float> skyIrr = skyIrradiation(skyFactor, daylight);
 
     // Never lit: -1, not NaN, which would be written as the DEM's nodata value (a void).
@@ -195,9 +195,9 @@ std::size_t sunhoursStackDirections(const SunhoursRequest& r, const ScenePlan& p
 std::size_t sunhoursHaloCells(const DemSource& source, const SunhoursRequest& request) {
     const Terrain& whole = source.geometry().terrain;
     const ScenePlan plan = planFor(request.search, whole);
-    // Every sun of the days down to the horizon: the distance of a sun at 0 deg, or the sky's.
-    const double sunDistance = request.search.maxDistanceM.value_or(
-        plan.quality == Quality::Full ? plan.maxDistanceM : sunSearchDistanceM(whole, 0.0, request.sunDiameterDeg));
+    // Every sun of the days down to the horizon (the distance a stack of horizons serving every
+    // sun searches), or the sky's.
+    const double sunDistance = stackHorizonParams(request.search, plan, whole, request.sunDiameterDeg).maxDistanceM;
     const double skyDistance =
         integralParams(request.search, plan, whole,
                        request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections)))
@@ -207,32 +207,34 @@ std::size_t sunhoursHaloCells(const DemSource& source, const SunhoursRequest& re
 
 SunhoursResult sunhoursProduct(const DemSource& source, const CellWindow& window, const SunhoursRequest& request,
                                const ProgressFn& progress) {
-    if (request.lastDay < request.firstDay)
-        throw FieldError("lastDay", " " + formatDate(request.lastDay) + " is before firstDay " + formatDate(request.firstDay));
-    if (request.step < kMinStep || request.step > kMaxStep)
-        throw FieldError("step", " " + formatNumber(std::chrono::duration<double>(request.step).count()) +
-                    " s: must be from 6 s to 2 h");
-    validateSun(request.sunDiameterDeg, Atmosphere{});
-    checkSpaValidity(localDay(request.firstDay, request.zone).startUtc);
-    checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
-    if (!(request.albedo >= 0 && request.albedo <= 1))
-        throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
-    if (request.stackDirections && *request.stackDirections != 0 &&
-        (*request.stackDirections < 4 || *request.stackDirections > 720))
-        throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
-    validateCanopy(request.canopy);
-    if (request.canopy.any() && request.stackDirections && *request.stackDirections != 0)
-        throw FieldError("stackDirections", ": interpolated horizons do not model a canopy; use exact horizons");
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    const Terrain& whole = source.geometry().terrain;
-    const ScenePlan plan = planFor(request.search, whole);
-    const std::size_t stackDirections = sunhoursStackDirections(request, plan);
-    const std::size_t halo = source.isWhole(window) ? 0 : sunhoursHaloCells(source, request);
-    return onWindow<SunhoursResult>(source, window, halo,
-                                    [&](const Dem& dem) {
-                                        return computeSunhours(source, dem, plan, request, stackDirections, canopy,
-                                                               progress);
-                                    });
+    return withThreads(request.search.threads, [&] {
+        if (request.lastDay < request.firstDay)
+            throw FieldError("lastDay", " " + formatDate(request.lastDay) + " is before firstDay " + formatDate(request.firstDay));
+        if (request.step < kMinStep || request.step > kMaxStep)
+            throw FieldError("step", " " + formatNumber(std::chrono::duration<double>(request.step).count()) +
+                        " s: must be from 6 s to 2 h");
+        validateSun(request.sunDiameterDeg, Atmosphere{});
+        checkSpaValidity(localDay(request.firstDay, request.zone).startUtc);
+        checkSpaValidity(localDay(request.lastDay, request.zone).endUtc - std::chrono::milliseconds(1));
+        if (!(request.albedo >= 0 && request.albedo <= 1))
+            throw FieldError("albedo", " " + formatNumber(request.albedo) + ": must be in [0, 1]");
+        if (request.stackDirections && *request.stackDirections != 0 &&
+            (*request.stackDirections < 4 || *request.stackDirections > 720))
+            throw FieldError("stackDirections", " " + std::to_string(*request.stackDirections) + ": must be 0 or 4..720");
+        validateCanopy(request.canopy);
+        if (request.canopy.any() && request.stackDirections && *request.stackDirections != 0)
+            throw FieldError("stackDirections", ": interpolated horizons do not model a canopy; use exact horizons");
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        const Terrain& whole = source.geometry().terrain;
+        const ScenePlan plan = planFor(request.search, whole);
+        const std::size_t stackDirections = sunhoursStackDirections(request, plan);
+        const std::size_t halo = source.isWhole(window) ? 0 : sunhoursHaloCells(source, request);
+        return onWindow<SunhoursResult>(source, window, halo,
+                                        [&](const Dem& dem) {
+                                            return computeSunhours(source, dem, plan, request, stackDirections, canopy,
+                                                                   progress);
+                                        });
+    });
 }
 
 }  // namespace demlight

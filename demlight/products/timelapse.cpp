@@ -1,3 +1,4 @@
+#include "demlight/core/parallel.h"
 #include "demlight/products/timelapse.h"
 
 #include "demlight/core/timing.h"
@@ -68,7 +69,7 @@ SkyTerm skyTerm(const Terrain& t, const Normals& normals, const ScenePlan& plan,
         return out;
     }
     out.stack = computeHorizonStack(t, r.stackDirections, out.params, &counter);
-    SkyAccumulator acc(normals.east, normals.north, normals.up, r.stackDirections, {}, r.search.threads);
+    SkyAccumulator acc(normals.east, normals.north, normals.up, r.stackDirections, {});
     for (std::size_t i = 0; i < r.stackDirections; ++i) acc.addDirection(i, out.stack.angleDeg[i]);
     out.skyK = std::move(acc).finish(0.0).skyK;
     return out;
@@ -214,7 +215,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
     const auto tStart = Clock::now();
     const std::size_t n = instants.size();
     ProgressCounter counter(progress, "timelapse", t.heightsM.size() * (skyDirections + n) * (canopy ? 2 : 1));
-    const Normals normals = computeNormals(lit, request.search.threads);
+    const Normals normals = computeNormals(lit);
     const SkyTerm sky = skyTerm(t, normals, plan, request, skyDirections, canopy ? &*canopy : nullptr, counter);
 
     TimelapseResult result;
@@ -265,7 +266,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
         SunFrame frame;
         TimelapseFrame out;
         if (request.stackDirections > 0) {
-            frame.light = sunLightFromStack(t, normals, sky.stack, field, request.sunDiameterDeg, request.search.threads);
+            frame.light = sunLightFromStack(t, normals, sky.stack, field, request.sunDiameterDeg);
             frame.maxDistanceM = sky.stack.maxDistanceM;
             counter.advance(t.heightsM.size());
             out.sunUp = field.elevationRange().second > -request.sunDiameterDeg / 2;
@@ -303,7 +304,7 @@ TimelapseResult computeTimelapse(const DemSource& source, const Dem& dem, const 
                 out.previewRepeats = true;
             } else {
                 out.preview = renderPreview(normals, frame.light.visibility, sky.skyK, albedo, field.centreAzimuthDeg,
-                                            elevation, pp, request.search.threads);
+                                            elevation, pp);
                 if (request.picture.pixels == PixelGeometry::Ground) out.preview = toGroundPixels(out.preview, t);
                 if (dark) {
                     night = NightPicture{std::move(*dark), skyScale, out.preview};
@@ -370,29 +371,31 @@ std::size_t timelapseHaloCells(const DemSource& source, const TimelapseRequest& 
 
 TimelapseResult timelapseProduct(const DemSource& source, const CellWindow& window, const TimelapseRequest& request,
                                  const TimelapseSink& sink, const ProgressFn& progress) {
-    const auto& instants = request.frames.instants;
-    if (instants.empty()) throw Error("frames: the sequence has no instants");
-    if (request.stackDirections != 0 &&
-        (request.stackDirections < kMinStackDirections || request.stackDirections > kMaxStackDirections))
-        throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
-    validatePicture(request.picture);
-    validateSun(request.sunDiameterDeg, Atmosphere{});
-    validateCanopy(request.canopy);
-    if (request.canopy.any() && request.stackDirections != 0)
-        throw FieldError("canopy", ": needs exact horizons (a sweep per frame on each surface), not interpolated ones");
-    source.checkWindow(window);
-    if (request.previews && !source.isWhole(window))
-        throw FieldError("previews", ": pictures are of the whole DEM; a window or tile of it gets lightmaps only");
-    const ScenePlan plan = planFor(request.search, source.geometry().terrain);
-    const std::size_t skyDirections = timelapseSkyDirections(request, plan);
-    const Grid<float> canopy = loadCanopy(request.canopy, source);
-    if (source.isWhole(window)) {
-        const std::shared_ptr<const Dem> dem = source.readWhole();
-        return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, canopy, sink, progress);
-    }
-    const CellWindow read = source.withHalo(window, timelapseHaloCells(source, request));
-    return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, canopy, sink,
-                            progress);
+    return withThreads(request.search.threads, [&] {
+        const auto& instants = request.frames.instants;
+        if (instants.empty()) throw Error("frames: the sequence has no instants");
+        if (request.stackDirections != 0 &&
+            (request.stackDirections < kMinStackDirections || request.stackDirections > kMaxStackDirections))
+            throw FieldError("stackDirections", " " + std::to_string(request.stackDirections) + ": must be 0 or in 4..720");
+        validatePicture(request.picture);
+        validateSun(request.sunDiameterDeg, Atmosphere{});
+        validateCanopy(request.canopy);
+        if (request.canopy.any() && request.stackDirections != 0)
+            throw FieldError("canopy", ": needs exact horizons (a sweep per frame on each surface), not interpolated ones");
+        source.checkWindow(window);
+        if (request.previews && !source.isWhole(window))
+            throw FieldError("previews", ": pictures are of the whole DEM; a window or tile of it gets lightmaps only");
+        const ScenePlan plan = planFor(request.search, source.geometry().terrain);
+        const std::size_t skyDirections = timelapseSkyDirections(request, plan);
+        const Grid<float> canopy = loadCanopy(request.canopy, source);
+        if (source.isWhole(window)) {
+            const std::shared_ptr<const Dem> dem = source.readWhole();
+            return computeTimelapse(source, *dem, window, window, plan, skyDirections, request, canopy, sink, progress);
+        }
+        const CellWindow read = source.withHalo(window, timelapseHaloCells(source, request));
+        return computeTimelapse(source, source.read(read), read, window, plan, skyDirections, request, canopy, sink,
+                                progress);
+    });
 }
 
 std::size_t timelapseGridsPerCell(const TimelapseRequest& request) {

@@ -122,7 +122,6 @@ void ensureAlbedo(ViewStage::Impl& m) {
     const ViewRequest& request = m.request;
     const Terrain& t = m.whole->terrain;
     const std::size_t W = t.width(), H = t.height();
-    const int threads = request.search.threads;
     // The ground's albedo: the colour raster's, one grey, or the landscape's.
     if (!request.colorRaster.empty()) {
         std::vector<Grid<float>> colour =
@@ -130,8 +129,8 @@ void ensureAlbedo(ViewStage::Impl& m) {
         for (std::size_t c = 0; c < 3; ++c) m.albedo[c] = std::move(colour[c]);
     } else {
         for (auto& g : m.albedo) g = Grid<float>(W, H);
-        const Normals normals = request.albedo ? Normals{} : computeNormals(t, threads);
-        parallelFor(0, H, threads, [&](std::size_t r) {
+        const Normals normals = request.albedo ? Normals{} : computeNormals(t);
+        parallelFor(0, H, [&](std::size_t r) {
             for (std::size_t c = 0; c < W; ++c) {
                 const float h = t.heightsM(c, r);
                 const Rgb a = request.albedo ? Rgb{*request.albedo, *request.albedo, *request.albedo}
@@ -157,7 +156,6 @@ ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl
     const Terrain& t = dem.terrain;
     const std::size_t W = t.width(), H = t.height();
     if (W < 2 || H < 2) throw Error("a view needs a DEM of at least 2 x 2 cells");
-    const int threads = request.search.threads;
     const bool sea = request.nodata == ViewNodata::Sea;
 
     // The frame: cell (0, 0)'s centre at the origin, E along columns, N against rows.
@@ -202,7 +200,7 @@ ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl
     if (sea)
         for (float& h : heights.values())
             if (std::isnan(h)) h = 0.0f;
-    m.surfaceHeights = viewHeights(heights, cw, ch, exag, camera.eye, m.effectiveRadiusM, threads);
+    m.surfaceHeights = viewHeights(heights, cw, ch, exag, camera.eye, m.effectiveRadiusM);
     m.eyeCol = camera.eye.e / cw;
     m.eyeRow = -camera.eye.n / ch;
     const double groundBelow = heightAt(m.surfaceHeights, m.eyeCol, m.eyeRow);
@@ -210,7 +208,7 @@ ViewStage::ViewStage(const DemSource& source, const ViewRequest& request) : impl
         throw FieldError(cam.eye ? "eye" : "camera",
                          ": the camera is under the terrain (at " + formatNumber(camera.eye.u / exag) +
                              " m, the ground below it at " + formatNumber(groundBelow / exag) + " m)");
-    m.surface = std::make_unique<MaxMipmap>(m.surfaceHeights, threads);
+    m.surface = std::make_unique<MaxMipmap>(m.surfaceHeights);
 }
 
 ViewStage::~ViewStage() = default;
@@ -220,7 +218,7 @@ std::array<Grid<float>, 3> ViewStage::light(const Grid<float>& sunIrradiance, co
     const double albedo = r.albedo.value_or(kDefaultAlbedo);
     std::array<Grid<float>, 3> out;
     for (auto& g : out) g = Grid<float>(skyK.width(), skyK.height());
-    parallelFor(0, skyK.height(), r.search.threads, [&](std::size_t row) {
+    parallelFor(0, skyK.height(), [&](std::size_t row) {
         for (std::size_t c = 0; c < skyK.width(); ++c) {
             const double s = sunIrradiance(c, row), k = skyK(c, row);
             const double f = std::isnan(k) ? k : skyFactor(k, albedo);
@@ -262,7 +260,7 @@ ViewImage ViewStage::render(const std::array<const Grid<float>*, 3>& light, doub
     vl.skyColor = {request.skyColor[0], request.skyColor[1], request.skyColor[2]};
     PreviewParams display;
     display.exposure = request.exposure;
-    return renderView(scene, *m.surface, m.camera, vl, request.atmosphere, display, request.search.threads);
+    return renderView(scene, *m.surface, m.camera, vl, request.atmosphere, display);
 }
 
 void ViewStage::describe(ViewResult& out) const {
@@ -278,37 +276,39 @@ void ViewStage::describe(ViewResult& out) const {
 }
 
 ViewResult viewProduct(const DemSource& source, const ViewRequest& request, const ProgressFn& progress) {
-    validateView(request);
-    ViewResult out;
-    // The camera first: a camera under the terrain is refused before the light is computed.
-    const auto stageStart = std::chrono::steady_clock::now();
-    const ViewStage stage(source, request);
-    double stageSeconds = secondsSince(stageStart);
+    return withThreads(request.search.threads, [&] {
+        validateView(request);
+        ViewResult out;
+        // The camera first: a camera under the terrain is refused before the light is computed.
+        const auto stageStart = std::chrono::steady_clock::now();
+        const ViewStage stage(source, request);
+        double stageSeconds = secondsSince(stageStart);
 
-    // The light of every cell, as the light product gives it; the stage multiplies in the albedo.
-    const auto lightStart = std::chrono::steady_clock::now();
-    LightRequest lr;
-    lr.time = request.time;
-    lr.sunColor = request.sunColor;
-    lr.skyColor = request.skyColor;
-    lr.albedo = request.albedo;
-    lr.skyDirections = request.skyDirections;
-    lr.sunDiameterDeg = request.sunDiameterDeg;
-    lr.search = request.search;
-    const LightResult light = lightProduct(source, source.whole(), lr, progress);
-    out.lightSeconds = secondsSince(lightStart);
-    out.sunAzimuthDeg = light.centreAzimuthDeg;
-    out.sunElevationDeg = light.centreElevationDeg;
-    const ScenePlan plan = planFor(request.search, source.readWhole()->terrain);
-    out.quality = plan.quality;
-    out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
+        // The light of every cell, as the light product gives it; the stage multiplies in the albedo.
+        const auto lightStart = std::chrono::steady_clock::now();
+        LightRequest lr;
+        lr.time = request.time;
+        lr.sunColor = request.sunColor;
+        lr.skyColor = request.skyColor;
+        lr.albedo = request.albedo;
+        lr.skyDirections = request.skyDirections;
+        lr.sunDiameterDeg = request.sunDiameterDeg;
+        lr.search = request.search;
+        const LightResult light = lightProduct(source, source.whole(), lr, progress);
+        out.lightSeconds = secondsSince(lightStart);
+        out.sunAzimuthDeg = light.centreAzimuthDeg;
+        out.sunElevationDeg = light.centreElevationDeg;
+        const ScenePlan plan = planFor(request.search, source.readWhole()->terrain);
+        out.quality = plan.quality;
+        out.skyDirections = request.skyDirections.value_or(static_cast<std::size_t>(plan.skyDirections));
 
-    const auto renderStart = std::chrono::steady_clock::now();
-    out.view = stage.render({&light.bands.at(0).values, &light.bands.at(1).values, &light.bands.at(2).values},
-                            out.sunAzimuthDeg, out.sunElevationDeg);
-    out.renderSeconds = stageSeconds + secondsSince(renderStart);
-    stage.describe(out);
-    return out;
+        const auto renderStart = std::chrono::steady_clock::now();
+        out.view = stage.render({&light.bands.at(0).values, &light.bands.at(1).values, &light.bands.at(2).values},
+                                out.sunAzimuthDeg, out.sunElevationDeg);
+        out.renderSeconds = stageSeconds + secondsSince(renderStart);
+        stage.describe(out);
+        return out;
+    });
 }
 
 }  // namespace demlight

@@ -98,7 +98,7 @@ void declareSearch(ParameterSet& set, SearchRequest& r, bool& verbose) {
         .within(0, kMaxNearFieldSteps)
         .field("nearFieldSteps")
         .forHowItRuns();
-    set.add("verbose", verbose, "Verbose", "Print the modelling choices (the scene plan)")
+    set.add("verbose", verbose, "Verbose", "Print the modelling choices (the scene plan) and the peak memory")
         .flags("-v,--verbose")
         .only(kCommandLine);
 }

@@ -56,6 +56,7 @@ ProductWork<HorizonResult> horizonWork(const HorizonRequest& request, const Hori
     work.command = "horizon";
     work.heights = p.heights;
     work.tiling = p.tiling;
+    work.threads = p.search.threads;
     work.halo = haloOf(horizonHaloCells, request);
     // Memory of a window per cell: a horizon and a mask band per azimuth.
     work.tileBytes = productTileBytes(2 * request.azimuthsDeg.size());
@@ -91,7 +92,7 @@ SunRequest sunRequest(const SunParameters& p) {
 
 ProductWork<SunResult> sunWork(const SunRequest& request, const SunParameters& p) {
     return singleRasterWork<SunResult>(
-        "sun", p.heights, p.tiling, haloOf(sunHaloCells, request), productTileBytes(kSunBands),
+        "sun", p.heights, p.tiling, p.search.threads, haloOf(sunHaloCells, request), productTileBytes(kSunBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return sunProduct(dem, w, request, progress);
         });
@@ -112,7 +113,7 @@ SkyRequest skyRequest(const SkyParameters& p) {
 
 ProductWork<SkyResult> skyWork(const SkyRequest& request, const SkyParameters& p) {
     return singleRasterWork<SkyResult>(
-        "sky", p.heights, p.tiling, haloOf(skyHaloCells, request), skyTileBytes(request),
+        "sky", p.heights, p.tiling, p.search.threads, haloOf(skyHaloCells, request), skyTileBytes(request),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return skyProduct(dem, w, request, progress);
         });
@@ -127,7 +128,7 @@ ApertureRequest apertureRequest(const ApertureParameters& p) {
 
 ProductWork<ApertureResult> apertureWork(const ApertureRequest& request, const ApertureParameters& p) {
     return singleRasterWork<ApertureResult>(
-        "aperture", p.heights, p.tiling, haloOf(apertureHaloCells, request), apertureTileBytes(),
+        "aperture", p.heights, p.tiling, p.search.threads, haloOf(apertureHaloCells, request), apertureTileBytes(),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return apertureProduct(dem, w, request, progress);
         });
@@ -157,7 +158,7 @@ LightRequest lightRequest(const LightParameters& p) {
 
 ProductWork<LightResult> lightWork(const LightRequest& request, const LightParameters& p) {
     return singleRasterWork<LightResult>(
-        "light", p.heights, p.tiling, haloOf(lightHaloCells, request), productTileBytes(kLightBands),
+        "light", p.heights, p.tiling, p.search.threads, haloOf(lightHaloCells, request), productTileBytes(kLightBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return lightProduct(dem, w, request, progress);
         });
@@ -183,7 +184,7 @@ IrradianceRequest irradianceRequest(const IrradianceParameters& p) {
 
 ProductWork<IrradianceResult> irradianceWork(const IrradianceRequest& request, const IrradianceParameters& p) {
     return singleRasterWork<IrradianceResult>(
-        "irradiance", p.heights, p.tiling, haloOf(irradianceHaloCells, request), productTileBytes(kIrradianceBands),
+        "irradiance", p.heights, p.tiling, p.search.threads, haloOf(irradianceHaloCells, request), productTileBytes(kIrradianceBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return irradianceProduct(dem, w, request, progress);
         });
@@ -214,7 +215,7 @@ InsolationRequest insolationRequest(const InsolationParameters& p) {
 
 ProductWork<InsolationResult> insolationWork(const InsolationRequest& request, const InsolationParameters& p) {
     return singleRasterWork<InsolationResult>(
-        "insolation", p.heights, p.tiling, haloOf(insolationHaloCells, request), productTileBytes(kInsolationBands),
+        "insolation", p.heights, p.tiling, p.search.threads, haloOf(insolationHaloCells, request), productTileBytes(kInsolationBands),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return insolationProduct(dem, w, request, progress);
         });
@@ -242,7 +243,7 @@ ProductWork<SunhoursResult> sunhoursWork(const SunhoursRequest& request, const S
     // Grids per cell a window holds (for tile sizes): the bands, and the stack's directions (under
     // `auto` those of a stack wherever the period may take one: the plan is not made yet).
     return singleRasterWork<SunhoursResult>(
-        "sunhours", p.heights, p.tiling, haloOf(sunhoursHaloCells, request),
+        "sunhours", p.heights, p.tiling, p.search.threads, haloOf(sunhoursHaloCells, request),
         productTileBytes(kSunhoursBands + sunhoursStackDirectionsAtMost(request)),
         [request](const DemSource& dem, const CellWindow& w, const ProgressFn& progress) {
             return sunhoursProduct(dem, w, request, progress);

@@ -207,8 +207,10 @@ void pasteResult(ProductResult& into, const ProductResult& part, std::size_t col
     }
 }
 
-std::vector<ProductResult> computeRaster(const RasterWork& work, const DemSource& dem, const RasterRun& run,
-                                         const ProgressFn& progress) {
+namespace {
+
+std::vector<ProductResult> computeRasterOnThreads(const RasterWork& work, const DemSource& dem, const RasterRun& run,
+                                                  const ProgressFn& progress) {
     if (run.tiles.size() == 1) return work.compute(dem, run.tiles.front(), progress);
     std::vector<ProductResult> out;
     runTiles(run, progress, [&](const CellWindow& tile, const ProgressFn& tileFn) {
@@ -231,6 +233,14 @@ std::vector<ProductResult> computeRaster(const RasterWork& work, const DemSource
             pasteResult(out[k], parts[k], tile.col0 - run.extent.col0, tile.row0 - run.extent.row0);
     });
     return out;
+}
+
+}  // namespace
+
+std::vector<ProductResult> computeRaster(const RasterWork& work, const DemSource& dem, const RasterRun& run,
+                                         const ProgressFn& progress) {
+    // The run's threads, entered once for every tile.
+    return withThreads(work.threads, [&] { return computeRasterOnThreads(work, dem, run, progress); });
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "demlight/core/error.h"
+#include "demlight/core/parallel.h"
 #include "demlight/core/progress.h"
 #include "demlight/geo/dem_source.h"
 #include "demlight/geo/raster.h"
@@ -118,6 +119,9 @@ struct ProductWork {
     std::string command;
     HeightOptions heights;  ///< how the DEM is to be opened
     TilingOptions tiling;
+    /// Worker threads of the run (SearchRequest::threads; 0 = all cores): runRaster and
+    /// computeRaster enter them once for every tile.
+    int threads = 0;
     /// The cells the product reads around a window of a DEM (the product's xxxHaloCells): what
     /// the tiles are planned with.
     std::function<std::size_t(const DemSource&)> halo;
@@ -145,6 +149,7 @@ RasterWork rasterWork(const ProductWork<Result>& work) {
     out.command = work.command;
     out.heights = work.heights;
     out.tiling = work.tiling;
+    out.threads = work.threads;
     out.halo = work.halo;
     out.tileBytes = work.tileBytes;
     out.compute = [compute = work.compute, parts = work.parts](const DemSource& dem, const CellWindow& w,
@@ -167,12 +172,14 @@ RasterWork rasterWork(const ProductWork<Result>& work) {
 /// A work whose result is one raster written to the output as it is.
 template <class Result>
 ProductWork<Result> singleRasterWork(std::string command, const HeightOptions& heights, const TilingOptions& tiling,
-                                     std::function<std::size_t(const DemSource&)> halo, const TileBytes& tileBytes,
+                                     int threads, std::function<std::size_t(const DemSource&)> halo,
+                                     const TileBytes& tileBytes,
                                      std::function<Result(const DemSource&, const CellWindow&, const ProgressFn&)> compute) {
     ProductWork<Result> work;
     work.command = std::move(command);
     work.heights = heights;
     work.tiling = tiling;
+    work.threads = threads;
     work.halo = std::move(halo);
     work.tileBytes = tileBytes;
     work.compute = std::move(compute);
@@ -190,14 +197,11 @@ void runTiles(const RasterRun& run, const ProgressFn& progress, Step&& step) {
         step(run.tiles[i], tileProgress(progress, i, run.tiles.size()));
 }
 
-/// Runs `work` on each window of `run` with `progress` for the whole job and writes its rasters
-/// to `targets`: in one piece as writeResult does, in tiles through a TiledWriter; `computed` is
-/// called once every tile is computed, before the last write. Returns the first window's result,
-/// for the command's notes.
+/// runRaster on the threads of the run it is called in.
 template <class Result>
-Result runRaster(const ProductWork<Result>& work, const DemSource& dem, const RasterRun& run,
-                 const std::vector<RasterTarget>& targets, const RunContext& ctx, const std::string& inputPath,
-                 const ProgressFn& progress, const std::function<void()>& computed = {}) {
+Result runRasterOnThreads(const ProductWork<Result>& work, const DemSource& dem, const RasterRun& run,
+                          const std::vector<RasterTarget>& targets, const RunContext& ctx, const std::string& inputPath,
+                          const ProgressFn& progress, const std::function<void()>& computed) {
     if (run.tiles.size() == 1) {
         Result r = work.compute(dem, run.tiles.front(), progress);
         if (computed) computed();
@@ -222,6 +226,20 @@ Result runRaster(const ProductWork<Result>& work, const DemSource& dem, const Ra
     if (computed) computed();
     writer.commit();
     return std::move(*first);
+}
+
+/// Runs `work` on each window of `run` with `progress` for the whole job and writes its rasters
+/// to `targets`: in one piece as writeResult does, in tiles through a TiledWriter; `computed` is
+/// called once every tile is computed, before the last write. Returns the first window's result,
+/// for the command's notes.
+template <class Result>
+Result runRaster(const ProductWork<Result>& work, const DemSource& dem, const RasterRun& run,
+                 const std::vector<RasterTarget>& targets, const RunContext& ctx, const std::string& inputPath,
+                 const ProgressFn& progress, const std::function<void()>& computed = {}) {
+    // The run's threads, entered once: every tile's product and loop runs on them.
+    return withThreads(work.threads, [&] {
+        return runRasterOnThreads(work, dem, run, targets, ctx, inputPath, progress, computed);
+    });
 }
 
 /// Every band of `part` pasted into `into` at (col0, row0) (cells of `into`).

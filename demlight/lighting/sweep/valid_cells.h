@@ -39,10 +39,10 @@ inline std::uint64_t rowRunBits(const float* __restrict row, std::size_t n) {
 class ValidCells {
 public:
     /// The bitmap of `bits`, built first unless it is this terrain's heights grid's.
-    ValidCells(const Terrain& t, bool xMajor, int threads, SweepBuffers::ValidBits& bits)
+    ValidCells(const Terrain& t, bool xMajor, SweepBuffers::ValidBits& bits)
         : majorSize_(xMajor ? t.width() : t.height()) {
         if (bits.heights != t.heightsM.data() || bits.width != t.width() || bits.height != t.height()) {
-            build(t, xMajor, threads, bits.words);
+            build(t, xMajor, bits.words);
             bits.heights = t.heightsM.data();
             bits.width = t.width();
             bits.height = t.height();
@@ -72,12 +72,12 @@ private:
     /// large voids skipped"). Below it the sweep reads a step's heights until it finds one.
     static constexpr double kBitmapVoidShare = 0.1;
 
-    void build(const Terrain& t, bool xMajor, int threads, std::vector<std::uint64_t>& words) const {
+    void build(const Terrain& t, bool xMajor, std::vector<std::uint64_t>& words) const {
         const std::size_t W = t.width(), H = t.height();
         const std::size_t minorSize = xMajor ? H : W, groups = (minorSize + 63) / 64;
         words.assign(groups * majorSize_, 0);
         std::atomic<std::size_t> validCells{0};
-        parallelFor(0, groups, threads, [&](std::size_t g) {
+        parallelFor(0, groups, [&](std::size_t g) {
             std::uint64_t* out = words.data() + g * majorSize_;
             const std::size_t j0 = g * 64, n = std::min<std::size_t>(64, minorSize - j0);
             if (xMajor) {
