@@ -50,13 +50,13 @@ CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) 
     for (Parameter& p : set.parameters()) {
         if (!p.shownIn(kCommandLine)) continue;
         const std::string help = renderNames(p.help, &set, Naming::CommandLine);
-        const std::string names = p.positional ? p.cliFlags : joined(p.commandLineNames());
+        const std::string flags = p.positional ? p.cliFlags : joined(p.commandLineNames());
         CLI::Option* opt = nullptr;
         if (p.kind == ValueKind::Flag) {
-            opt = cmd->add_flag_callback(names, [&p] { p.store({}); }, help);
+            opt = cmd->add_flag_callback(flags, [&p] { p.store({}); }, help);
         } else {
             opt = cmd->add_option(
-                names,
+                flags,
                 [&p](const CLI::results_t& values) {
                     p.store(values);
                     return true;
