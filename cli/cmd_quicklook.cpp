@@ -49,15 +49,10 @@ void runQuicklook(const QuicklookOptions& o, const CliContext& ctx) {
 void registerQuicklook(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<QuicklookOptions>();
     ParameterSet& set = o->set;
-    Parameter& input = set.add("raster", o->input, "Raster",
-                               "Raster to look at (any GDAL raster; demlight's outputs name their bands)")
-                           .flags("RASTER")
-                           .mandatory();
-    input.positional = true;
-    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg)")
-        .flags("-o,--output")
-        .type("OUT.png")
+    set.add("raster", o->input, "Raster", "Raster to look at (any GDAL raster; demlight's outputs name their bands)")
+        .positionalAs("RASTER")
         .mandatory();
+    declarePictureOutput(set, o->outPath, ".png, .jpg");
     set.add("band", o->band, "Band", "Band: its number (1 = first) or its description (e.g. global)").type("N|NAME");
     set.add("range", o->range, "Colour map range (low,high)",
             "Values at the ends of the colour map (default: the 1st and 99th percentiles)")

@@ -54,10 +54,7 @@ void registerRender(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<RenderOptions>();
     ParameterSet& set = o->set;
     declareDemOptions(set, o->dem);
-    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg, .exr)")
-        .flags("-o,--output")
-        .type("OUT.png")
-        .mandatory();
+    declarePictureOutput(set, o->outPath, ".png, .jpg, .exr");
     declareTime(set, o->time, o->tz);
     declarePictureOptions(set, o->picture);
     set.add("sky_directions", o->skyDirections, "Sky directions",

@@ -30,11 +30,10 @@ void runSequence(const SequenceOptions& o, const CliContext& ctx) {
 void registerSequence(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<SequenceOptions>();
     ParameterSet& set = o->set;
-    Parameter& fit = set.add("fit", o->fitPath, "Sequence fit raster",
-                             "sequence_fit.tif written by a time-lapse with a fit degree (demlight timelapse)")
-                         .flags("FIT")
-                         .mandatory();
-    fit.positional = true;
+    set.add("fit", o->fitPath, "Sequence fit raster",
+            "sequence_fit.tif written by a time-lapse with a fit degree (demlight timelapse)")
+        .positionalAs("FIT")
+        .mandatory();
     declareOutput(set, o->out);
     declareTime(set, o->time, o->tz);
     notInPython(set);

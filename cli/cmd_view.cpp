@@ -65,10 +65,7 @@ void registerView(CLI::App& app, CliContext& ctx) {
     auto o = std::make_shared<ViewOptions>();
     ParameterSet& set = o->set;
     declareDemOptions(set, o->dem);
-    set.add("output", o->outPath, "Output picture", "Output picture; format from the extension (.png, .jpg, .exr)")
-        .flags("-o,--output")
-        .type("OUT.png")
-        .mandatory();
+    declarePictureOutput(set, o->outPath, ".png, .jpg, .exr");
     declareTime(set, o->time, o->tz);
     declareViewCameraOptions(set, o->camera);
     declareColorRaster(set, o->colorRaster, o->colorEncoding, "the ground's albedo per channel");

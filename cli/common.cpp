@@ -65,6 +65,13 @@ void declarePictureOptions(ParameterSet& set, PictureOptions& o) {
         .oneOf({"ground", "cell"});
 }
 
+void declarePictureOutput(ParameterSet& set, std::string& path, const std::string& extensions) {
+    set.add("output", path, "Output picture", "Output picture; format from the extension (" + extensions + ")")
+        .flags("-o,--output")
+        .type("OUT.png")
+        .mandatory();
+}
+
 void notInPython(ParameterSet& set) {
     for (Parameter& p : set.parameters()) p.frontEnds &= ~unsigned(kPython);
 }

@@ -97,6 +97,8 @@ struct PictureOptions {
     std::string pixels = "ground";
 };
 void declarePictureOptions(ParameterSet& set, PictureOptions& o);
+/// -o OUT.png of the picture commands; `extensions` lists the formats they write (".png, .jpg").
+void declarePictureOutput(ParameterSet& set, std::string& path, const std::string& extensions);
 PictureRequest pictureRequest(const PictureOptions& o);
 
 /// A search distance for notes: "N m" (rounded), or "the whole DEM" when infinite.

@@ -1,35 +1,11 @@
 #include "cli/declared.h"
 
-#include <cmath>
 #include <cstdlib>
 #include <map>
-#include <sstream>
 
 namespace demlight::cli {
 
 namespace {
-
-std::string numberText(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
-/// What --help shows after the type: "[0, 20]", "NUMBER > 0", "{auto,full}".
-std::string checkDescription(const Parameter& p) {
-    if (!p.choices.empty()) {
-        std::string list;
-        for (const std::string& c : p.choices) list += (list.empty() ? "" : ",") + c;
-        return "{" + list + "}";
-    }
-    if (p.range) {
-        const ValueRange& r = *p.range;
-        if (std::isfinite(r.hi))
-            return std::string(r.lowOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) + "]";
-        return std::string(r.lowOpen ? "NUMBER > " : "NUMBER >= ") + numberText(r.lo);
-    }
-    return {};
-}
 
 std::string joined(const std::vector<std::string>& names) {
     std::string out;
@@ -39,12 +15,16 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
+Naming messageNaming() {
+    const char* names = std::getenv("DEMLIGHT_PARAMETER_NAMES");
+    return names && std::string(names) == "qgis" ? Naming::Qgis : Naming::CommandLine;
+}
+
 CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) {
     CLI::App* cmd = app.add_subcommand(set.command(), set.description());
     // Run by the QGIS provider, a bad value is reported as the library's errors are, naming the
     // parameter by its label (main's describeError), not as CLI11's usage error naming a flag.
-    const char* names = std::getenv("DEMLIGHT_PARAMETER_NAMES");
-    const bool labels = names && std::string(names) == "qgis";
+    const bool labels = messageNaming() == Naming::Qgis;
     ctx.declarations[set.command()] = &set;
     std::map<std::string, CLI::Option*> made;
     for (Parameter& p : set.parameters()) {
@@ -80,7 +60,7 @@ CLI::App* addDeclaredCommand(CLI::App& app, ParameterSet& set, CliContext& ctx) 
                     }
                     return problem;
                 },
-                checkDescription(p)));
+                p.checkText()));
         }
         if (p.required) opt->required();
         made[p.name] = opt;

@@ -9,6 +9,10 @@
 
 namespace demlight::cli {
 
+/// How this run's messages spell parameters: as flags, or as QGIS's form labels them when the
+/// QGIS provider runs the command (DEMLIGHT_PARAMETER_NAMES=qgis).
+Naming messageNaming();
+
 /// Adds the subcommand `set.command()` to `app` with an option for each parameter of `set` the
 /// command line shows, and records the declaration in `ctx` (options --json, error messages).
 /// `set` must outlive `app`.

@@ -2,6 +2,7 @@
 // demlight::Error is caught here once and printed as one line.
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/declared.h"
 #include "cli/progress_bar.h"
 #include "demlight/geo/signals.h"
 #include "demlight/core/error.h"
@@ -121,11 +122,7 @@ int main(int argc, char** argv) {
         std::cerr << "demlight: cancelled\n";
         return kExitCancelled;
     } catch (const Error& e) {
-        // Parameters named as the command line spells them, or as QGIS's form labels them when
-        // the QGIS provider runs the command (DEMLIGHT_PARAMETER_NAMES=qgis).
-        const char* names = std::getenv("DEMLIGHT_PARAMETER_NAMES");
-        const Naming naming = names && std::string(names) == "qgis" ? Naming::Qgis : Naming::CommandLine;
-        std::cerr << "demlight: error: " << describeError(e, ctx.running, naming) << "\n";
+        std::cerr << "demlight: error: " << describeError(e, ctx.running, cli::messageNaming()) << "\n";
         return kExitError;
     } catch (const std::exception& e) {
         std::cerr << "demlight: internal error: " << e.what() << "\n";

@@ -34,8 +34,15 @@ namespace {
 // ---- Errors and progress ------------------------------------------------------------------------
 
 /// A message of the library with its parameters spelt as Python keywords (of `set`, the running
-/// command's, when known).
-Error keywordError(const std::exception& e, const ParameterSet* set) { return Error(describeError(e, set, Naming::Python)); }
+/// command's, when known); the output raster as `outputKeyword`, the name of the path argument
+/// of the call that writes it (Result.write's path, demlight.dask.run's out_path).
+Error keywordError(const std::exception& e, const ParameterSet* set, const std::string& outputKeyword = "path") {
+    const auto* named = dynamic_cast<const ParameterError*>(&e);
+    if (!named) return Error(describeError(e, set, Naming::Python));
+    return Error(renderNames(named->text(), [&](const std::string& name) {
+        return name == "output" ? outputKeyword : renderNames("{" + name + "}", set, Naming::Python);
+    }));
+}
 
 /// Runs library work without the GIL, and cancels it when Python asks: the progress callback
 /// raises or returns False, or a signal handler raises (Ctrl-C: KeyboardInterrupt). The raised
@@ -232,15 +239,15 @@ struct PyCall {
     std::size_t halo(const PyDem& dem) const { return named([&] { return work.halo(*dem.source); }); }
     /// The extent (the whole DEM or srcwin) and its tiles, as the command plans them.
     RasterRun plan(const PyDem& dem) const { return named([&] { return work.plan(*dem.source, RunContext{}); }); }
-    /// f(), its errors' messages naming this command's keywords.
+    /// f(), its errors' messages naming this command's keywords (the output as `outputKeyword`).
     template <class F>
-    auto named(F&& f) const -> decltype(f()) {
+    auto named(F&& f, const std::string& outputKeyword = "path") const -> decltype(f()) {
         try {
             return f();
         } catch (const Cancelled&) {
             throw;
         } catch (const Error& e) {
-            throw keywordError(e, declaration());
+            throw keywordError(e, declaration(), outputKeyword);
         }
     }
 };
@@ -303,21 +310,13 @@ std::vector<std::string> writeCall(const PyCall& c, const std::vector<std::share
                                    const std::string& format, const std::vector<std::string>& co,
                                    const std::string& commandLine, const std::string& inputPath) {
     const std::vector<RasterTarget> targets = c.named([&] { return c.work.targets(outputOptions(path, format, co)); });
-    if (targets.size() != parts.size()) throw Error("the result has " + std::to_string(parts.size()) + " rasters, the command writes " + std::to_string(targets.size()));
     RunContext ctx;
     ctx.commandLine = commandLine;
     {
         py::gil_scoped_release release;
         c.named([&] {
             for (const RasterTarget& t : targets) checkOutputPath(t.out, inputPath);
-            for (std::size_t k = 0; k < targets.size(); ++k) {
-                try {
-                    writeResult(*parts[k], targets[k].out, ctx, inputPath, targets[k].extra);
-                } catch (const Error&) {
-                    removeOutputs(targets, k);  // a command's rasters are all written or none
-                    throw;
-                }
-            }
+            writeResults(pointers(parts), targets, ctx, inputPath);
         });
     }
     std::vector<std::string> paths;
@@ -329,28 +328,29 @@ std::vector<std::string> writeCall(const PyCall& c, const std::vector<std::share
 /// renamed at commit; dropped without commit, nothing is left.
 class PyWriter {
 public:
+    /// `outputKeyword`: how the caller names `path` (demlight.dask.run's out_path), in messages.
     PyWriter(std::shared_ptr<PyCall> call, const PyDem& dem, const std::string& path, const std::string& format,
-             const std::vector<std::string>& co, const std::string& commandLine)
-        : call_(std::move(call)) {
+             const std::vector<std::string>& co, const std::string& commandLine, std::string outputKeyword)
+        : call_(std::move(call)), outputKeyword_(std::move(outputKeyword)) {
         ctx_.commandLine = commandLine;
         run_ = call_->plan(dem);
         call_->named([&] {
             targets_ = call_->work.targets(outputOptions(path, format, co));
             for (const RasterTarget& t : targets_) checkOutputPath(t.out, dem.path);
             writer_ = std::make_unique<TiledWriter>(run_, targets_, ctx_, dem.path);
-        });
+        }, outputKeyword_);
     }
     void write(const std::vector<std::size_t>& w, const std::vector<std::shared_ptr<Raster>>& parts) {
         if (!writer_) throw Error("the writer is closed");
         if (w.size() != 4) throw Error("window: expected (col0, row0, col1, row1)");
         py::gil_scoped_release release;
-        call_->named([&] { writer_->write({w[0], w[1], w[2], w[3]}, pointers(parts)); });
+        call_->named([&] { writer_->write({w[0], w[1], w[2], w[3]}, pointers(parts)); }, outputKeyword_);
     }
     std::vector<std::string> commit() {
         if (!writer_) throw Error("the writer is closed");
         {
             py::gil_scoped_release release;
-            call_->named([&] { writer_->commit(); });
+            call_->named([&] { writer_->commit(); }, outputKeyword_);
             writer_.reset();
         }
         std::vector<std::string> paths;
@@ -361,6 +361,7 @@ public:
 
 private:
     std::shared_ptr<PyCall> call_;
+    std::string outputKeyword_;
     RunContext ctx_;
     RasterRun run_;
     std::vector<RasterTarget> targets_;
@@ -500,9 +501,9 @@ PYBIND11_MODULE(_demlight, m) {
 
     py::class_<PyWriter>(m, "Writer")
         .def(py::init<std::shared_ptr<PyCall>, const PyDem&, const std::string&, const std::string&,
-                      const std::vector<std::string>&, const std::string&>(),
+                      const std::vector<std::string>&, const std::string&, std::string>(),
              py::arg("call"), py::arg("dem"), py::arg("path"), py::arg("format"), py::arg("creation_options"),
-             py::arg("command_line"))
+             py::arg("command_line"), py::arg("output_keyword") = "path")
         .def("write", &PyWriter::write, py::arg("window"), py::arg("parts"))
         .def("commit", &PyWriter::commit)
         .def("abandon", &PyWriter::abandon);

@@ -1,6 +1,7 @@
 // The one exception family of demlight. The library throws; the CLI catches once in main.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -29,34 +30,19 @@ private:
     std::string field_, detail_;
 };
 
+/// `text` with each {name} (a name is [a-z][a-z0-9_]*) replaced by spell(name); other braces are
+/// left as they are. The one reader of parameter names in messages and help texts.
+std::string renderNames(const std::string& text, const std::function<std::string(const std::string&)>& spell);
+
 /// An Error whose message names parameters as {snake_name} ("{z_unit} \"furlong\" is not a
 /// vertical unit"): each front end renders the names its own way (demlight/run/parameters.h:
 /// --z-unit, z_unit=, "Vertical unit"); what() names them plainly (z_unit).
 class ParameterError : public Error {
 public:
-    explicit ParameterError(std::string text) : Error(plainNames(text)), text_(std::move(text)) {}
+    explicit ParameterError(std::string text)
+        : Error(renderNames(text, [](const std::string& name) { return name; })), text_(std::move(text)) {}
     /// The message with its {name}s.
     const std::string& text() const { return text_; }
-
-    /// `text` with each {name} (a name is [a-z][a-z0-9_]*) as `name`.
-    static std::string plainNames(const std::string& text) {
-        std::string out;
-        for (std::size_t i = 0; i < text.size(); ++i) {
-            if (text[i] == '{') {
-                std::size_t j = i + 1;
-                while (j < text.size() && ((text[j] >= 'a' && text[j] <= 'z') || text[j] == '_' ||
-                                           (j > i + 1 && text[j] >= '0' && text[j] <= '9')))
-                    ++j;
-                if (j > i + 1 && j < text.size() && text[j] == '}') {
-                    out.append(text, i + 1, j - i - 1);
-                    i = j;
-                    continue;
-                }
-            }
-            out += text[i];
-        }
-        return out;
-    }
 
 private:
     std::string text_;

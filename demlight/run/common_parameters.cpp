@@ -17,11 +17,10 @@ constexpr unsigned kCommandLineAndQgis = kCommandLine | kQgis;
 }  // namespace
 
 void declareDem(ParameterSet& set, std::string& path) {
-    Parameter& p = set.add("dem", path, "DEM", "Input DEM: any raster GDAL opens, /vsizip/ and other virtual paths included")
-                       .flags("DEM")
-                       .mandatory()
-                       .only(kCommandLineAndQgis);
-    p.positional = true;
+    set.add("dem", path, "DEM", "Input DEM: any raster GDAL opens, /vsizip/ and other virtual paths included")
+        .positionalAs("DEM")
+        .mandatory()
+        .only(kCommandLineAndQgis);
 }
 
 void declareHeights(ParameterSet& set, HeightOptions& heights) {

@@ -23,10 +23,16 @@ std::string numberText(double v) {
     return s.str();
 }
 
+/// "[0, 20]" or "(0, 1]"; "NUMBER > 0" when unbounded above.
+std::string rangeText(const ValueRange& r) {
+    if (std::isfinite(r.hi))
+        return std::string(r.lowOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) + "]";
+    return std::string(r.lowOpen ? "NUMBER > " : "NUMBER >= ") + numberText(r.lo);
+}
+
 std::string rangeProblem(const ValueRange& r, double v, const std::string& text) {
     if (!(v < r.lo || v > r.hi || (r.lowOpen && v == r.lo))) return {};
-    if (std::isfinite(r.hi))
-        return "value " + text + " is outside " + (r.lowOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) + "]";
+    if (std::isfinite(r.hi)) return "value " + text + " is outside " + rangeText(r);
     return std::string("must be ") + (r.lowOpen ? "> " : ">= ") + numberText(r.lo) + ", got " + text;
 }
 
@@ -41,6 +47,15 @@ bool wholeNumber(const std::string& text) {
 }  // namespace
 
 std::string defaultNumberText(double v) { return numberText(v); }
+
+std::string Parameter::checkText() const {
+    if (!choices.empty()) {
+        std::string list;
+        for (const std::string& c : choices) list += (list.empty() ? "" : ",") + c;
+        return "{" + list + "}";
+    }
+    return range ? rangeText(*range) : std::string();
+}
 
 std::string Parameter::problem(std::string& value) const {
     if (kind == ValueKind::Number || kind == ValueKind::Integer) {
@@ -164,25 +179,6 @@ void ParameterSet::checkRequired(FrontEnd end) const {
     for (const Parameter& p : parameters_)
         if (p.required && p.shownIn(end) && std::find(given_.begin(), given_.end(), p.name) == given_.end())
             throw ParameterError("{" + p.name + "} is required");
-}
-
-std::string renderNames(const std::string& text, const std::function<std::string(const std::string&)>& spell) {
-    std::string out;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '{') {
-            std::size_t j = i + 1;
-            while (j < text.size() &&
-                   ((text[j] >= 'a' && text[j] <= 'z') || text[j] == '_' || (j > i + 1 && text[j] >= '0' && text[j] <= '9')))
-                ++j;
-            if (j > i + 1 && j < text.size() && text[j] == '}') {
-                out += spell(text.substr(i + 1, j - i - 1));
-                i = j;
-                continue;
-            }
-        }
-        out += text[i];
-    }
-    return out;
 }
 
 std::string renderNames(const std::string& text, const ParameterSet* set, Naming naming) {

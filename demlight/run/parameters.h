@@ -83,6 +83,8 @@ struct Parameter {
     // Declaration, fluent.
     Parameter& alias(std::string a) { aliases.push_back(std::move(a)); return *this; }
     Parameter& flags(std::string f) { cliFlags = std::move(f); return *this; }
+    /// The command line's positional argument, shown as `cliName` ("DEM").
+    Parameter& positionalAs(std::string cliName) { positional = true; cliFlags = std::move(cliName); return *this; }
     Parameter& inPython(std::string n) { pythonName = std::move(n); return *this; }
     Parameter& type(std::string t) { typeName = std::move(t); return *this; }
     Parameter& values(int least, int most) { minValues = least; maxValues = most; return *this; }
@@ -105,6 +107,8 @@ struct Parameter {
     /// The problem with one value as text (kind, range, choices, extraCheck), empty when none;
     /// `value` may be rewritten to its canonical form.
     std::string problem(std::string& value) const;
+    /// What values it takes, for --help: "[0, 20]", "NUMBER > 0", "{auto,full}"; empty for any.
+    std::string checkText() const;
     /// The name as `naming` spells it: --max-distance (-o for output), max_distance, the label.
     std::string spelt(Naming naming) const;
     /// Every command-line name: "--max-distance", "--directions", "-o", ...
@@ -158,9 +162,6 @@ private:
     std::vector<std::string> given_;
 };
 
-/// `text` with each {name} spelt by `spell(name)`; names that are not [a-z][a-z0-9_]* are left
-/// as they are.
-std::string renderNames(const std::string& text, const std::function<std::string(const std::string&)>& spell);
 /// `text` with each {name} that is a parameter of `set` spelt as `naming` spells it, and other
 /// {name}s as spelt by the command-line convention (--name) or plainly.
 std::string renderNames(const std::string& text, const ParameterSet* set, Naming naming);

@@ -25,7 +25,7 @@ void declareSearchAndTiling(RasterCommandOf<P>& c) {
     declareTiling(c.declaration(), c.values.tiling);
 }
 
-/// The number of horizon directions a sky or aperture integral takes; `what` says which.
+/// The number of horizon directions a sky or aperture integral takes, with its command's help.
 Parameter& declareSkyDirections(ParameterSet& set, std::optional<std::size_t>& directions, const std::string& help) {
     return set.add("sky_directions", directions, "Sky directions", help).within(4, 1024).field("skyDirections");
 }
@@ -259,26 +259,43 @@ std::unique_ptr<RasterCommandOf<SunhoursParameters>> sunhoursCommand() {
         declareSunhours, [](const SunhoursParameters& p) { return rasterWork(sunhoursWork(p)); });
 }
 
+namespace {
+
+/// The raster commands' makers, in the order the command line lists them.
+using RasterCommandMaker = std::unique_ptr<RasterCommand> (*)();
+const std::vector<RasterCommandMaker>& rasterCommandMakers() {
+    static const std::vector<RasterCommandMaker> makers = {
+        []() -> std::unique_ptr<RasterCommand> { return horizonCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return sunCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return skyCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return apertureCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return lightCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return irradianceCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return insolationCommand(); },
+        []() -> std::unique_ptr<RasterCommand> { return sunhoursCommand(); },
+    };
+    return makers;
+}
+
+}  // namespace
+
 const std::vector<std::string>& rasterCommandNames() {
-    static const std::vector<std::string> names = {"horizon", "sun",        "sky",        "aperture",
-                                                   "light",   "irradiance", "insolation", "sunhours"};
+    // The names their declarations give, not a second spelling of them.
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const RasterCommandMaker make : rasterCommandMakers()) out.push_back(make()->declaration().command());
+        return out;
+    }();
     return names;
 }
 
 std::unique_ptr<RasterCommand> makeRasterCommand(const std::string& name) {
-    if (name == "horizon") return horizonCommand();
-    if (name == "sun") return sunCommand();
-    if (name == "sky") return skyCommand();
-    if (name == "aperture") return apertureCommand();
-    if (name == "light") return lightCommand();
-    if (name == "irradiance") return irradianceCommand();
-    if (name == "insolation") return insolationCommand();
-    if (name == "sunhours") return sunhoursCommand();
-    throw Error("'" + name + "' is not a raster command (" + [] {
-        std::string list;
-        for (const std::string& n : rasterCommandNames()) list += (list.empty() ? "" : ", ") + n;
-        return list;
-    }() + ")");
+    const std::vector<std::string>& names = rasterCommandNames();
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return rasterCommandMakers()[i]();
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw Error("'" + name + "' is not a raster command (" + list + ")");
 }
 
 }  // namespace demlight

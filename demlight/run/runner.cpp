@@ -178,8 +178,23 @@ void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count) 
     for (std::size_t k = 0; k < count && k < targets.size(); ++k) std::filesystem::remove(targets[k].out.path, ec);
 }
 
+void writeResults(const std::vector<const ProductResult*>& rasters, const std::vector<RasterTarget>& targets,
+                  const RunContext& ctx, const std::string& inputPath) {
+    if (rasters.size() != targets.size())
+        throw Error("the result has " + std::to_string(rasters.size()) + " rasters, the command writes " +
+                    std::to_string(targets.size()));
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+        try {
+            writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
+        } catch (const Error&) {
+            removeOutputs(targets, k);  // a product's rasters are all written or none
+            throw;
+        }
+    }
+}
+
 void checkOutputPath(const std::string& outPath, const std::string& inputPath) {
-    if (outPath.empty()) throw Error("-o: the output path is empty");
+    if (outPath.empty()) throw ParameterError("{output}: the output path is empty");
     // Before anything touches the folder: a device's folder (/dev) gets no probe file either.
     checkOutputFile(outPath);
     checkNotInput(outPath, inputPath);

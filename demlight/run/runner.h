@@ -83,6 +83,11 @@ void writeResult(const ProductResult& result, const OutputOptions& out, const Ru
 /// Removes the first `count` targets' files (written before a later one failed).
 void removeOutputs(const std::vector<RasterTarget>& targets, std::size_t count);
 
+/// Writes `rasters[k]` to `targets[k]` with writeResult: all or none (a failure removes the ones
+/// written before it).
+void writeResults(const std::vector<const ProductResult*>& rasters, const std::vector<RasterTarget>& targets,
+                  const RunContext& ctx, const std::string& inputPath);
+
 /// Fails early (before any work) if the output cannot be written or would replace the input.
 void checkOutputPath(const std::string& outPath, const std::string& inputPath);
 /// As above for a raster output, which must also be named as a GeoTIFF (checkRasterPath).
@@ -205,15 +210,7 @@ Result runRasterOnThreads(const ProductWork<Result>& work, const DemSource& dem,
     if (run.tiles.size() == 1) {
         Result r = work.compute(dem, run.tiles.front(), progress);
         if (computed) computed();
-        const std::vector<const ProductResult*> rasters = work.parts(r);
-        for (std::size_t k = 0; k < targets.size(); ++k) {
-            try {
-                writeResult(*rasters[k], targets[k].out, ctx, inputPath, targets[k].extra);
-            } catch (const Error&) {
-                removeOutputs(targets, k);  // a product's rasters are all written or none
-                throw;
-            }
-        }
+        writeResults(work.parts(r), targets, ctx, inputPath);
         return r;
     }
     TiledWriter writer(run, targets, ctx, inputPath);

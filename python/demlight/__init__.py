@@ -313,16 +313,6 @@ def _output_format(command, value):
     return str(value)
 
 
-def _output_error(error, path_keyword):
-    """`error` (a demlight.Error of writing) with the output path named as `path_keyword` (the
-    declaration names it path, as Result.write does; demlight.dask.run calls it out_path)."""
-    import re
-
-    if path_keyword == "path":
-        return error
-    return type(error)(re.sub(r"\bpath\b", path_keyword, str(error)))
-
-
 def _command_line(command, dem, options):
     """DEMLIGHT_COMMAND of a Python run: the call as Python code."""
     what = repr(dem.path) if dem.path else dem._dem.name  # an array: its name
@@ -376,12 +366,9 @@ class Result:
         Atomic: a temporary name renamed on success; refuses to overwrite the input DEM.
         DEMLIGHT_COMMAND records the Python call.
         """
-        try:
-            return self._call.write(self.rasters, str(path), _output_format(self.command, format),
-                                    _creation_options(creation_options),
-                                    _command_line(self.command, self._dem, self._options), self._dem._dem.path)
-        except Error as e:
-            raise _output_error(e, "path") from None
+        return self._call.write(self.rasters, str(path), _output_format(self.command, format),
+                                _creation_options(creation_options),
+                                _command_line(self.command, self._dem, self._options), self._dem._dem.path)
 
     def to_xarray(self):
         """The bands as an xarray.Dataset on x/y cell-centre coordinates, each variable's unit

@@ -99,11 +99,8 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
         return _arrays(client, product, dem_path, arguments, parts)
     command_line = "demlight.dask.run(%r, %r, %r, chunks=%r%s)" % (
         product, dem_path, out_path, chunks, "".join(", %s=%r" % kv for kv in options.items()))
-    try:
-        writer = _core.Writer(call, dem._dem, str(out_path), _demlight._output_format(product, format),
-                              _demlight._creation_options(creation_options), command_line)
-    except _demlight.Error as e:
-        raise _demlight._output_error(e, "out_path") from None
+    writer = _core.Writer(call, dem._dem, str(out_path), _demlight._output_format(product, format),
+                          _demlight._creation_options(creation_options), command_line, output_keyword="out_path")
     futures = client.map(_compute, [product] * len(parts), [dem_path] * len(parts), [arguments] * len(parts), parts,
                          pure=False)
     index = {f.key: i for i, f in enumerate(futures)}
@@ -120,10 +117,7 @@ def run(product, dem_path, out_path, chunks=2048, client=None, format="GTiff", c
             done += 1
             if progress is not None and progress(done / len(parts), "windows") is False:
                 raise _demlight.Cancelled("cancelled")
-        try:
-            return writer.commit()
-        except _demlight.Error as e:
-            raise _demlight._output_error(e, "out_path") from None
+        return writer.commit()
     except BaseException:
         writer.abandon()
         client.cancel(futures)

@@ -106,6 +106,17 @@ def dask_examples(path):
     return [b for b in blocks if "Client(" in b]
 
 
+def test_a_write_over_the_input_names_out_path(tmp_path, client):
+    # The output is named as run() names it (out_path), not as Result.write (path) or the
+    # command line (-o) do.
+    dem = tmp_path / "dem.tif"
+    dem.write_bytes(HELENS.read_bytes())
+    with pytest.raises(demlight.Error) as e:
+        demlight.dask.run("sky", str(dem), str(dem), chunks=128, client=client)
+    message = str(e.value)
+    assert "choose another out_path" in message and message.startswith("out_path "), message
+
+
 def test_readme_dask_example_runs_as_a_saved_script(tmp_path, cli):
     # Saved as a script, the example hung: Client() starts worker processes that import the
     # script again, and without the __main__ guard each started a cluster of its own.
